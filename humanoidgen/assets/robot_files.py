@@ -1,0 +1,276 @@
+"""Locate, verify and download the Unitree H1-2 robot model files.
+
+The robot description (URDF, MJCF, STL meshes; Apache-2.0, published by Unitree Robotics) is
+never committed to this repository. The package only carries the sha256 of every file
+(`h1_2.sha256`), so a download from any source can be checked byte for byte.
+
+Layout: an *assets root* is a folder that contains `h1_2/`; the robot MJCF is
+`<root>/h1_2/h1_2.xml`.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import hashlib
+import http.client
+import os
+import tempfile
+import urllib.error
+import urllib.parse
+import urllib.request
+from dataclasses import dataclass, field
+from importlib import resources
+from pathlib import Path, PurePosixPath
+
+ROBOT_DIR_NAME = "h1_2"
+ROBOT_MJCF_NAME = "h1_2.xml"
+UPSTREAM_COMMIT = "728ffa0f9ff309e52f5cfbc16fea5e5c0e146785"
+# Pinned to a commit, not a branch: the sums below describe exactly that revision.
+DEFAULT_BASE_URL = (
+    "https://raw.githubusercontent.com/unitreerobotics/avp_teleoperate/"
+    f"{UPSTREAM_COMMIT}/assets/{ROBOT_DIR_NAME}"
+)
+ENV_ASSETS = "HGEN_ASSETS"
+ENV_CACHE = "HGEN_CACHE"
+SUMS_RESOURCE = "h1_2.sha256"
+# Temp downloads carry this suffix so a later fetch can sweep leftovers of a hard kill.
+PART_SUFFIX = ".hgen-part"
+_CHUNK = 1 << 16
+
+
+class AssetsError(RuntimeError):
+    """Base class of every error raised here (lets a CLI catch them in one place)."""
+
+
+class AssetsNotFoundError(AssetsError):
+    """No folder with the robot model was found."""
+
+
+class FetchError(AssetsError):
+    """A download failed (HTTP error, unreachable host, timeout)."""
+
+
+class ChecksumError(FetchError):
+    """A downloaded file does not have the expected sha256."""
+
+
+@dataclass
+class VerifyReport:
+    """Outcome of checking a robot folder against the packaged sums (relative file names)."""
+
+    ok: list[str] = field(default_factory=list)
+    missing: list[str] = field(default_factory=list)
+    mismatched: list[str] = field(default_factory=list)
+
+    @property
+    def is_complete(self) -> bool:
+        return not self.missing and not self.mismatched
+
+    @property
+    def total(self) -> int:
+        return len(self.ok) + len(self.missing) + len(self.mismatched)
+
+
+# --------------------------------------------------------------------------- locating
+
+
+def cache_dir() -> Path:
+    """The per-user assets root that `fetch` fills by default."""
+    if value := os.environ.get(ENV_CACHE):
+        return Path(value).expanduser()
+    if xdg := os.environ.get("XDG_CACHE_HOME"):
+        return Path(xdg).expanduser() / "humanoidgen" / "assets"
+    return Path.home() / ".cache" / "humanoidgen" / "assets"
+
+
+def checkout_assets_dir() -> Path:
+    """`../shared/assets` beside a source checkout (where tests and CI keep the files)."""
+    # parents: [0] assets/, [1] humanoidgen/, [2] repo root, [3] folder holding the repo.
+    return Path(__file__).resolve().parents[3] / "shared" / "assets"
+
+
+def is_assets_root(path: Path) -> bool:
+    """A folder counts as an assets root when it holds the robot MJCF."""
+    return (path / ROBOT_DIR_NAME / ROBOT_MJCF_NAME).is_file()
+
+
+def resolve_assets_root() -> Path:
+    """Find the folder that contains `h1_2/`.
+
+    Order: `$HGEN_ASSETS` (explicit, so an invalid value is an error rather than silently
+    ignored), then the user cache (`cache_dir()`), then `../shared/assets` beside a checkout.
+    """
+    if value := os.environ.get(ENV_ASSETS):
+        root = Path(value).expanduser()
+        if is_assets_root(root):
+            return root
+        raise AssetsNotFoundError(
+            f"{ENV_ASSETS} is set to '{root}', but '{root / ROBOT_DIR_NAME / ROBOT_MJCF_NAME}' "
+            f"does not exist. Point {ENV_ASSETS} at the folder that contains "
+            f"'{ROBOT_DIR_NAME}/', or unset it and run `hgen assets fetch`."
+        )
+    candidates = [(cache_dir(), "user cache"), (checkout_assets_dir(), "beside the checkout")]
+    for root, _ in candidates:
+        if is_assets_root(root):
+            return root
+    looked = "\n".join(f"  - {root} ({why})" for root, why in candidates)
+    raise AssetsNotFoundError(
+        f"Robot model files (Unitree H1-2) not found. Looked for "
+        f"'{ROBOT_DIR_NAME}/{ROBOT_MJCF_NAME}' in:\n  - ${ENV_ASSETS} (not set)\n{looked}\n"
+        f"Run `hgen assets fetch` to download them (about 49 MB) into the user cache, "
+        f"or set {ENV_ASSETS} to a folder that contains '{ROBOT_DIR_NAME}/'."
+    )
+
+
+def robot_mjcf_path() -> Path:
+    """Path of the robot MJCF (`<root>/h1_2/h1_2.xml`)."""
+    return resolve_assets_root() / ROBOT_DIR_NAME / ROBOT_MJCF_NAME
+
+
+# --------------------------------------------------------------------------- sums
+
+
+def _safe_relpath(name: str) -> str:
+    """Reject names that could write outside the robot folder (the sums file drives writes)."""
+    path = PurePosixPath(name)
+    if (
+        not name
+        or "\\" in name
+        or path.is_absolute()
+        or ".." in path.parts
+        or (path.parts and ":" in path.parts[0])  # e.g. a Windows drive 'C:'
+    ):
+        raise ValueError(f"unsafe file name in sums file: {name!r}")
+    return path.as_posix()
+
+
+def parse_sums(text: str) -> dict[str, str]:
+    """Parse `sha256sum` output (`<hex>  ./path`) into {relative path: hex digest}."""
+    sums: dict[str, str] = {}
+    for lineno, line in enumerate(text.splitlines(), 1):
+        if not line.strip() or line.lstrip().startswith("#"):
+            continue
+        digest, sep, name = line.strip().partition(" ")
+        name = name.lstrip(" *")  # '*' marks binary mode in sha256sum output
+        if not sep or len(digest) != 64 or any(c not in "0123456789abcdefABCDEF" for c in digest):
+            raise ValueError(f"bad line {lineno} in sums file: {line!r}")
+        if name.startswith("./"):
+            name = name[2:]
+        sums[_safe_relpath(name)] = digest.lower()
+    return sums
+
+
+def expected_sums() -> dict[str, str]:
+    """The packaged sha256 of every robot file: {relative path: hex digest}."""
+    text = resources.files("humanoidgen.assets").joinpath(SUMS_RESOURCE).read_text("utf-8")
+    return parse_sums(text)
+
+
+def sha256_file(path: Path) -> str:
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        # Chunked so memory stays flat whatever the mesh size.
+        for chunk in iter(lambda: f.read(_CHUNK), b""):
+            h.update(chunk)
+    return h.hexdigest()
+
+
+def verify(robot_dir: Path, sums: dict[str, str] | None = None) -> VerifyReport:
+    """Check every file listed in the sums under `robot_dir` (the `h1_2/` folder itself)."""
+    sums = expected_sums() if sums is None else sums
+    report = VerifyReport()
+    for name, digest in sums.items():
+        path = robot_dir / name
+        if not path.is_file():
+            report.missing.append(name)
+        elif sha256_file(path) != digest:
+            report.mismatched.append(name)
+        else:
+            report.ok.append(name)
+    return report
+
+
+# --------------------------------------------------------------------------- fetching
+
+
+def _file_url(base_url: str, name: str) -> str:
+    return base_url.rstrip("/") + "/" + urllib.parse.quote(name)
+
+
+def _download(url: str, dest: Path, expected: str, name: str, base_url: str, timeout: float) -> None:
+    """Stream `url` into a temp file beside `dest`; move it into place only if the hash matches."""
+    dest.parent.mkdir(parents=True, exist_ok=True)
+    # Same folder as the target, so os.replace is an atomic rename, never a copy.
+    fd, tmp_name = tempfile.mkstemp(prefix=f".{dest.name}.", suffix=PART_SUFFIX, dir=dest.parent)
+    tmp = Path(tmp_name)
+    try:
+        h = hashlib.sha256()
+        with os.fdopen(fd, "wb") as out:
+            try:
+                with urllib.request.urlopen(url, timeout=timeout) as resp:
+                    for chunk in iter(lambda: resp.read(_CHUNK), b""):
+                        h.update(chunk)
+                        out.write(chunk)
+            except urllib.error.HTTPError as exc:
+                raise FetchError(_fetch_hint(url, f"HTTP {exc.code} {exc.reason}", base_url)) from exc
+            except urllib.error.URLError as exc:
+                raise FetchError(_fetch_hint(url, str(exc.reason), base_url)) from exc
+            except (TimeoutError, ConnectionError, http.client.HTTPException) as exc:
+                reason = f"{type(exc).__name__}: {exc}" if str(exc) else type(exc).__name__
+                raise FetchError(_fetch_hint(url, reason, base_url)) from exc
+        actual = h.hexdigest()
+        if actual != expected:
+            raise ChecksumError(
+                f"checksum mismatch for '{name}' (from {url}): expected sha256 {expected}, "
+                f"got {actual}. The file was discarded; the source may be corrupt or serve a "
+                f"different revision (pass --base-url to use another mirror)."
+            )
+        os.chmod(tmp, 0o644)  # mkstemp creates 0600; these are shareable read-only data
+        os.replace(tmp, dest)
+    except BaseException:
+        # Any failure, KeyboardInterrupt included: leave no partial file behind.
+        with contextlib.suppress(FileNotFoundError):
+            tmp.unlink()
+        raise
+
+
+def _fetch_hint(url: str, reason: str, base_url: str) -> str:
+    return (
+        f"could not download {url}: {reason}. Check the network connection, or pass "
+        f"--base-url to use a mirror (currently '{base_url}'; it must serve the files of "
+        f"'{ROBOT_DIR_NAME}/' under that address)."
+    )
+
+
+def _sweep_parts(robot_dir: Path) -> None:
+    """Remove temp files left by a fetch that was killed hard (SIGKILL, power loss)."""
+    if robot_dir.is_dir():
+        for leftover in robot_dir.rglob(f"*{PART_SUFFIX}"):
+            with contextlib.suppress(OSError):
+                leftover.unlink()
+
+
+def fetch(
+    dest_root: Path | None = None,
+    base_url: str = DEFAULT_BASE_URL,
+    progress: bool = True,
+    timeout: float = 30,
+) -> Path:
+    """Download every file listed in the sums into `dest_root/h1_2/` and return `dest_root`.
+
+    Files already present with the right hash are skipped, so an interrupted fetch resumes.
+    Each download is verified before it is moved into place; a bad one raises ChecksumError.
+    """
+    dest_root = cache_dir() if dest_root is None else Path(dest_root).expanduser()
+    robot_dir = dest_root / ROBOT_DIR_NAME
+    sums = expected_sums()
+    _sweep_parts(robot_dir)
+    from tqdm import tqdm  # lazy: importing this module should stay cheap
+
+    with tqdm(sorted(sums), desc="robot files", unit="file", disable=not progress) as bar:
+        for name in bar:
+            dest = robot_dir / name
+            if dest.is_file() and sha256_file(dest) == sums[name]:
+                continue  # already verified: this is what makes a re-run resume
+            _download(_file_url(base_url, name), dest, sums[name], name, base_url, timeout)
+    return dest_root

@@ -1,0 +1,188 @@
+"""The six cameras: where they sit, and rendering RGB, depth and segmentation from them.
+
+Head: a RealSense D435-like first-person camera on the torso (about 43 degrees vertical field of view, the
+colour stream's fx = fy ~ 615 px at 640x480). Two wrist cameras look past each hand's fingers. Three
+third-person cameras watch the table from the front, the left and the right.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import mujoco
+import numpy as np
+
+from humanoidgen.sim.geometry import look_at_quat
+from humanoidgen.sim.layout import ROBOT_BASE_POS, WRIST_BODY
+
+D435_FOVY_DEG = 42.6
+
+
+@dataclass(frozen=True)
+class CameraSpec:
+    """A camera fixed to a body (`body=None`: the world), looking from `eye` at `target`, both in that body's frame."""
+
+    name: str
+    eye: tuple[float, float, float]
+    target: tuple[float, float, float]
+    fovy: float
+    body: str | None = None
+    up: tuple[float, float, float] = (0.0, 0.0, 1.0)
+
+
+_BASE = ROBOT_BASE_POS
+CAMERAS: tuple[CameraSpec, ...] = (
+    # On the torso: the head camera sits above the shoulders and looks down at the work area.
+    CameraSpec("head", eye=(0.09, 0.0, 0.66), target=(0.5, 0.0, 0.0), fovy=D435_FOVY_DEG, body="torso_link"),
+    # On the back of each hand (wrist-yaw link frame: fingers along +x, the palm faces -y on the left hand and +y
+    # on the right), looking past the fingertips; "up" in the image is the back of the hand.
+    CameraSpec("left_wrist", eye=(0.09, 0.10, 0.0), target=(0.40, -0.10, 0.0), fovy=75.0, body=WRIST_BODY["left"],
+               up=(0.0, 1.0, 0.0)),
+    CameraSpec("right_wrist", eye=(0.09, -0.10, 0.0), target=(0.40, 0.10, 0.0), fovy=75.0,
+               body=WRIST_BODY["right"], up=(0.0, -1.0, 0.0)),
+    CameraSpec("front", eye=(0.55, 0.0, 0.65), target=(-0.45, 0.0, 0.05), fovy=55.0),
+    CameraSpec("left", eye=(-0.30, 1.05, 0.55), target=(-0.35, 0.0, 0.02), fovy=55.0),
+    CameraSpec("right", eye=(-0.30, -1.05, 0.55), target=(-0.35, 0.0, 0.02), fovy=55.0),
+)
+CAMERA_NAMES: tuple[str, ...] = tuple(c.name for c in CAMERAS)
+
+
+def add_cameras(spec: mujoco.MjSpec, cameras: tuple[CameraSpec, ...] = CAMERAS) -> None:
+    for cam in cameras:
+        parent = spec.worldbody if cam.body is None else spec.body(cam.body)
+        parent.add_camera(
+            name=cam.name,
+            pos=cam.eye,
+            quat=look_at_quat(np.array(cam.eye), np.array(cam.target), np.array(cam.up)),
+            fovy=cam.fovy,
+        )
+
+
+@dataclass
+class Frame:
+    """One camera's images: RGB (H, W, 3) uint8, depth (H, W) float32 metres, segmentation (H, W) int32 labels."""
+
+    rgb: np.ndarray
+    depth: np.ndarray
+    segmentation: np.ndarray
+    fovy: float
+    cam_pos: np.ndarray
+    cam_mat: np.ndarray
+
+
+@dataclass
+class CameraRig:
+    """Renders the scene's cameras at one resolution. Segmentation labels come from `geom_labels`.
+
+    One lit pass gives colour and depth; segmentation takes a second, flat-colour pass whose colours encode
+    geom ids. Shadows are off by default: on a software renderer they cost about twice the colour pass.
+    """
+
+    model: mujoco.MjModel
+    width: int = 320
+    height: int = 240
+    geom_labels: np.ndarray | None = None
+    shadows: bool = False
+    max_geom: int = 2000
+
+    def __post_init__(self) -> None:
+        vis = self.model.vis.global_
+        if self.width > vis.offwidth or self.height > vis.offheight:
+            raise ValueError(
+                f"camera resolution {self.width}x{self.height} exceeds the model's offscreen buffer "
+                f"{vis.offwidth}x{vis.offheight}"
+            )
+        from mujoco import gl_context
+
+        self._gl = gl_context.GLContext(self.width, self.height)
+        self._gl.make_current()
+        self._con = mujoco.MjrContext(self.model, mujoco.mjtFontScale.mjFONTSCALE_100.value)
+        mujoco.mjr_setBuffer(mujoco.mjtFramebuffer.mjFB_OFFSCREEN.value, self._con)
+        self._con.readDepthMap = mujoco.mjtDepthMap.mjDEPTH_ZEROFAR
+        self._scn = mujoco.MjvScene(self.model, maxgeom=self.max_geom)
+        self._opt = mujoco.MjvOption()
+        self._cam = mujoco.MjvCamera()
+        self._cam.type = mujoco.mjtCamera.mjCAMERA_FIXED
+        self._pert = mujoco.MjvPerturb()
+        self._rect = mujoco.MjrRect(0, 0, self.width, self.height)
+        self._rgb = np.empty((self.height, self.width, 3), np.uint8)
+        self._depth = np.empty((self.height, self.width), np.float32)
+        extent = self.model.stat.extent
+        self._near = np.float32(self.model.vis.map.znear * extent)
+        self._far = np.float32(self.model.vis.map.zfar * extent)
+
+    def close(self) -> None:
+        if getattr(self, "_gl", None) is not None:
+            self._gl.make_current()
+            self._con.free()
+            self._gl.free()
+            self._gl = None
+
+    def __enter__(self) -> "CameraRig":
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    def render(
+        self, data: mujoco.MjData, camera: str, rgb: bool = True, depth: bool = True, segmentation: bool = True
+    ) -> Frame:
+        cam_id = self.model.camera(camera).id
+        self._gl.make_current()
+        self._cam.fixedcamid = cam_id
+        mujoco.mjv_updateScene(self.model, data, self._opt, self._pert, self._cam,
+                               mujoco.mjtCatBit.mjCAT_ALL.value, self._scn)
+        flags = self._scn.flags
+        rgb_img = np.zeros((0, 0, 3), np.uint8)
+        depth_img = np.zeros((0, 0), np.float32)
+        seg_img = np.zeros((0, 0), np.int32)
+        if rgb:
+            # The lit pass fills the depth buffer too: read both from it.
+            flags[mujoco.mjtRndFlag.mjRND_SHADOW] = self.shadows
+            mujoco.mjr_render(self._rect, self._scn, self._con)
+            mujoco.mjr_readPixels(self._rgb, self._depth if depth else None, self._rect, self._con)
+            rgb_img = np.flipud(self._rgb).copy()
+            if depth:
+                depth_img = np.flipud(self._metric_depth(self._depth)).copy()
+        if segmentation or (depth and not rgb):
+            flags[mujoco.mjtRndFlag.mjRND_SEGMENT] = True
+            flags[mujoco.mjtRndFlag.mjRND_IDCOLOR] = True
+            try:
+                mujoco.mjr_render(self._rect, self._scn, self._con)
+            finally:
+                flags[mujoco.mjtRndFlag.mjRND_SEGMENT] = False
+                flags[mujoco.mjtRndFlag.mjRND_IDCOLOR] = False
+            mujoco.mjr_readPixels(self._rgb, self._depth, self._rect, self._con)
+            if depth and not rgb:
+                depth_img = np.flipud(self._metric_depth(self._depth)).copy()
+            if segmentation:
+                seg_img = np.flipud(self._labels(self._rgb)).copy()
+        return Frame(
+            rgb=rgb_img,
+            depth=depth_img,
+            segmentation=seg_img,
+            fovy=float(self.model.cam_fovy[cam_id]),
+            cam_pos=data.cam_xpos[cam_id].copy(),
+            cam_mat=data.cam_xmat[cam_id].reshape(3, 3).copy(),
+        )
+
+    def render_all(self, data: mujoco.MjData, cameras: tuple[str, ...] = CAMERA_NAMES, **kw: bool) -> dict[str, Frame]:
+        return {name: self.render(data, name, **kw) for name in cameras}
+
+    def _metric_depth(self, zbuf: np.ndarray) -> np.ndarray:
+        """OpenGL depth-buffer values -> distance along the optical axis (metres), as mujoco.Renderer does."""
+        near, far = self._near, self._far
+        c = np.float32(-0.5) * (-(far + near) / (far - near)) - np.float32(0.5)
+        d = np.float32(-0.5) * (-(np.float32(2) * far * near) / (far - near))
+        return (d / (zbuf.astype(np.float64) + c)).astype(np.float32)
+
+    def _labels(self, idcolor: np.ndarray) -> np.ndarray:
+        """Flat id colours -> segmentation labels: per geom label (or geom id without labels), -1 for nothing."""
+        c = idcolor.astype(np.int64)
+        segid = c[..., 0] + (c[..., 1] << 8) + (c[..., 2] << 16)  # 0: background, k: scene geom k-1
+        n = self._scn.ngeom
+        table = np.full(n + 1, -1, dtype=np.int32)
+        for g in self._scn.geoms[:n]:
+            if g.segid >= 0 and g.objtype == mujoco.mjtObj.mjOBJ_GEOM:
+                table[g.segid + 1] = g.objid if self.geom_labels is None else self.geom_labels[g.objid]
+        return table[np.clip(segid, 0, n)]

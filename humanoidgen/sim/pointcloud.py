@@ -1,0 +1,252 @@
+"""Depth images -> world-frame point clouds for DP3-style datasets.
+
+Pure numpy; no MuJoCo import. The conventions follow MuJoCo's cameras:
+
+* pinhole model with *vertical* field of view ``fovy`` and square pixels;
+* the camera looks along its local ``-z`` axis, ``+x`` is image right and
+  ``+y`` is image up;
+* ``cam_mat = data.cam_xmat[i].reshape(3, 3)`` has the camera axes (in world
+  coordinates) as its COLUMNS, so ``p_world = cam_pos + cam_mat @ p_cam``;
+* depth from ``mujoco.Renderer`` (depth rendering enabled) is the distance
+  along the optical axis in metres, not the ray length.
+
+World frame used by the defaults: +x forward, +y left, +z up, table top at z=0.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import NamedTuple, Sequence
+
+import numpy as np
+
+__all__ = [
+    "DepthView",
+    "PointCloudConfig",
+    "intrinsics",
+    "depth_to_points",
+    "crop_box",
+    "farthest_point_sampling",
+    "fuse_point_cloud",
+]
+
+
+def intrinsics(width: int, height: int, fovy_deg: float) -> np.ndarray:
+    """3x3 pinhole intrinsics matrix K for a MuJoCo camera.
+
+    MuJoCo specifies only the vertical FOV; with square pixels fx == fy and the
+    principal point sits exactly at the image centre (pixel-edge coordinates).
+    """
+    if width <= 0 or height <= 0:
+        raise ValueError(f"image size must be positive, got {width}x{height}")
+    if not 0.0 < fovy_deg < 180.0:
+        raise ValueError(f"fovy_deg must be in (0, 180), got {fovy_deg}")
+    f = height / (2.0 * np.tan(np.deg2rad(fovy_deg) / 2.0))
+    return np.array(
+        [[f, 0.0, width / 2.0], [0.0, f, height / 2.0], [0.0, 0.0, 1.0]],
+        dtype=np.float64,
+    )
+
+
+def depth_to_points(
+    depth: np.ndarray,
+    fovy_deg: float,
+    cam_pos: np.ndarray,
+    cam_mat: np.ndarray,
+    far: float = np.inf,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Back-project a depth image into world-frame points.
+
+    Returns ``(points, valid)``:
+
+    * ``points``: ``(H*W, 3)`` float64, row-major pixel order (row ``v`` from
+      the top, then column ``u``), i.e. aligned with ``image.reshape(H*W, ...)``
+      so per-pixel attributes such as RGB can be selected with the same mask.
+      Rows of invalid pixels are NaN so they can never be used by accident.
+    * ``valid``: ``(H*W,)`` bool, False where depth is non-finite or
+      ``>= far`` (MuJoCo reports the far clipping plane for empty background).
+
+    Use ``points[valid]`` for the usable cloud.
+    """
+    depth = np.asarray(depth)
+    if depth.ndim != 2:
+        raise ValueError(f"depth must be (H, W), got shape {depth.shape}")
+    h, w = depth.shape
+    k = intrinsics(w, h, fovy_deg)
+    fx, fy, cx, cy = k[0, 0], k[1, 1], k[0, 2], k[1, 2]
+
+    d = depth.astype(np.float64).reshape(-1)
+    valid = np.isfinite(d) & (d < far)
+
+    # +0.5: MuJoCo samples the ray through the pixel centre.
+    u = np.arange(w, dtype=np.float64) + 0.5
+    v = np.arange(h, dtype=np.float64) + 0.5
+    xn = np.broadcast_to((u - cx) / fx, (h, w)).reshape(-1)
+    # Image rows grow downward while camera +y is up, hence the sign flip.
+    yn = np.broadcast_to((-(v - cy) / fy)[:, None], (h, w)).reshape(-1)
+
+    d_safe = np.where(valid, d, np.nan)
+    p_cam = np.stack([xn * d_safe, yn * d_safe, -d_safe], axis=1)  # looks along -z
+    cam_mat = np.asarray(cam_mat, dtype=np.float64).reshape(3, 3)
+    cam_pos = np.asarray(cam_pos, dtype=np.float64).reshape(3)
+    # Row-vector form of cam_pos + cam_mat @ p_cam.
+    points = p_cam @ cam_mat.T + cam_pos
+    return points, valid
+
+
+def crop_box(points: np.ndarray, lo: Sequence[float], hi: Sequence[float]) -> np.ndarray:
+    """Boolean mask of points inside the axis-aligned box [lo, hi] (inclusive).
+
+    NaN rows compare False and are therefore excluded.
+    """
+    points = np.asarray(points)
+    lo_a = np.asarray(lo, dtype=np.float64)
+    hi_a = np.asarray(hi, dtype=np.float64)
+    return np.all((points >= lo_a) & (points <= hi_a), axis=-1)
+
+
+def farthest_point_sampling(
+    points: np.ndarray,
+    n: int,
+    seed: int = 0,
+    oversample: int | None = 8,
+) -> np.ndarray:
+    """Indices (n,) into ``points`` chosen by farthest point sampling.
+
+    Deterministic for a given ``seed`` (the seed picks the start point and the
+    candidate subset). Greedy FPS with a running min-distance array: O(M*n)
+    time, O(M) memory, where M is the number of candidates.
+
+    Speed: if ``oversample`` is not None and N > oversample*n, a uniform random
+    subset of ``oversample*n`` candidates is drawn first. FPS on a dense depth
+    cloud is dominated by N, and an 8x random pre-subsample barely changes the
+    coverage while cutting the cost ~N/(8n) times. Pass ``oversample=None``
+    for exact FPS over all points.
+
+    If N < n every index is returned once (in order), then the sequence is
+    repeated cyclically so the output always has exactly n entries.
+    Points must be finite (filter with the ``valid`` mask first).
+    """
+    pts = np.asarray(points, dtype=np.float64)
+    if pts.ndim != 2 or pts.shape[1] != 3:
+        raise ValueError(f"points must be (N, 3), got shape {pts.shape}")
+    n_pts = pts.shape[0]
+    if n <= 0:
+        raise ValueError(f"n must be positive, got {n}")
+    if n_pts == 0:
+        raise ValueError(
+            "farthest_point_sampling got 0 points (empty cloud: check depth "
+            "validity / crop box)"
+        )
+    if n_pts <= n:
+        # Not enough points: keep all, pad by cyclic repetition (deterministic).
+        return np.resize(np.arange(n_pts, dtype=np.int64), n)
+
+    rng = np.random.default_rng(seed)
+    if oversample is not None and n_pts > oversample * n:
+        cand = np.sort(rng.choice(n_pts, size=oversample * n, replace=False))
+    else:
+        cand = np.arange(n_pts, dtype=np.int64)
+    # Per-axis contiguous float64 arrays: plain elementwise ufuncs on 1-D
+    # arrays are ~4x faster here than einsum on an (M, 3) array.
+    cx, cy, cz = (np.ascontiguousarray(pts[cand, k]) for k in range(3))
+    m = cand.shape[0]
+
+    chosen = np.empty(n, dtype=np.int64)
+    min_d2 = np.full(m, np.inf)
+    d2 = np.empty(m)
+    tmp = np.empty(m)
+    cur = int(rng.integers(m))
+    for i in range(n):
+        chosen[i] = cur
+        # In-place ops: no allocations in the n-iteration loop.
+        np.subtract(cx, cx[cur], out=d2)
+        np.multiply(d2, d2, out=d2)
+        np.subtract(cy, cy[cur], out=tmp)
+        np.multiply(tmp, tmp, out=tmp)
+        d2 += tmp
+        np.subtract(cz, cz[cur], out=tmp)
+        np.multiply(tmp, tmp, out=tmp)
+        d2 += tmp
+        np.minimum(min_d2, d2, out=min_d2)
+        cur = int(np.argmax(min_d2))
+    return cand[chosen]
+
+
+@dataclass
+class PointCloudConfig:
+    """Settings for :func:`fuse_point_cloud`.
+
+    The default crop is a workspace box over the table in front of the robot
+    (world frame: +x forward, +y left, +z up, table top at z=0); z starts just
+    below 0 so the table surface itself survives depth noise.
+    """
+
+    num_points: int = 1024
+    crop_lo: tuple[float, float, float] = (-0.65, -0.55, -0.01)
+    crop_hi: tuple[float, float, float] = (0.05, 0.55, 0.6)
+    use_rgb: bool = False
+    far: float = np.inf  # depths >= far are treated as background
+    seed: int = 0  # FPS seed, for reproducible datasets
+
+
+class DepthView(NamedTuple):
+    """One camera view. A plain 5-tuple in this order works too."""
+
+    depth: np.ndarray  # (H, W) metres along the optical axis
+    fovy_deg: float
+    cam_pos: np.ndarray  # (3,)
+    cam_mat: np.ndarray  # (3, 3), columns = camera axes in world
+    rgb: np.ndarray | None = None  # (H, W, 3) uint8 or float in [0, 1]
+
+
+def _rgb_to_unit(rgb: np.ndarray, shape: tuple[int, int]) -> np.ndarray:
+    rgb = np.asarray(rgb)
+    if rgb.shape[:2] != shape or rgb.ndim != 3 or rgb.shape[2] < 3:
+        raise ValueError(f"rgb must be (H, W, 3) matching depth {shape}, got {rgb.shape}")
+    rgb = rgb[..., :3]
+    if np.issubdtype(rgb.dtype, np.integer):
+        out = rgb.astype(np.float64) / 255.0
+    else:
+        out = rgb.astype(np.float64)
+    return np.clip(out, 0.0, 1.0).reshape(-1, 3)
+
+
+def fuse_point_cloud(
+    views: Sequence[DepthView | tuple],
+    config: PointCloudConfig | None = None,
+) -> np.ndarray:
+    """Fuse several depth views into one cropped, FPS-downsampled cloud.
+
+    Each view is ``(depth, fovy_deg, cam_pos, cam_mat, rgb_or_None)``.
+    Returns float32 ``(num_points, 3)``, or ``(num_points, 6)`` with RGB in
+    [0, 1] appended when ``config.use_rgb`` (every view then needs rgb).
+    Raises ValueError if no point survives the crop.
+    """
+    cfg = config if config is not None else PointCloudConfig()
+    if len(views) == 0:
+        raise ValueError("fuse_point_cloud needs at least one view")
+
+    chunks: list[np.ndarray] = []
+    for i, view in enumerate(views):
+        depth, fovy, pos, mat, *rest = view
+        rgb = rest[0] if rest else None
+        pts, valid = depth_to_points(depth, fovy, pos, mat, far=cfg.far)
+        keep = valid & crop_box(pts, cfg.crop_lo, cfg.crop_hi)
+        feats = pts[keep]
+        if cfg.use_rgb:
+            if rgb is None:
+                raise ValueError(f"config.use_rgb is True but view {i} has no rgb")
+            cols = _rgb_to_unit(rgb, np.asarray(depth).shape)[keep]
+            feats = np.concatenate([feats, cols], axis=1)
+        chunks.append(feats)
+
+    cloud = np.concatenate(chunks, axis=0)
+    if cloud.shape[0] == 0:
+        raise ValueError(
+            "no points left after cropping to "
+            f"lo={cfg.crop_lo}, hi={cfg.crop_hi} (check camera poses / crop box)"
+        )
+    # FPS on xyz only: colour should not influence spatial coverage.
+    idx = farthest_point_sampling(cloud[:, :3], cfg.num_points, seed=cfg.seed)
+    return cloud[idx].astype(np.float32)

@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Set up humanoidgen on a fresh Debian/Ubuntu machine: the Debian packages MuJoCo needs to render offscreen
+# through EGL (Mesa's software renderer when there is no GPU), then the Python package and its test tools.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+DEB_PACKAGES=(libegl1 libgl1-mesa-dri)
+missing=()
+for p in "${DEB_PACKAGES[@]}"; do
+  dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  if command -v apt-get >/dev/null 2>&1; then
+    SUDO=""
+    [ "$(id -u)" -eq 0 ] || SUDO="sudo"
+    echo "Installing Debian packages: ${missing[*]}"
+    $SUDO apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+  else
+    echo "Please install the equivalents of: ${missing[*]} (EGL and Mesa's DRI drivers) with your package manager." >&2
+  fi
+fi
+
+PYTHON="${PYTHON:-python3}"
+"$PYTHON" -m pip install --disable-pip-version-check -q -e ".[dev]"
+echo "humanoidgen is installed. Try: hgen render --out scene.png"
