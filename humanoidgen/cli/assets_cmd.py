@@ -93,3 +93,60 @@ def where() -> None:
     lines += [f"  mismatched: {name}" for name in report.mismatched]
     lines.append(f"Run `hgen assets fetch --dest {root}` to repair it.")
     _fail("\n".join(lines))
+
+
+@app.command("list")
+def list_assets() -> None:
+    """List the object library: families, models (type_id) and their annotations.
+
+    Example: hgen assets list
+    """
+    from humanoidgen.objects import library
+
+    for name, fam in sorted(library.families().items()):
+        kind = "articulated" if fam.articulated else "rigid"
+        typer.secho(f"{name} ({kind})", bold=True)
+        for m in fam.models():
+            ann = fam.annotations(m.type_id)
+            typer.echo(f"  type_id {m.type_id}: {m.description}")
+            typer.echo(f"    points: {', '.join(p.name for p in ann.points)}")
+            typer.echo(f"    axes: {', '.join(a.name for a in ann.axes)}")
+            ops = sorted({f"{o.operation}@{o.point}" for o in ann.operations})
+            fns = sorted({f"{f.function}@{f.point}" for f in ann.functions})
+            typer.echo(f"    operations: {', '.join(ops) or '-'}; functions: {', '.join(fns) or '-'}")
+    from humanoidgen.objects.hands import hand_axes, hand_points
+
+    typer.secho("hands: left_hand, right_hand", bold=True)
+    for side in ("left", "right"):
+        typer.echo(f"  {side} points: {', '.join(hand_points(side))}")
+        typer.echo(f"  {side} axes: {', '.join(hand_axes(side))}")
+
+
+@app.command()
+def show(
+    name: str = typer.Argument(..., help="An object type (see `hgen assets list`), or left_hand / right_hand."),
+    type_id: int = typer.Option(0, "--type-id", help="Which model of the family."),
+    out: Path = typer.Option(Path("asset.png"), "--out", "-o", help="PNG file to write."),
+) -> None:
+    """Render an asset with its annotated key points and axes drawn on it.
+
+    Articulated objects are shown at openness 0.3 and 1. Hands show grasp, pinch and press points and axes.
+
+    Example: hgen assets show drawer --out drawer.png
+    """
+    import os
+
+    os.environ.setdefault("MUJOCO_GL", "egl")
+    from humanoidgen.objects.show import show_hand, show_object
+
+    try:
+        if name in ("left_hand", "right_hand"):
+            img = show_hand(name.split("_")[0])
+        else:
+            img = show_object(name, type_id)
+    except (KeyError, rf.AssetsError) as exc:
+        _fail(str(exc).strip("'\""))
+        return
+    out.parent.mkdir(parents=True, exist_ok=True)
+    img.save(out)
+    typer.echo(f"wrote {out}")

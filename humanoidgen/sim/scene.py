@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import mujoco
 import numpy as np
@@ -16,6 +17,9 @@ from humanoidgen.assets.robot_files import resolve_assets_root
 from humanoidgen.sim.cameras import add_cameras
 from humanoidgen.sim.layout import ROBOT_BASE_POS, TABLE_THICKNESS, TABLE_TOP_Z, TABLE_X, TABLE_Y
 from humanoidgen.sim.robot import build_robot_spec
+
+if TYPE_CHECKING:
+    from humanoidgen.objects.schema import ObjectAnnotations
 
 # Segmentation labels: static world, the robot, then one label per object in the order they were added.
 LABEL_BACKGROUND = 0
@@ -37,6 +41,7 @@ class SceneObject:
     body: str
     label: int
     type_id: int = 0
+    annotations: "ObjectAnnotations | None" = None  # key points and axes (None for ad-hoc shapes)
 
 
 @dataclass
@@ -150,6 +155,26 @@ class SceneBuilder:
         half = size / 2
         body.add_geom(name=f"{obj.body}_geom", type=mujoco.mjtGeom.mjGEOM_BOX, size=[half] * 3, rgba=list(rgba),
                       mass=mass, friction=[1.0, 0.01, 0.001], condim=4)
+        return obj
+
+    def add_object(self, type_name: str, type_id: int = 0, pos: tuple[float, ...] | None = None,
+                   yaw: float = 0.0) -> SceneObject:
+        """Add a model of the asset library. `pos` is the object's centre; a missing z (or pos=(x, y)) puts it
+        on the table. `yaw` (radians) turns it about the vertical."""
+        from dataclasses import replace
+
+        from humanoidgen.objects import library
+        from humanoidgen.sim.geometry import yaw_quat
+
+        fam = library.family(type_name)
+        ann = library.annotations(type_name, type_id)
+        if pos is None:
+            pos = (-0.30, 0.0)
+        xyz = np.array([pos[0], pos[1], pos[2] if len(pos) > 2 else TABLE_TOP_Z - ann.bbox_min[2]], float)
+        obj, body = self.add_object_body(type_name, xyz, yaw_quat(yaw), type_id=type_id, free=not fam.articulated)
+        fam.build(self.spec, body, type_id)
+        obj = replace(obj, annotations=ann)
+        self._objects[-1] = obj
         return obj
 
     # -- compile -----------------------------------------------------------------------------------------

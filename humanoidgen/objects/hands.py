@@ -1,0 +1,57 @@
+"""Annotations of the two Inspire hands: key points and axes in each wrist-yaw link frame, named as the
+paper's planner API names them, and the 6-D finger postures of the atomic operations.
+
+Wrist-yaw frame facts (from the upstream MJCF): fingers point along +x, the index finger is on the +z side
+and the pinky on -z, the palm faces -y on the left hand and +y on the right (the thumb's side).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from humanoidgen.sim.layout import PALM_SIGN, SIDES, Side
+
+# Finger postures (thumb yaw, thumb pitch, index, middle, ring, pinky), radians.
+HAND_POSTURES: dict[str, tuple[float, ...]] = {
+    "open": (0.0, 0.0, 0.0, 0.0, 0.0, 0.0),
+    "pre_grasp": (1.3, 0.0, 0.0, 0.0, 0.0, 0.0),  # thumb turned to face the fingers
+    "grasp": (1.3, 0.35, 1.3, 1.3, 1.3, 1.3),
+    "pre_pinch": (1.2, 0.1, 0.3, 1.6, 1.6, 1.6),  # thumb and index opposed, other fingers tucked away
+    "pinch": (1.2, 0.45, 1.0, 1.6, 1.6, 1.6),
+    "press": (0.6, 0.5, 0.0, 1.6, 1.6, 1.6),  # index extended, the rest curled
+}
+
+
+def hand_points(side: Side) -> dict[str, np.ndarray]:
+    s = PALM_SIGN[side]
+    return {
+        f"base_point_{side}_hand": np.array([0.054, 0.0, 0.0]),
+        f"grasp_point_base_{side}_hand": np.array([0.13, s * 0.05, 0.0]),
+        f"pinch_point_base_{side}_hand": np.array([0.21, s * 0.045, 0.02]),
+        f"press_point_base_{side}_hand": np.array([0.265, 0.0, 0.032]),
+        f"palm_center_{side}_hand": np.array([0.125, s * 0.03, 0.0]),
+    }
+
+
+def hand_axes(side: Side) -> dict[str, np.ndarray]:
+    s = PALM_SIGN[side]
+    return {
+        f"{side}_grasp_axis": np.array([0.0, s, 0.0]),  # back of the palm -> out of the palm
+        f"{side}_pinch_axis": np.array([0.0, -s, 0.0]),  # thumb tip -> index tip
+        f"{side}_ring_2_index": np.array([0.0, 0.0, 1.0]),
+        f"{side}_grasp_wrist_2_palm_axis": np.array([1.0, 0.0, 0.0]),
+        f"{side}_pinch_wrist_2_palm_axis": np.array([1.0, 0.0, 0.0]),
+        f"{side}_press_axis": np.array([1.0, 0.0, 0.0]),  # along the extended index finger
+    }
+
+
+HAND_POINT_NAMES = tuple(n for side in SIDES for n in hand_points(side))
+HAND_AXIS_NAMES = tuple(n for side in SIDES for n in hand_axes(side))
+
+
+def side_of(name: str) -> Side:
+    """Which hand a hand annotation name belongs to."""
+    for side in SIDES:
+        if f"_{side}_" in f"_{name}_":
+            return side
+    raise KeyError(name)

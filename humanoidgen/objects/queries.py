@@ -1,0 +1,102 @@
+"""World-frame key points and axes of objects and hands, as the planner API asks for them.
+
+`env` is anything with `model`, `data` and `scene` (a HumanoidEnv). Objects are addressed by type and
+`obj_id` (the order they were added); hand annotations by their names (`grasp_point_base_right_hand`, ...).
+"""
+
+from __future__ import annotations
+
+import mujoco
+import numpy as np
+
+from humanoidgen.objects.hands import HAND_AXIS_NAMES, HAND_POINT_NAMES, hand_axes, hand_points, side_of
+from humanoidgen.objects.schema import ObjectAnnotations
+from humanoidgen.sim.layout import WRIST_BODY
+from humanoidgen.sim.scene import SceneObject
+
+LOCAL_AXES = {"x": np.array([1.0, 0.0, 0.0]), "y": np.array([0.0, 1.0, 0.0]), "z": np.array([0.0, 0.0, 1.0])}
+
+
+def _frame(model: mujoco.MjModel, data: mujoco.MjData, body: str) -> tuple[np.ndarray, np.ndarray]:
+    bid = model.body(body).id
+    return data.xpos[bid].copy(), data.xmat[bid].reshape(3, 3).copy()
+
+
+def _data_at_openness(env, obj: SceneObject, openness: float | None) -> mujoco.MjData:
+    """The current state, or a copy with the object's joint moved to `openness` (where its parts will be)."""
+    if openness is None:
+        return env.data
+    ann = obj.annotations
+    if ann is None or ann.articulation is None:
+        raise ValueError(f"{obj.type_name}[{obj.obj_id}] has no moving part; openness does not apply")
+    if not 0.0 <= openness <= 1.0:
+        raise ValueError(f"openness must be in [0, 1], got {openness}")
+    d = mujoco.MjData(env.model)
+    d.qpos[:], d.qvel[:] = env.data.qpos, 0.0
+    art = ann.articulation
+    joint = env.model.joint(f"{obj.body}_{art.joint}")
+    d.qpos[env.model.jnt_qposadr[joint.id]] = art.closed + openness * (art.open - art.closed)
+    mujoco.mj_kinematics(env.model, d)
+    return d
+
+
+def _object(env, type_name: str, obj_id: int) -> tuple[SceneObject, ObjectAnnotations | None]:
+    obj = env.scene.object(type_name, obj_id)
+    return obj, obj.annotations
+
+
+def get_point_in_env(env, point_name: str = "center", type_name: str | None = None, obj_id: int = 0,
+                     related_point: np.ndarray | None = None, openness: float | None = None) -> np.ndarray:
+    """World position of a key point.
+
+    - a hand point (`grasp_point_base_left_hand`, `pinch_point_base_right_hand`, ...), at the hand's pose now;
+    - `"center"` or a named annotation of object `type_name[obj_id]`; for a point on a moving part,
+      `openness` gives where it will be with the part at that openness;
+    - `related_point` (world-frame offset, metres) is added: "10 cm above the cube" is
+      `get_point_in_env(env, "center", "cube", 0, related_point=[0, 0, 0.1])`.
+    """
+    if point_name in HAND_POINT_NAMES:
+        side = side_of(point_name)
+        pos, R = _frame(env.model, env.data, WRIST_BODY[side])
+        p = pos + R @ hand_points(side)[point_name]
+    else:
+        if type_name is None:
+            raise KeyError(
+                f"{point_name!r} is not a hand point; give type_name for an object point. "
+                f"Hand points: {', '.join(HAND_POINT_NAMES)}"
+            )
+        obj, ann = _object(env, type_name, obj_id)
+        d = _data_at_openness(env, obj, openness)
+        if point_name == "center":
+            p = _frame(env.model, d, obj.body)[0]
+        else:
+            if ann is None:
+                raise KeyError(f"{type_name}[{obj_id}] has no annotations; only 'center' applies")
+            kp = ann.point(point_name)
+            pos, R = _frame(env.model, d, f"{obj.body}_{kp.part}" if kp.part else obj.body)
+            p = pos + R @ np.asarray(kp.position)
+    if related_point is not None:
+        p = p + np.asarray(related_point, float)
+    return p
+
+
+def get_axis_in_env(env, axis_name: str, obj_type: str | None = None, obj_id: int = 0,
+                    openness: float | None = None) -> np.ndarray:
+    """World direction (unit) of an axis: a hand axis, an object's local `"x"`/`"y"`/`"z"`, or a named one."""
+    if axis_name in HAND_AXIS_NAMES:
+        side = side_of(axis_name)
+        _, R = _frame(env.model, env.data, WRIST_BODY[side])
+        return R @ hand_axes(side)[axis_name]
+    if obj_type is None:
+        raise KeyError(
+            f"{axis_name!r} is not a hand axis; give obj_type for an object axis. Hand axes: {', '.join(HAND_AXIS_NAMES)}"
+        )
+    obj, ann = _object(env, obj_type, obj_id)
+    d = _data_at_openness(env, obj, openness)
+    if axis_name in LOCAL_AXES:
+        return _frame(env.model, d, obj.body)[1] @ LOCAL_AXES[axis_name]
+    if ann is None:
+        raise KeyError(f"{obj_type}[{obj_id}] has no annotations; only 'x', 'y', 'z' apply")
+    ax = ann.axis(axis_name)
+    _, R = _frame(env.model, d, f"{obj.body}_{ax.part}" if ax.part else obj.body)
+    return R @ np.asarray(ax.direction)

@@ -1,0 +1,446 @@
+"""Parametric rigid object families: cube, bottle, can, plate, cup, bowl, pot.
+
+Every model is described as a list of convex primitives (boxes and cylinders) in the object frame; hollow
+objects (cup, bowl, pot) are a bottom disc plus a ring of thin box walls, so their collision geometry is really
+concave. The primitives are shifted so that the origin is the centre of their bounding box, which is computed
+exactly from the primitives (and reported in the annotations). Masses are split over the primitives by volume.
+
+World: table top at z = 0, +x forward (away from the robot), +y left, +z up. A hand coming from the robot
+approaches along +x.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+import mujoco
+import numpy as np
+
+from humanoidgen.objects.family import ObjectFamily, ObjectModel
+from humanoidgen.objects.schema import (
+    FunctionAnnotation,
+    KeyAxis,
+    KeyPoint,
+    ObjectAnnotations,
+    OperationAnnotation,
+)
+
+Vec3 = tuple[float, float, float]
+RGBA = tuple[float, float, float, float]
+
+GREEN: RGBA = (0.2, 0.7, 0.25, 1.0)
+YELLOW: RGBA = (0.95, 0.8, 0.15, 1.0)
+BLUE: RGBA = (0.2, 0.35, 0.85, 1.0)
+RED: RGBA = (0.85, 0.2, 0.15, 1.0)
+ORANGE: RGBA = (0.95, 0.5, 0.1, 1.0)
+WHITE: RGBA = (0.93, 0.93, 0.9, 1.0)
+GREY: RGBA = (0.6, 0.62, 0.65, 1.0)
+DARK: RGBA = (0.2, 0.2, 0.22, 1.0)
+BROWN: RGBA = (0.55, 0.35, 0.2, 1.0)
+CLEAR_GREEN: RGBA = (0.3, 0.6, 0.35, 0.85)
+CLEAR_BLUE: RGBA = (0.45, 0.65, 0.9, 0.85)
+
+# Sliding, torsional, rolling friction per material.
+WOOD = (1.0, 0.01, 0.001)
+PLASTIC = (0.8, 0.01, 0.001)
+CERAMIC = (0.7, 0.01, 0.001)
+METAL = (0.6, 0.01, 0.001)
+
+
+# -- primitives -----------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class Prim:
+    """One convex collision primitive in the object frame. `size` is MuJoCo's: box half-sizes, or cylinder
+    (radius, half-height); cylinders are always z-aligned (quat only rotates boxes about z/tilts them)."""
+
+    name: str
+    kind: str  # "box" | "cylinder"
+    size: Vec3
+    pos: Vec3
+    quat: tuple[float, float, float, float] = (1.0, 0.0, 0.0, 0.0)
+    rgba: RGBA = GREY
+
+    def volume(self) -> float:
+        if self.kind == "box":
+            return 8.0 * self.size[0] * self.size[1] * self.size[2]
+        return math.pi * self.size[0] ** 2 * 2.0 * self.size[1]
+
+    def corners(self) -> np.ndarray:
+        """Points whose AABB is the primitive's exact AABB in the object frame."""
+        if self.kind == "box":
+            s = np.asarray(self.size, float)
+            signs = np.array([[a, b, c] for a in (-1, 1) for b in (-1, 1) for c in (-1, 1)], float)
+            return (signs * s) @ quat_to_mat(self.quat).T + np.asarray(self.pos, float)
+        r, h = self.size[0], self.size[1]
+        signs = np.array([[a, b, c] for a in (-1, 1) for b in (-1, 1) for c in (-1, 1)], float)
+        return signs * np.array([r, r, h]) + np.asarray(self.pos, float)
+
+    def shifted(self, d: np.ndarray) -> "Prim":
+        return replace(self, pos=tuple(float(v) for v in np.asarray(self.pos) + d))
+
+
+def quat_to_mat(q) -> np.ndarray:
+    m = np.zeros(9)
+    mujoco.mju_quat2Mat(m, np.asarray(q, float))
+    return m.reshape(3, 3)
+
+
+def _quat_zy(theta: float, tilt: float = 0.0) -> tuple[float, float, float, float]:
+    """Rotation about z by theta after a rotation about y by tilt (q = qz * qy)."""
+    qz = np.array([math.cos(theta / 2), 0.0, 0.0, math.sin(theta / 2)])
+    qy = np.array([math.cos(tilt / 2), 0.0, math.sin(tilt / 2), 0.0])
+    q = np.zeros(4)
+    mujoco.mju_mulQuat(q, qz, qy)
+    return tuple(float(v) for v in q)
+
+
+def _ring(prefix: str, n: int, r_out: float, thick: float, z0: float, z1: float, rgba: RGBA) -> list[Prim]:
+    """A vertical cylindrical wall (outer radius r_out, from z0 to z1) made of n thin boxes."""
+    rc = r_out - thick / 2
+    half_w = r_out * math.tan(math.pi / n) * 1.02  # tangential half width: faces overlap, no gaps
+    out = []
+    for i in range(n):
+        th = 2 * math.pi * i / n
+        out.append(Prim(f"{prefix}{i}", "box", (thick / 2, half_w, (z1 - z0) / 2),
+                        (rc * math.cos(th), rc * math.sin(th), (z0 + z1) / 2), _quat_zy(th), rgba))
+    return out
+
+
+def _center(prims: list[Prim]) -> tuple[list[Prim], np.ndarray, np.ndarray, np.ndarray]:
+    """Shift primitives so the bounding box is centred at the origin; returns (prims, shift, bmin, bmax)."""
+    pts = np.concatenate([p.corners() for p in prims])
+    lo, hi = pts.min(0), pts.max(0)
+    shift = -(lo + hi) / 2
+    return [p.shifted(shift) for p in prims], shift, lo + shift, hi + shift
+
+
+# -- model geometry ---------------------------------------------------------------------------------------------
+@dataclass
+class Geometry:
+    """A model's primitives (object frame), bbox, named points (object frame) and storage opening."""
+
+    prims: list[Prim]
+    bmin: np.ndarray
+    bmax: np.ndarray
+    points: dict[str, np.ndarray]
+    opening_radius: float | None = None  # inner radius at the rim, for containers
+    rim_z: float | None = None  # top of the rim, for containers
+    inner_bottom_z: float | None = None
+
+
+def _finish(prims: list[Prim], points: dict[str, Vec3], **container) -> Geometry:
+    prims, shift, lo, hi = _center(prims)
+    pts = {k: np.asarray(v, float) + shift for k, v in points.items()}
+    pts["center"] = np.zeros(3)
+    for key in ("rim_z", "inner_bottom_z"):
+        if container.get(key) is not None:
+            container[key] = float(container[key] + shift[2])
+    return Geometry(prims, lo, hi, pts, **container)
+
+
+def _box_geometry(p: dict) -> Geometry:
+    sx, sy, sz = p["size"]
+    prims = [Prim("geom", "box", (sx / 2, sy / 2, sz / 2), (0, 0, 0), rgba=p["rgba"])]
+    return _finish(prims, {"top": (0, 0, sz / 2 - 0.005), "support": (0, 0, sz / 2)})
+
+
+def _bottle_geometry(p: dict) -> Geometry:
+    r, hb, rn, hn, rgba = p["radius"], p["body_height"], p["neck_radius"], p["neck_height"], p["rgba"]
+    shoulder = 0.2 * hb  # a frustum-like shoulder: a mid-radius cylinder between body and neck
+    rs = (r + rn) / 2
+    prims = [
+        Prim("body", "cylinder", (r, hb / 2), (0, 0, hb / 2), rgba=rgba),
+        Prim("shoulder", "cylinder", (rs, shoulder / 2), (0, 0, hb + shoulder / 2), rgba=rgba),
+        Prim("neck", "cylinder", (rn, hn / 2), (0, 0, hb + shoulder + hn / 2), rgba=rgba),
+        Prim("cap", "cylinder", (rn * 1.1, 0.006), (0, 0, hb + shoulder + hn - 0.006), rgba=p["cap_rgba"]),
+    ]
+    return _finish(prims, {"side": (-r, 0, hb / 2), "neck": (-rn, 0, hb + shoulder + hn / 2),
+                           "top": (0, 0, hb + shoulder + hn)})
+
+
+def _can_geometry(p: dict) -> Geometry:
+    r, h = p["radius"], p["height"]
+    prims = [Prim("body", "cylinder", (r, h / 2), (0, 0, h / 2), rgba=p["rgba"])]
+    return _finish(prims, {"side": (-r, 0, h / 2), "top": (0, 0, h)})
+
+
+def _plate_geometry(p: dict) -> Geometry:
+    R, t, rim_h, n = p["radius"], p["thickness"], p["rim_height"], 16
+    rim_t = 0.008
+    prims = [Prim("base", "cylinder", (R - rim_t / 2, t / 2), (0, 0, t / 2), rgba=p["rgba"])]
+    if rim_h > 0:
+        prims += _ring("rim", n, R, rim_t, t * 0.5, t + rim_h, p["rgba"])
+    top = t + rim_h
+    return _finish(prims, {"rim": (-(R - rim_t / 2), 0, top), "support": (0, 0, t)})
+
+
+def _cup_like(p: dict, handles: tuple[str, ...]) -> Geometry:
+    """Cup / pot: bottom disc + vertical ring of walls, handles on +y ("left") and/or -y ("right")."""
+    R, H, t, tb, n, rgba = p["radius"], p["height"], p["wall"], p["bottom"], p["n_walls"], p["rgba"]
+    prims = [Prim("bottom", "cylinder", (R - t / 2, tb / 2), (0, 0, tb / 2), rgba=rgba)]
+    # walls start 1 mm above the table so the object stands on its (flat) bottom disc
+    prims += _ring("wall", n, R, t, 0.001, H, rgba)
+    points: dict[str, Vec3] = {
+        "side": (-R, 0, H / 2),
+        "rim": (-(R - t / 2), 0, H),
+        "lip": (0, -(R - t / 2), H) if "left" in handles and "right" not in handles else (R - t / 2, 0, H),
+        "storage": (0, 0, tb + 0.01),
+    }
+    ext, bar_t = p["handle_reach"], p["handle_thick"]
+    for side in handles:
+        s = 1.0 if side == "left" else -1.0
+        if p["handle_style"] == "loop":  # cup: a vertical loop of three boxes
+            zc, span = H * 0.55, H * 0.5
+            for k, z in (("top", zc + span / 2), ("bot", zc - span / 2)):
+                prims.append(Prim(f"handle_{side}_{k}", "box", (0.006, ext / 2 + t / 2, bar_t / 2),
+                                  (0, s * (R + ext / 2 - t / 2), z), rgba=rgba))
+            prims.append(Prim(f"handle_{side}_grip", "box", (0.006, bar_t / 2, span / 2 + bar_t / 2),
+                              (0, s * (R + ext - bar_t / 2), zc), rgba=rgba))
+            points[f"handle_{side}"] = (0, s * (R + ext - bar_t / 2), zc)
+        else:  # pot: a horizontal bar sticking out near the top
+            w = p["handle_width"]
+            zc = H - 0.02
+            prims.append(Prim(f"handle_{side}", "box", (w / 2, ext / 2 + t / 2, bar_t / 2),
+                              (0, s * (R + ext / 2 - t / 2), zc), rgba=p["handle_rgba"]))
+            points[f"handle_{side}"] = (0, s * (R + ext * 0.6), zc)
+    return _finish(prims, points, opening_radius=R - t, rim_z=H, inner_bottom_z=tb)
+
+
+def _bowl_geometry(p: dict) -> Geometry:
+    """Bottom disc + ring of walls tilted outward by `tilt`."""
+    Rb, L, tilt, t, tb, n, rgba = (p["bottom_radius"], p["wall_length"], p["tilt"], p["wall"], p["bottom"],
+                                   p["n_walls"], p["rgba"])
+    r_top = Rb + L * math.sin(tilt)
+    half_w = (r_top + t) * math.tan(math.pi / n) * 1.02
+    prims = [Prim("bottom", "cylinder", (Rb, tb / 2), (0, 0, tb / 2), rgba=rgba)]
+    # wall centre: the inner bottom edge touches the disc's rim at height tb; lowest corner stays >= 1 mm
+    ca, sa = math.cos(tilt), math.sin(tilt)
+    rc = Rb + (L / 2) * sa + (t / 2) * ca
+    zc = (L / 2) * ca - (t / 2) * sa + tb
+    zc = max(zc, 0.001 + (L / 2) * ca + (t / 2) * sa)
+    for i in range(n):
+        th = 2 * math.pi * i / n
+        prims.append(Prim(f"wall{i}", "box", (t / 2, half_w, L / 2), (rc * math.cos(th), rc * math.sin(th), zc),
+                          _quat_zy(th, tilt), rgba))
+    top_z = zc + (L / 2) * ca  # wall mid-plane top
+    r_rim = rc + (L / 2) * sa
+    return _finish(prims, {"side": (-r_rim, 0, top_z - 0.01), "rim": (-r_rim, 0, top_z),
+                           "storage": (0, 0, tb + 0.01)},
+                   opening_radius=r_rim - t / 2 * ca, rim_z=top_z, inner_bottom_z=tb)
+
+
+# -- families -------------------------------------------------------------------------------------------------------
+_AXES: dict[str, Vec3] = {
+    "x": (1.0, 0.0, 0.0), "y": (0.0, 1.0, 0.0), "z": (0.0, 0.0, 1.0),
+    "down": (0.0, 0.0, -1.0), "-x": (-1.0, 0.0, 0.0), "-y": (0.0, -1.0, 0.0),
+}
+
+
+class RigidFamily:
+    """A parametric rigid family; subclasses give `_params`, `_geometry`, the semantic annotation tables."""
+
+    name: str = ""
+    articulated: bool = False
+    friction: Vec3 = PLASTIC
+    _params: list[tuple[str, dict]] = []
+
+    # -- ObjectFamily ------------------------------------------------------------------------------------------
+    def models(self) -> list[ObjectModel]:
+        return [ObjectModel(self.name, k, desc, dict(p)) for k, (desc, p) in enumerate(self._params)]
+
+    def geometry(self, type_id: int) -> Geometry:
+        return self._geometry(self._model_params(type_id))
+
+    def build(self, spec: mujoco.MjSpec, body: mujoco.MjsBody, type_id: int) -> None:
+        p = self._model_params(type_id)
+        geo = self._geometry(p)
+        total = sum(g.volume() for g in geo.prims)
+        friction = list(p.get("friction", self.friction))
+        for g in geo.prims:
+            kind = mujoco.mjtGeom.mjGEOM_BOX if g.kind == "box" else mujoco.mjtGeom.mjGEOM_CYLINDER
+            size = list(g.size) if g.kind == "box" else [g.size[0], g.size[1], 0.0]
+            body.add_geom(name=f"{body.name}_{g.name}", type=kind, size=size, pos=list(g.pos), quat=list(g.quat),
+                          rgba=list(g.rgba), mass=p["mass"] * g.volume() / total, friction=friction, condim=4)
+
+    def annotations(self, type_id: int) -> ObjectAnnotations:
+        desc, p = self._params[self._check(type_id)]
+        geo = self._geometry(p)
+        ops, fns = self._semantics(geo)
+        used = {"x", "y", "z"}
+        used |= {a for o in ops for a in (o[2], o[3], o[4])} | {f[2] for f in fns}
+        axes = [KeyAxis(name=n, direction=d) for n, d in _AXES.items() if n in used]
+        axes += [KeyAxis(name=n, direction=d) for n, d in self._extra_axes(geo).items()]
+        pnames = {"center"} | {o[1] for o in ops} | {f[1] for f in fns}
+        points = [KeyPoint(name=n, position=tuple(float(v) for v in geo.points[n]))
+                  for n in geo.points if n in pnames]
+        return ObjectAnnotations(
+            family=self.name, type_id=type_id, description=desc,
+            bbox_min=tuple(float(v) for v in geo.bmin), bbox_max=tuple(float(v) for v in geo.bmax),
+            points=points, axes=axes,
+            operations=[OperationAnnotation(operation=o[0], point=o[1], approach_axis=o[2], attach_axis=o[3],
+                                            parallel_axis=o[4]) for o in ops],
+            functions=[FunctionAnnotation(function=f[0], point=f[1], axis=f[2]) for f in fns],
+        )
+
+    # -- helpers ---------------------------------------------------------------------------------------------
+    def _check(self, type_id: int) -> int:
+        if not 0 <= type_id < len(self._params):
+            raise ValueError(f"{self.name}: no type_id {type_id}; known 0..{len(self._params) - 1}")
+        return type_id
+
+    def _model_params(self, type_id: int) -> dict:
+        return self._params[self._check(type_id)][1]
+
+    def _geometry(self, p: dict) -> Geometry:
+        raise NotImplementedError
+
+    def _semantics(self, geo: Geometry) -> tuple[list[tuple], list[tuple]]:
+        """(operations as (op, point, approach, attach, parallel), functions as (function, point, axis))."""
+        raise NotImplementedError
+
+    def _extra_axes(self, geo: Geometry) -> dict[str, Vec3]:
+        return {}
+
+
+class CubeFamily(RigidFamily):
+    name = "cube"
+    friction = WOOD
+    _params = [
+        ("green 4 cm cube", {"size": (0.04, 0.04, 0.04), "rgba": GREEN, "mass": 0.05}),
+        ("yellow 4 cm cube", {"size": (0.04, 0.04, 0.04), "rgba": YELLOW, "mass": 0.05}),
+        ("blue 4 cm cube", {"size": (0.04, 0.04, 0.04), "rgba": BLUE, "mass": 0.05}),
+        ("red 3 cm cube", {"size": (0.03, 0.03, 0.03), "rgba": RED, "mass": 0.025}),
+        ("orange 3x3x8 cm block, long axis vertical", {"size": (0.03, 0.03, 0.08), "rgba": ORANGE,
+                                                       "mass": 0.06}),
+    ]
+    _geometry = staticmethod(_box_geometry)
+
+    def _semantics(self, geo):
+        return ([("pinch", "top", "down", "x", "y"), ("grasp", "top", "down", "x", "y")],
+                [("support", "support", "z")])
+
+
+class BottleFamily(RigidFamily):
+    name = "bottle"
+    friction = PLASTIC
+    _params = [
+        ("clear green 0.5 l bottle", {"radius": 0.033, "body_height": 0.13, "neck_radius": 0.013,
+                                      "neck_height": 0.04, "rgba": CLEAR_GREEN, "cap_rgba": WHITE, "mass": 0.3}),
+        ("clear blue 0.33 l bottle", {"radius": 0.028, "body_height": 0.11, "neck_radius": 0.012,
+                                      "neck_height": 0.035, "rgba": CLEAR_BLUE, "cap_rgba": BLUE, "mass": 0.2}),
+        ("brown glass bottle", {"radius": 0.03, "body_height": 0.14, "neck_radius": 0.012, "neck_height": 0.06,
+                                "rgba": BROWN, "cap_rgba": YELLOW, "mass": 0.45, "friction": CERAMIC}),
+    ]
+    _geometry = staticmethod(_bottle_geometry)
+
+    def _semantics(self, geo):
+        return ([("grasp", "side", "x", "y", "z"), ("pinch", "neck", "x", "y", "z")],
+                [("support", "top", "z")])
+
+
+class CanFamily(RigidFamily):
+    name = "can"
+    friction = METAL
+    _params = [
+        ("red 330 ml soda can", {"radius": 0.033, "height": 0.122, "rgba": RED, "mass": 0.35}),
+        ("silver 250 ml slim can", {"radius": 0.0265, "height": 0.134, "rgba": GREY, "mass": 0.27}),
+        ("blue food tin", {"radius": 0.0375, "height": 0.11, "rgba": BLUE, "mass": 0.42}),
+    ]
+    _geometry = staticmethod(_can_geometry)
+
+    def _semantics(self, geo):
+        return ([("grasp", "side", "x", "y", "z")], [("support", "top", "z")])
+
+
+class PlateFamily(RigidFamily):
+    name = "plate"
+    friction = CERAMIC
+    _params = [
+        ("white dinner plate", {"radius": 0.12, "thickness": 0.008, "rim_height": 0.012, "rgba": WHITE,
+                                "mass": 0.45}),
+        ("blue side plate", {"radius": 0.09, "thickness": 0.007, "rim_height": 0.01, "rgba": BLUE,
+                             "mass": 0.25}),
+        ("yellow flat board", {"radius": 0.1, "thickness": 0.012, "rim_height": 0.0, "rgba": YELLOW,
+                               "mass": 0.2, "friction": WOOD}),
+    ]
+    _geometry = staticmethod(_plate_geometry)
+
+    def _semantics(self, geo):
+        return ([("pinch", "rim", "down", "x", "y")], [("support", "support", "z")])
+
+
+class CupFamily(RigidFamily):
+    name = "cup"
+    friction = CERAMIC
+    _params = [
+        ("white mug", {"radius": 0.04, "height": 0.09, "wall": 0.005, "bottom": 0.008, "n_walls": 14,
+                       "handle_reach": 0.03, "handle_thick": 0.008, "handle_style": "loop", "rgba": WHITE,
+                       "mass": 0.3}),
+        ("red mug", {"radius": 0.042, "height": 0.1, "wall": 0.005, "bottom": 0.008, "n_walls": 14,
+                     "handle_reach": 0.03, "handle_thick": 0.008, "handle_style": "loop", "rgba": RED,
+                     "mass": 0.32}),
+        ("small blue cup", {"radius": 0.035, "height": 0.075, "wall": 0.004, "bottom": 0.007, "n_walls": 12,
+                            "handle_reach": 0.025, "handle_thick": 0.007, "handle_style": "loop", "rgba": BLUE,
+                            "mass": 0.2}),
+    ]
+
+    def _geometry(self, p):
+        return _cup_like(p, ("left",))
+
+    def _semantics(self, geo):
+        return ([("grasp", "side", "x", "y", "z"), ("pinch", "handle_left", "x", "y", "z"),
+                 ("pinch", "rim", "down", "x", "y")],
+                [("pour", "lip", "pour_axis"), ("storage", "storage", "opening")])
+
+    def _extra_axes(self, geo):
+        return {"pour_axis": (0.0, -1.0, 0.0), "opening": (0.0, 0.0, 1.0)}
+
+
+class BowlFamily(RigidFamily):
+    name = "bowl"
+    friction = CERAMIC
+    _params = [
+        ("white bowl", {"bottom_radius": 0.045, "wall_length": 0.065, "tilt": math.radians(35), "wall": 0.005,
+                        "bottom": 0.008, "n_walls": 16, "rgba": WHITE, "mass": 0.35}),
+        ("green salad bowl", {"bottom_radius": 0.06, "wall_length": 0.08, "tilt": math.radians(40),
+                              "wall": 0.005, "bottom": 0.008, "n_walls": 16, "rgba": GREEN, "mass": 0.5}),
+        ("small red bowl", {"bottom_radius": 0.035, "wall_length": 0.05, "tilt": math.radians(30),
+                            "wall": 0.004, "bottom": 0.007, "n_walls": 14, "rgba": RED, "mass": 0.2}),
+    ]
+    _geometry = staticmethod(_bowl_geometry)
+
+    def _semantics(self, geo):
+        return ([("pinch", "rim", "down", "x", "y")], [("storage", "storage", "opening")])
+
+    def _extra_axes(self, geo):
+        return {"opening": (0.0, 0.0, 1.0)}
+
+
+class PotFamily(RigidFamily):
+    name = "pot"
+    friction = METAL
+    _params = [
+        ("steel cooking pot", {"radius": 0.09, "height": 0.1, "wall": 0.005, "bottom": 0.008, "n_walls": 16,
+                               "handle_reach": 0.04, "handle_thick": 0.01, "handle_width": 0.05,
+                               "handle_style": "bar", "rgba": GREY, "handle_rgba": DARK, "mass": 1.0}),
+        ("small red saucepan", {"radius": 0.07, "height": 0.08, "wall": 0.005, "bottom": 0.008, "n_walls": 16,
+                                "handle_reach": 0.035, "handle_thick": 0.01, "handle_width": 0.04,
+                                "handle_style": "bar", "rgba": RED, "handle_rgba": DARK, "mass": 0.7}),
+    ]
+
+    def _geometry(self, p):
+        return _cup_like(p, ("left", "right"))
+
+    def _semantics(self, geo):
+        return ([("grasp", "handle_left", "-y", "z", "x"), ("grasp", "handle_right", "y", "z", "x")],
+                [("storage", "storage", "opening")])
+
+    def _extra_axes(self, geo):
+        return {"opening": (0.0, 0.0, 1.0)}
+
+
+RIGID_FAMILIES: dict[str, ObjectFamily] = {
+    f.name: f for f in (CubeFamily(), BottleFamily(), CanFamily(), PlateFamily(), CupFamily(), BowlFamily(),
+                        PotFamily())
+}
