@@ -68,3 +68,82 @@ def test_hand_annotations_are_named_as_the_paper_and_unit():
             assert np.linalg.norm(hand_axes(side)[name]) == pytest.approx(1.0)
     for name in ("open", "pre_grasp", "grasp", "pre_pinch", "pinch", "press"):
         assert len(HAND_POSTURES[name]) == 6
+
+
+# -- queries in the world frame -------------------------------------------------------------------------
+from humanoidgen.objects import library  # noqa: E402
+from humanoidgen.objects.describe import describe_scene  # noqa: E402
+from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env  # noqa: E402
+from humanoidgen.sim.env import HumanoidEnv  # noqa: E402
+from humanoidgen.sim.scene import SceneBuilder  # noqa: E402
+
+
+@pytest.fixture(scope="module")
+def query_env():
+    b = SceneBuilder()
+    b.add_object("cube", 0, pos=(-0.35, -0.15))
+    b.add_object("cube", 1, pos=(-0.35, 0.15), yaw=np.pi / 2)
+    b.add_object("drawer", 0, pos=(-0.05, 0.30))
+    return HumanoidEnv(b.build())
+
+
+def test_axes_and_points_follow_object_pose(query_env):
+    env = query_env
+    assert np.allclose(get_axis_in_env(env, "x", obj_type="cube", obj_id=0), [1, 0, 0], atol=1e-9)
+    assert np.allclose(get_axis_in_env(env, "x", obj_type="cube", obj_id=1), [0, 1, 0], atol=1e-9)
+    assert np.allclose(get_axis_in_env(env, "y", obj_type="cube", obj_id=1), [-1, 0, 0], atol=1e-9)
+    # A point 2 cm along the object's own x axis lies along world +y for the turned cube.
+    c1 = get_point_in_env(env, "center", "cube", 1)
+    assert np.allclose(get_point_in_env(env, "center", "cube", 1, related_point=[0.02, 0, 0]) - c1, [0, 0.02, 0],
+                       atol=1e-9)
+    assert c1[2] == pytest.approx(0.02, abs=1e-6)  # placed on the table by its bounding box
+
+
+def test_part_points_at_an_openness_are_where_the_part_will_be(query_env):
+    env = query_env
+    closed = get_point_in_env(env, "handle_upper", "drawer", 0, openness=0.0)
+    opened = get_point_in_env(env, "handle_upper", "drawer", 0, openness=1.0)
+    now = get_point_in_env(env, "handle_upper", "drawer", 0)
+    assert np.allclose(now, closed, atol=1e-6)  # the drawer starts closed
+    delta = opened - closed
+    assert delta[0] < -0.1 and abs(delta[1]) < 1e-6 and abs(delta[2]) < 1e-6  # slides out toward the robot
+    with pytest.raises(ValueError, match="moving part"):
+        get_point_in_env(env, "center", "cube", 0, openness=0.5)
+
+
+def test_hand_points_move_with_the_hand(query_env):
+    env = query_env
+    p0 = get_point_in_env(env, "grasp_point_base_right_hand")
+    a = env.init_action()
+    a[7] -= 0.3  # right shoulder pitch
+    for _ in range(40):
+        env.step(a)
+    p1 = get_point_in_env(env, "grasp_point_base_right_hand")
+    assert np.linalg.norm(p1 - p0) > 0.05
+    axis = get_axis_in_env(env, "right_grasp_axis")
+    assert np.linalg.norm(axis) == pytest.approx(1.0)
+    env.reset()
+
+
+def test_unknown_names_raise_listing_valid_ones(query_env):
+    env = query_env
+    with pytest.raises(KeyError, match="points: "):
+        get_point_in_env(env, "nose", "cube", 0)
+    with pytest.raises(KeyError, match="Hand points: .*grasp_point_base_left_hand"):
+        get_point_in_env(env, "nose")
+    with pytest.raises(KeyError, match=r"objects: cube\[0\], cube\[1\], drawer\[0\]"):
+        get_point_in_env(env, "center", "cube", 5)
+    with pytest.raises(KeyError, match="known types: .*bottle"):
+        library.family("unicorn")
+
+
+def test_scene_description_lists_objects_poses_and_annotations(query_env):
+    desc = json.loads(describe_scene(query_env))
+    types = [(a["type"], a["obj_id"]) for a in desc["attributes"]]
+    assert types == [("cube", 0), ("cube", 1), ("drawer", 0)]
+    drawer = desc["attributes"][2]
+    assert "handle_upper" in drawer["points"] and "grasp@handle_upper" in drawer["operations"]
+    status = {(s["type"], s["obj_id"]): s for s in desc["status"]}
+    assert status[("drawer", 0)]["openness"] == pytest.approx(0.0, abs=0.01)
+    assert "openness" not in status[("cube", 0)]
+    assert np.allclose(status[("cube", 0)]["p"][:2], [-0.35, -0.15], atol=1e-3)

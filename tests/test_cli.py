@@ -39,3 +39,22 @@ def test_missing_assets_give_one_clear_message(tmp_path, monkeypatch):
     res = runner.invoke(app, ["render", "--out", str(tmp_path / "x.png")])
     assert res.exit_code == 1
     assert "HGEN_ASSETS" in res.output
+
+
+def test_assets_list_shows_families_models_and_annotations():
+    res = runner.invoke(app, ["assets", "list"])
+    assert res.exit_code == 0, res.output
+    for family in ("cube", "bottle", "can", "cup", "bowl", "plate", "pot", "drawer", "laptop", "box", "safe",
+                   "toaster"):
+        assert f"{family} (" in res.output
+    assert "grasp_point_base_right_hand" in res.output
+
+
+def test_assets_show_draws_annotations(tmp_path):
+    out = tmp_path / "drawer.png"
+    res = runner.invoke(app, ["assets", "show", "drawer", "--out", str(out)])
+    assert res.exit_code == 0, res.output
+    img = np.asarray(Image.open(out))
+    assert img.shape == (480, 1280, 3)  # two openness values side by side
+    res = runner.invoke(app, ["assets", "show", "unicorn", "--out", str(tmp_path / "u.png")])
+    assert res.exit_code == 1 and "known types" in res.output

@@ -16,8 +16,8 @@ HAND_POSTURES: dict[str, tuple[float, ...]] = {
     "open": (0.0, 0.0, 0.0, 0.0, 0.0, 0.0),
     "pre_grasp": (1.3, 0.0, 0.0, 0.0, 0.0, 0.0),  # thumb turned to face the fingers
     "grasp": (1.3, 0.35, 1.3, 1.3, 1.3, 1.3),
-    "pre_pinch": (1.2, 0.1, 0.3, 1.6, 1.6, 1.6),  # thumb and index opposed, other fingers tucked away
-    "pinch": (1.2, 0.45, 1.0, 1.6, 1.6, 1.6),
+    "pre_pinch": (1.3, 0.0, 0.0, 1.4, 1.4, 1.4),  # thumb and index opposed, other fingers tucked away
+    "pinch": (1.3, 0.5, 0.9, 1.4, 1.4, 1.4),  # closes until the tips meet the object (tests/test_pinch_hold.py)
     "press": (0.6, 0.5, 0.0, 1.6, 1.6, 1.6),  # index extended, the rest curled
 }
 
@@ -25,9 +25,10 @@ HAND_POSTURES: dict[str, tuple[float, ...]] = {
 def hand_points(side: Side) -> dict[str, np.ndarray]:
     s = PALM_SIGN[side]
     return {
-        f"base_point_{side}_hand": np.array([0.054, 0.0, 0.0]),
+        f"base_{side}_hand": np.array([0.054, 0.0, 0.0]),
         f"grasp_point_base_{side}_hand": np.array([0.13, s * 0.05, 0.0]),
-        f"pinch_point_base_{side}_hand": np.array([0.21, s * 0.045, 0.02]),
+        # Between the thumb and index tips in the pinch posture (measured from the finger meshes).
+        f"pinch_point_base_{side}_hand": np.array([0.205, s * 0.045, 0.027]),
         f"press_point_base_{side}_hand": np.array([0.265, 0.0, 0.032]),
         f"palm_center_{side}_hand": np.array([0.125, s * 0.03, 0.0]),
     }

@@ -52,13 +52,14 @@ def get_point_in_env(env, point_name: str = "center", type_name: str | None = No
     - a hand point (`grasp_point_base_left_hand`, `pinch_point_base_right_hand`, ...), at the hand's pose now;
     - `"center"` or a named annotation of object `type_name[obj_id]`; for a point on a moving part,
       `openness` gives where it will be with the part at that openness;
-    - `related_point` (world-frame offset, metres) is added: "10 cm above the cube" is
-      `get_point_in_env(env, "center", "cube", 0, related_point=[0, 0, 0.1])`.
+    - `related_point` (metres) is an offset in the object's own frame (for hand points: the world frame):
+      "10 cm along the cube's z axis" is `get_point_in_env(env, "center", "cube", 0, related_point=[0, 0, 0.1])`.
     """
+    offset = np.zeros(3) if related_point is None else np.asarray(related_point, float)
     if point_name in HAND_POINT_NAMES:
         side = side_of(point_name)
         pos, R = _frame(env.model, env.data, WRIST_BODY[side])
-        p = pos + R @ hand_points(side)[point_name]
+        p = pos + R @ hand_points(side)[point_name] + offset
     else:
         if type_name is None:
             raise KeyError(
@@ -67,16 +68,15 @@ def get_point_in_env(env, point_name: str = "center", type_name: str | None = No
             )
         obj, ann = _object(env, type_name, obj_id)
         d = _data_at_openness(env, obj, openness)
+        root_pos, root_R = _frame(env.model, d, obj.body)
         if point_name == "center":
-            p = _frame(env.model, d, obj.body)[0]
+            p = root_pos + root_R @ offset
         else:
             if ann is None:
                 raise KeyError(f"{type_name}[{obj_id}] has no annotations; only 'center' applies")
             kp = ann.point(point_name)
             pos, R = _frame(env.model, d, f"{obj.body}_{kp.part}" if kp.part else obj.body)
-            p = pos + R @ np.asarray(kp.position)
-    if related_point is not None:
-        p = p + np.asarray(related_point, float)
+            p = pos + R @ np.asarray(kp.position) + root_R @ offset
     return p
 
 

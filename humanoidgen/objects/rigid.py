@@ -127,6 +127,7 @@ class Geometry:
     opening_radius: float | None = None  # inner radius at the rim, for containers
     rim_z: float | None = None  # top of the rim, for containers
     inner_bottom_z: float | None = None
+    axis_xy: tuple[float, float] = (0.0, 0.0)  # where the container's vertical axis (opening centre) is
 
 
 def _finish(prims: list[Prim], points: dict[str, Vec3], **container) -> Geometry:
@@ -136,6 +137,7 @@ def _finish(prims: list[Prim], points: dict[str, Vec3], **container) -> Geometry
     for key in ("rim_z", "inner_bottom_z"):
         if container.get(key) is not None:
             container[key] = float(container[key] + shift[2])
+    container["axis_xy"] = (float(shift[0]), float(shift[1]))
     return Geometry(prims, lo, hi, pts, **container)
 
 

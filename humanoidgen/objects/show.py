@@ -68,12 +68,12 @@ def _object_items(env: HumanoidEnv, type_name: str, openness: float | None) -> l
 
 
 def _render(builder: SceneBuilder, eye: np.ndarray, target: np.ndarray, width: int, height: int,
-            setup=None) -> tuple[HumanoidEnv, object, CameraRig]:
+            setup=None, hide_robot: bool = False) -> tuple[HumanoidEnv, object, CameraRig]:
     builder.spec.worldbody.add_camera(name=INSPECT_CAM, pos=eye, quat=look_at_quat(eye, target), fovy=45.0)
     env = HumanoidEnv(builder.build())
     if setup is not None:
         setup(env)
-    rig = CameraRig(env.model, width, height, shadows=True)
+    rig = CameraRig(env.model, width, height, shadows=True, hide_robot=hide_robot)
     return env, rig.render(env.data, INSPECT_CAM, depth=False, segmentation=False), rig
 
 
@@ -89,7 +89,7 @@ def show_object(type_name: str, type_id: int = 0, width: int = 640, height: int 
     eye = center + np.array([-1.6, 0.9, 1.3]) * max(size, 0.08) * 1.6
     panels = []
     openings = [0.3, 1.0] if ann.articulation is not None else [None]
-    env, _, rig = _render(builder, eye, center, width, height)
+    env, _, rig = _render(builder, eye, center, width, height, hide_robot=True)
     with rig:
         for o in openings:
             if o is not None:

@@ -84,6 +84,7 @@ class CameraRig:
     geom_labels: np.ndarray | None = None
     shadows: bool = False
     max_geom: int = 2000
+    hide_robot: bool = False  # pictures of objects alone
 
     def __post_init__(self) -> None:
         vis = self.model.vis.global_
@@ -101,6 +102,10 @@ class CameraRig:
         self._con.readDepthMap = mujoco.mjtDepthMap.mjDEPTH_ZEROFAR
         self._scn = mujoco.MjvScene(self.model, maxgeom=self.max_geom)
         self._opt = mujoco.MjvOption()
+        if self.hide_robot:
+            from humanoidgen.sim.robot import ROBOT_VISUAL_GROUP
+
+            self._opt.geomgroup[ROBOT_VISUAL_GROUP] = 0
         self._cam = mujoco.MjvCamera()
         self._cam.type = mujoco.mjtCamera.mjCAMERA_FIXED
         self._pert = mujoco.MjvPerturb()

@@ -187,6 +187,7 @@ def _exclude_finger_self_contacts(spec: mujoco.MjSpec) -> None:
 
 
 ROBOT_COLLISION_GROUP = 3  # hidden in renders: cameras draw the visual meshes only
+ROBOT_VISUAL_GROUP = 1  # the upstream MJCF's visual meshes
 
 
 def _split_visual_and_collision(spec: mujoco.MjSpec, robot_dir: Path, max_faces: int) -> None:

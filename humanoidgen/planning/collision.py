@@ -1,0 +1,119 @@
+"""Collision queries against the MuJoCo model itself (one world for simulation and planning).
+
+The geoms that move with an arm (its links, its hand, and an object it holds) are checked against every
+other collidable geom (table, objects, the other arm, the torso), except objects on the ignore list.
+Distances come from `mj_geomDistance` on the scratch kinematics; a bounding-sphere test skips far pairs.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import mujoco
+import numpy as np
+
+from humanoidgen.planning.kinematics import Kinematics
+from humanoidgen.sim.layout import HAND_PREFIX, SIDES, Side, arm_bodies
+
+FAR = 1.0  # reported distance for pairs too far apart to matter
+
+
+def _collidable(m: mujoco.MjModel, g: int) -> bool:
+    return m.geom_contype[g] != 0 or m.geom_conaffinity[g] != 0
+
+
+def _arm_body_ids(m: mujoco.MjModel, side: Side) -> set[int]:
+    ids = {m.body(b).id for b in arm_bodies(side)}
+    prefix = HAND_PREFIX[side] + "_"
+    ids |= {b for b in range(m.nbody) if m.body(b).name.startswith(prefix)}
+    return ids
+
+
+@dataclass
+class CollisionWorld:
+    kin: Kinematics
+    ignored_bodies: set[int] = field(default_factory=set)
+    influence: float = 0.05  # pairs farther apart than this are not measured
+
+    def __post_init__(self) -> None:
+        m = self.kin.model
+        self._arm_bodies = {s: _arm_body_ids(m, s) for s in SIDES}
+        self._floor = {g for g in range(m.ngeom) if m.geom_type[g] == mujoco.mjtGeom.mjGEOM_PLANE}
+        self._fromto = np.zeros(6)
+
+    # -- which geoms ---------------------------------------------------------------------------------
+    def _moving_bodies(self, side: Side) -> set[int]:
+        bodies = set(self._arm_bodies[side])
+        if side in self.kin.attached:
+            bodies.add(self.kin.attached[side][0])
+        return bodies
+
+    def movers(self, side: Side) -> list[int]:
+        m = self.kin.model
+        bodies = self._moving_bodies(side)
+        return [g for g in range(m.ngeom) if m.geom_bodyid[g] in bodies and _collidable(m, g)]
+
+    def obstacles(self, side: Side) -> list[int]:
+        m = self.kin.model
+        moving = self._moving_bodies(side)
+        out = []
+        for g in range(m.ngeom):
+            b = int(m.geom_bodyid[g])
+            if b in moving or g in self._floor or not _collidable(m, g):
+                continue
+            if int(m.body_rootid[b]) in self.ignored_bodies or b in self.ignored_bodies:
+                continue
+            out.append(g)
+        return out
+
+    # -- queries --------------------------------------------------------------------------------------
+    def _near_pairs(self, movers: list[int], obstacles: list[int]) -> np.ndarray:
+        """Index pairs (i, j) of movers[i], obstacles[j] whose bounding spheres are within `influence`."""
+        m, d = self.kin.model, self.kin.data
+        mv, ob = np.asarray(movers), np.asarray(obstacles)
+        centres = np.linalg.norm(d.geom_xpos[mv][:, None, :] - d.geom_xpos[ob][None, :, :], axis=2)
+        gaps = centres - m.geom_rbound[mv][:, None] - m.geom_rbound[ob][None, :]
+        return np.argwhere(gaps <= self.influence)
+
+    def mover_distances(self, side: Side, movers: list[int], obstacles: list[int]) -> tuple[np.ndarray, np.ndarray]:
+        """Per moving geom: distance to its nearest obstacle, and its gradient over the arm joints (n x 7)."""
+        dist = np.full(len(movers), FAR)
+        grad = np.zeros((len(movers), 7))
+        if not movers or not obstacles:
+            return dist, grad
+        m, d = self.kin.model, self.kin.data
+        nearest: dict[int, np.ndarray] = {}
+        for i, j in self._near_pairs(movers, obstacles):
+            dd = mujoco.mj_geomDistance(m, d, movers[i], obstacles[j], self.influence, self._fromto)
+            if dd < dist[i]:
+                dist[i] = dd
+                nearest[i] = self._fromto.copy()
+        for i, ft in nearest.items():
+            p1, p2 = ft[:3], ft[3:]
+            v = p2 - p1
+            n = np.linalg.norm(v)
+            if n > 1e-9:
+                normal = v / n * (1.0 if dist[i] >= 0 else -1.0)  # from the mover toward the obstacle
+                J = self.kin.point_jacobian(side, p1, body=int(m.geom_bodyid[movers[i]]))
+                grad[i] = -normal @ J
+        return dist, grad
+
+    def min_distance(self, sides: tuple[Side, ...] = SIDES) -> tuple[float, tuple[int, int] | None]:
+        """Smallest distance between any moving geom of `sides` and its obstacles, and that pair."""
+        best, pair = FAR, None
+        m, d = self.kin.model, self.kin.data
+        for side in sides:
+            movers, obstacles = self.movers(side), self.obstacles(side)
+            if not movers or not obstacles:
+                continue
+            for i, j in self._near_pairs(movers, obstacles):
+                dd = mujoco.mj_geomDistance(m, d, movers[i], obstacles[j], self.influence, self._fromto)
+                if dd < best:
+                    best, pair = dd, (movers[i], obstacles[j])
+        return best, pair
+
+    def describe_pair(self, pair: tuple[int, int]) -> str:
+        m = self.kin.model
+        names = [m.body(int(m.body_rootid[m.geom_bodyid[g]])).name if m.body_rootid[m.geom_bodyid[g]] != m.body("pelvis").id
+                 else m.body(m.geom_bodyid[g]).name for g in pair]
+        return f"{names[0]} and {names[1]}"
