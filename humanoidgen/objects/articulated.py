@@ -120,6 +120,7 @@ _BASIC_AXES = [
     _ax("forward", (1, 0, 0), description="away from the robot"),
     _ax("backward", (-1, 0, 0), description="toward the robot"),
     _ax("left", (0, 1, 0)),
+    _ax("right", (0, -1, 0)),
     _ax("up", (0, 0, 1)),
     _ax("down", (0, 0, -1)),
 ]
@@ -218,9 +219,9 @@ def _shell(D: float, W: float, H: float, t: float, rgba) -> list[_Geom]:
 class DrawerFamily(_ArticulatedFamily):
     name = "drawer"
     _params = {
-        0: dict(description="small wooden cabinet with one drawer", depth=0.22, width=0.20, height=0.12,
+        0: dict(description="wooden cabinet with one tall drawer", depth=0.22, width=0.20, height=0.26,
                 travel=0.15, rgba=(0.70, 0.55, 0.38, 1.0), drawer_rgba=(0.80, 0.66, 0.48, 1.0)),
-        1: dict(description="white cabinet with a deep drawer", depth=0.25, width=0.22, height=0.15,
+        1: dict(description="white cabinet with a deep, tall drawer", depth=0.25, width=0.22, height=0.28,
                 travel=0.16, rgba=(0.90, 0.90, 0.88, 1.0), drawer_rgba=(0.55, 0.65, 0.78, 1.0)),
     }
     _T, _GAP, _DT = 0.012, 0.004, 0.008  # shell wall, clearance, drawer wall
@@ -231,7 +232,7 @@ class DrawerFamily(_ArticulatedFamily):
         wy = W / 2 - t - g  # drawer half width
         zb, zt = -H / 2 + t + g, H / 2 - t - g
         return dict(D=D, W=W, H=H, t=t, dt=dt, dx=dx, wy=wy, zb=zb, zt=zt, zc=(zb + zt) / 2, hz=(zt - zb) / 2,
-                    xc=-D / 2 + dx / 2, bar_x=-D / 2 - 0.031, bar_h=0.006)
+                    xc=-D / 2 + dx / 2, bar_x=-D / 2 - 0.031, bar_h=0.006, bar_z=zt - 0.03)
 
     def _design(self, p: dict) -> _Design:
         q = self._geometry(p)
@@ -243,20 +244,22 @@ class DrawerFamily(_ArticulatedFamily):
             _Geom("drawer_left", ((dx - 2 * dt) / 2, dt / 2, hz), (xc, wy - dt / 2, zc), dc, 0.04),
             _Geom("drawer_right", ((dx - 2 * dt) / 2, dt / 2, hz), (xc, -(wy - dt / 2), zc), dc, 0.04),
             _Geom("drawer_bottom", ((dx - 2 * dt) / 2, wy - dt, dt / 2), (xc, 0, zb + dt / 2), dc, 0.05),
-            _Geom("handle_post_left", (0.0125, 0.005, 0.005), (-D / 2 - 0.0125, 0.035, zc), metal, 0.01),
-            _Geom("handle_post_right", (0.0125, 0.005, 0.005), (-D / 2 - 0.0125, -0.035, zc), metal, 0.01),
-            _Geom("handle_bar", (q["bar_h"], 0.05, q["bar_h"]), (q["bar_x"], 0, zc), metal, 0.02),
+            # A horizontal bar near the top of the front: the hand hooks it palm forward, fingers down, and
+            # the fingers then stay clear of the table.
+            _Geom("handle_post_left", (0.0125, 0.005, 0.005), (-D / 2 - 0.0125, 0.035, q["bar_z"]), metal, 0.01),
+            _Geom("handle_post_right", (0.0125, 0.005, 0.005), (-D / 2 - 0.0125, -0.035, q["bar_z"]), metal, 0.01),
+            _Geom("handle_bar", (q["bar_h"], 0.05, q["bar_h"]), (q["bar_x"], 0, q["bar_z"]), metal, 0.02),
         ]
         slide = _Joint("slide", "slide", (-1, 0, 0), (0.0, p["travel"]), damping=8.0, frictionloss=2.0)
         return _Design(_shell(D, q["W"], q["H"], q["t"], c), [_Part("drawer", (0, 0, 0), slide, drawer)])
 
     def _annot(self, p: dict, design: _Design) -> _Annot:
         q = self._geometry(p)
-        bx, zc, h = q["bar_x"], q["zc"], q["bar_h"]
+        bx, zc, bz, h = q["bar_x"], q["zc"], q["bar_z"], q["bar_h"]
         points = [
-            _pt("handle", (bx, 0, zc), "drawer", "centre of the handle bar"),
-            _pt("handle_upper", (bx, 0, zc + h), "drawer", "top of the handle bar (fingers)"),
-            _pt("handle_lower", (bx, 0, zc - h), "drawer", "bottom of the handle bar (thumb)"),
+            _pt("handle", (bx, 0, bz), "drawer", "centre of the handle bar"),
+            _pt("handle_upper", (bx, 0, bz + h), "drawer", "top of the handle bar (fingers hook over it)"),
+            _pt("handle_lower", (bx, 0, bz - h), "drawer", "bottom of the handle bar (fingers from below)"),
             _pt("front", (-q["D"] / 2, q["wy"] / 2, zc), "drawer", "front face beside the handle"),
             _pt("storage", (q["xc"], 0, q["zb"] + q["dt"] + 0.005), "drawer", "inside the drawer"),
         ]

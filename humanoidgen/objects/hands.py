@@ -26,9 +26,10 @@ def hand_points(side: Side) -> dict[str, np.ndarray]:
     s = PALM_SIGN[side]
     return {
         f"base_{side}_hand": np.array([0.054, 0.0, 0.0]),
-        f"grasp_point_base_{side}_hand": np.array([0.13, s * 0.05, 0.0]),
-        # Between the thumb and index tips in the pinch posture (measured from the finger meshes).
-        f"pinch_point_base_{side}_hand": np.array([0.205, s * 0.045, 0.027]),
+        # Inside the ring that the closed fingers and thumb make (measured in the grasp posture).
+        f"grasp_point_base_{side}_hand": np.array([0.165, s * 0.045, 0.005]),
+        # Where thumb tip and index pad meet on a 4 cm cube (measured in simulation, tests/test_pinch_hold.py).
+        f"pinch_point_base_{side}_hand": np.array([0.205, s * 0.045, 0.020]),
         f"press_point_base_{side}_hand": np.array([0.265, 0.0, 0.032]),
         f"palm_center_{side}_hand": np.array([0.125, s * 0.03, 0.0]),
     }

@@ -144,7 +144,8 @@ def _finish(prims: list[Prim], points: dict[str, Vec3], **container) -> Geometry
 def _box_geometry(p: dict) -> Geometry:
     sx, sy, sz = p["size"]
     prims = [Prim("geom", "box", (sx / 2, sy / 2, sz / 2), (0, 0, 0), rgba=p["rgba"])]
-    return _finish(prims, {"top": (0, 0, sz / 2 - 0.005), "support": (0, 0, sz / 2)})
+    # Pinch just under 1 cm below the top face: the finger pads then squeeze the sides, not the top edge.
+    return _finish(prims, {"top": (0, 0, sz / 2 - 0.005), "pinch": (0, 0, sz / 2 - 0.0095), "support": (0, 0, sz / 2)})
 
 
 def _bottle_geometry(p: dict) -> Geometry:
@@ -319,7 +320,7 @@ class CubeFamily(RigidFamily):
     _geometry = staticmethod(_box_geometry)
 
     def _semantics(self, geo):
-        return ([("pinch", "top", "down", "x", "y"), ("grasp", "top", "down", "x", "y")],
+        return ([("pinch", "pinch", "down", "x", "y"), ("grasp", "top", "down", "x", "y")],
                 [("support", "support", "z")])
 
 

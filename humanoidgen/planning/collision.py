@@ -34,6 +34,7 @@ class CollisionWorld:
     kin: Kinematics
     ignored_bodies: set[int] = field(default_factory=set)
     influence: float = 0.05  # pairs farther apart than this are not measured
+    held_slack: float = 0.006
 
     def __post_init__(self) -> None:
         m = self.kin.model
@@ -99,18 +100,53 @@ class CollisionWorld:
         return dist, grad
 
     def min_distance(self, sides: tuple[Side, ...] = SIDES) -> tuple[float, tuple[int, int] | None]:
-        """Smallest distance between any moving geom of `sides` and its obstacles, and that pair."""
+        """Smallest distance between any moving geom of `sides` and its obstacles, and that pair.
+
+        A held object's distances count `held_slack` more: it may touch what it is set down on or lifted
+        from, where the hand itself must keep clear."""
         best, pair = FAR, None
         m, d = self.kin.model, self.kin.data
         for side in sides:
             movers, obstacles = self.movers(side), self.obstacles(side)
             if not movers or not obstacles:
                 continue
+            held = self.kin.attached[side][0] if side in self.kin.attached else -1
             for i, j in self._near_pairs(movers, obstacles):
                 dd = mujoco.mj_geomDistance(m, d, movers[i], obstacles[j], self.influence, self._fromto)
+                if m.geom_bodyid[movers[i]] == held:
+                    dd += self.held_slack
                 if dd < best:
                     best, pair = dd, (movers[i], obstacles[j])
         return best, pair
+
+    def penetrations(self, sides: tuple[Side, ...], clearance: float = 0.0) -> list[tuple[str, float]]:
+        """Every (moving body, obstacle body) closer than `clearance`, deepest first: "a and b", distance."""
+        m, d = self.kin.model, self.kin.data
+        worst: dict[tuple[int, int], float] = {}
+        for side in sides:
+            movers, obstacles = self.movers(side), self.obstacles(side)
+            if not movers or not obstacles:
+                continue
+            for i, j in self._near_pairs(movers, obstacles):
+                g1, g2 = movers[i], obstacles[j]
+                dd = mujoco.mj_geomDistance(m, d, g1, g2, self.influence, self._fromto)
+                if dd < clearance:
+                    key = (self._owner(g1), self._owner(g2))
+                    worst[key] = min(worst.get(key, FAR), dd)
+        # One line per obstacle body: its deepest contact.
+        per_obstacle: dict[int, tuple[int, float]] = {}
+        for (b1, b2), dd in worst.items():
+            if b2 not in per_obstacle or dd < per_obstacle[b2][1]:
+                per_obstacle[b2] = (b1, dd)
+        out = [(f"{m.body(b1).name} and {m.body(b2).name}", dd) for b2, (b1, dd) in per_obstacle.items()]
+        return sorted(out, key=lambda x: x[1])
+
+    def _owner(self, g: int) -> int:
+        """The body to name for a geom: the object (root body), or the robot link itself."""
+        m = self.kin.model
+        b = int(m.geom_bodyid[g])
+        root = int(m.body_rootid[b])
+        return b if root == m.body("pelvis").id or root == 0 else root
 
     def describe_pair(self, pair: tuple[int, int]) -> str:
         m = self.kin.model

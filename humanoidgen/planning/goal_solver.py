@@ -23,6 +23,9 @@ from humanoidgen.planning.constraints import Constraint, Const
 from humanoidgen.planning.kinematics import Kinematics
 from humanoidgen.sim.layout import Side
 
+# Bounds already include the constraints' tolerances (1 mm, 0.5 deg); this only absorbs round-off.
+VIOLATION_SLACK = 1e-4
+
 
 @dataclass
 class GoalResult:
@@ -62,6 +65,7 @@ class GoalSolver:
     kin: Kinematics
     collisions: CollisionWorld
     clearance: float = 0.005
+    held_clearance: float = 0.002
     w_reg: float = 0.02
     n_random_seeds: int = 6
     seed: int = 0
@@ -79,6 +83,11 @@ class GoalSolver:
         base_qpos = self.kin.data.qpos.copy()
         movers = self.collisions.movers(side) if avoid_collisions else []
         obstacles = self.collisions.obstacles(side) if avoid_collisions else []
+
+        # A held object may come closer to things than the hand: it is meant to be set down on or next to them.
+        held_body = self.kin.attached[side][0] if side in self.kin.attached else None
+        lower = np.array([self.held_clearance if self.kin.model.geom_bodyid[g] == held_body else self.clearance
+                          for g in movers])
 
         def at(q):
             self.kin.data.qpos[:] = base_qpos
@@ -104,17 +113,18 @@ class GoalSolver:
                     v, g = c.cost(self.kin)
                     return np.array([v]), g[None]
 
-                prog.AddCost(_lift(cost_fn, 1), q)
+                prog.AddCost(lambda x, f=_lift(cost_fn, 1): f(x).reshape(-1)[0], q)  # Drake wants a scalar cost
             if with_collisions and movers:
                 def dist_fn(x):
                     at(x)
                     return self.collisions.mover_distances(side, movers, obstacles)
 
-                prog.AddConstraint(_lift(dist_fn, len(movers)), np.full(len(movers), self.clearance),
-                                   np.full(len(movers), np.inf), q, description="collision")
+                prog.AddConstraint(_lift(dist_fn, len(movers)), lower, np.full(len(movers), np.inf), q,
+                                   description="collision")
             return prog, q
 
         prog, q = build(True)
+        free_prog, free_q = build(False) if movers else (prog, q)
         solver = SnoptSolver()
         options = SolverOptions()
         options.SetOption(solver.solver_id(), "Major iterations limit", self.major_iterations)
@@ -126,14 +136,28 @@ class GoalSolver:
         best: GoalResult | None = None
         closest: tuple[float, np.ndarray] | None = None
         tried = 0
-        for s in seeds:
-            tried += 1
-            result = solver.Solve(prog, s, options)
-            qs = np.clip(result.GetSolution(q), arm.lo, arm.hi)
+        def check(qs: np.ndarray) -> tuple[float, float | None]:
             at(qs)
             viol = max([c.violation(self.kin) for c in hard], default=0.0)
-            clear = min(self.collisions.mover_distances(side, movers, obstacles)[0], default=np.inf) if movers else None
-            ok = viol < 2e-3 and (clear is None or clear >= self.clearance - 1e-3)
+            if not movers:
+                return viol, None
+            dists = self.collisions.mover_distances(side, movers, obstacles)[0]
+            return viol, float(np.min(dists - lower)) + self.clearance  # the tightest margin, as a clearance
+
+        for s in seeds:
+            tried += 1
+            # Solve without collisions first (cheap and smooth); only if that lands in contact, solve again
+            # with the distance constraints, starting from there.
+            qs = np.clip(solver.Solve(free_prog, s, options).GetSolution(free_q), arm.lo, arm.hi)
+            viol, clear = check(qs)
+            if movers and (viol >= VIOLATION_SLACK or clear < self.clearance - 1e-3):
+                start = qs if viol < VIOLATION_SLACK else s
+                qc = np.clip(solver.Solve(prog, start, options).GetSolution(q), arm.lo, arm.hi)
+                viol_c, clear_c = check(qc)
+                if viol_c < VIOLATION_SLACK or viol_c <= viol:
+                    qs, viol, clear = qc, viol_c, clear_c
+            at(qs)
+            ok = viol < VIOLATION_SLACK and (clear is None or clear >= self.clearance - 1e-3)
             cost = float(self.w_reg * np.sum((qs - q_nominal) ** 2) + sum(c.cost(self.kin)[0] for c in soft))
             if ok and (best is None or cost < best.cost - 1e-6):
                 p, R = self.kin.ee_pose(side)
@@ -148,23 +172,23 @@ class GoalSolver:
             violations: list[str] = []
             if movers:
                 # Would the constraints hold if collisions did not count? Then collisions are the reason.
-                free_prog, free_q = build(False)
                 for s in seeds[:2]:
                     res = solver.Solve(free_prog, s, options)
                     qf = np.clip(res.GetSolution(free_q), arm.lo, arm.hi)
                     at(qf)
-                    if max([c.violation(self.kin) for c in hard], default=0.0) < 2e-3:
-                        d, pair = self.collisions.min_distance((side,))
-                        if pair is not None and d < self.clearance:
+                    if max([c.violation(self.kin) for c in hard], default=0.0) < VIOLATION_SLACK:
+                        hits = self.collisions.penetrations((side,), self.clearance)
+                        if hits:
+                            listed = ", ".join(f"{what} ({max(-d, 0) * 1000:.1f} mm deep)" for what, d in hits)
                             violations.append(
-                                f"collision: the constraints are reachable only with {self.collisions.describe_pair(pair)} "
-                                f"{max(-d, 0) * 1000:.1f} mm into each other (need {self.clearance * 1000:.0f} mm clearance); "
-                                "ignore that object if the contact is intended"
+                                f"collision: the constraints are reachable only with these in contact: {listed} "
+                                f"(need {self.clearance * 1000:.0f} mm clearance); ignore an object if the contact "
+                                "is intended"
                             )
                         break
             if not violations:
                 at(closest[1])
-                violations = [c.describe(self.kin) for c in hard if c.violation(self.kin) >= 2e-3]
+                violations = [c.describe(self.kin) for c in hard if c.violation(self.kin) >= VIOLATION_SLACK]
             best = GoalResult(False, None, violations=violations or ["solver did not converge"], seeds_tried=tried)
         at(best.q if best.q is not None else q_current)
         self.kin.data.qpos[:] = base_qpos

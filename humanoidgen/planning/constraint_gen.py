@@ -1,0 +1,231 @@
+"""Constraints for the planner API's actions, built from the asset annotations.
+
+- "grasp" / "pinch": the hand's grasp (pinch) point on the operation point, the hand turned to the operation's
+  axes; with `openness`, the same at the part's pose for that openness (pulling a drawer, lifting a lid).
+- "target": lift what the hand holds 10 cm, keeping the hand's orientation.
+- "target1" / "target2": the first / second push or flip point of an articulated object.
+- "move": the held object's centre (or the grasp point) to `relative_p` (world offset) from another object.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from humanoidgen.objects.hands import hand_axes
+from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env
+from humanoidgen.objects.schema import OperationAnnotation
+from humanoidgen.planning.constraints import Const, Constraint
+from humanoidgen.sim.layout import HAND_BASE_FRAME, Side
+
+ACTIONS = ("grasp", "pinch", "target", "target1", "target2", "move")
+LIFT = np.array([0.0, 0.0, 0.10])
+
+
+class ConstraintGenerationError(ValueError):
+    pass
+
+
+def hand_axes_local(side: Side) -> dict[str, np.ndarray]:
+    """The hand axes in the wrist frame, by role."""
+    ax = hand_axes(side)
+    return {"palm": ax[f"{side}_grasp_axis"], "pinch": ax[f"{side}_pinch_axis"],
+            "ring_2_index": ax[f"{side}_ring_2_index"], "fingers": ax[f"{side}_grasp_wrist_2_palm_axis"]}
+
+
+@dataclass
+class Generated:
+    """Constraints plus what the move needs to know about them."""
+
+    constraints: list
+    approach_axis: np.ndarray | None = None
+    approach_object: str | None = None
+    follow: dict | None = None
+    # Other ways to take the same grip (the object's symmetric axes, the other sign), most natural first;
+    # the goal solver tries them in turn when the first cannot be reached.
+    alternatives: list = field(default_factory=list)
+
+
+def _frame_from_two(l1: np.ndarray, w1: np.ndarray, l2: np.ndarray, w2: np.ndarray) -> np.ndarray | None:
+    """The rotation taking local directions l1, l2 onto world w1, w2 (None if w1, w2 are not orthogonal)."""
+    if abs(float(w1 @ w2)) > 1e-3:
+        return None
+    L = np.column_stack([l1, l2, np.cross(l1, l2)])
+    W = np.column_stack([w1, w2, np.cross(w1, w2)])
+    return W @ L.T
+
+
+def _natural_choices(side: Side, fixed_local: np.ndarray, fixed_world: np.ndarray, free_local: np.ndarray,
+                     candidates: list[np.ndarray], current_fingers: np.ndarray) -> list[np.ndarray]:
+    """Pick the signed candidate for the second hand axis that gives the most natural hand: fingers pointing
+    away from the robot and close to where they point now. Symmetric grips (a cube pinched along x or y, a
+    handle grasped with the index up or down) then resolve to a reachable posture."""
+    fingers_local = hand_axes_local(side)["fingers"]
+    scored = []
+    for c in candidates:
+        for sign in (1.0, -1.0):
+            R = _frame_from_two(fixed_local, fixed_world, free_local, sign * c)
+            if R is None:
+                continue
+            f = R @ fingers_local
+            scored.append((_posture_score(side, R @ hand_axes_local(side)["palm"], f) + 0.3 * f @ current_fingers,
+                           sign * c))
+    if not scored:
+        raise ConstraintGenerationError("the operation's axes are not perpendicular to each other")
+    return [c for _, c in sorted(scored, key=lambda x: -x[0])]
+
+
+def _operations(env, obj_name: str, obj_id: int, operation: str) -> list[OperationAnnotation]:
+    obj = env.scene.object(obj_name, obj_id)
+    ann = obj.annotations
+    if ann is None:
+        raise ConstraintGenerationError(f"{obj_name} {obj_id} has no annotations")
+    ops = ann.operations_of(operation)
+    if not ops:
+        available = sorted({o.operation for o in ann.operations})
+        raise ConstraintGenerationError(
+            f"{obj_name} has no '{operation}' annotation; it supports: {', '.join(available) or 'nothing'}"
+        )
+    return ops
+
+
+INWARD = {"left": np.array([0.0, -1.0, 0.0]), "right": np.array([0.0, 1.0, 0.0])}
+
+
+def _posture_score(side: Side, palm_world: np.ndarray, fingers_world: np.ndarray) -> float:
+    """How natural a hand orientation is: fingers away from the robot, palm not turned outward."""
+    return float(fingers_world @ np.array([1.0, 0.0, 0.0]) + 0.5 * palm_world @ INWARD[side])
+
+
+def _choose_operation(env, side: Side, obj_name: str, obj_id: int, operation: str,
+                      openness: float | None) -> OperationAnnotation:
+    """Among the object's annotations for this operation, the one the hand can take most naturally."""
+    ops = _operations(env, obj_name, obj_id, operation)
+    if len(ops) == 1:
+        return ops[0]
+    loc = hand_axes_local(side)
+    first_local = loc["palm"] if operation == "grasp" else loc["ring_2_index"]
+    second_local = loc["ring_2_index"] if operation == "grasp" else loc["pinch"]
+
+    def score(op: OperationAnnotation) -> float:
+        ax = lambda n: get_axis_in_env(env, n, obj_type=obj_name, obj_id=obj_id, openness=openness)  # noqa: E731
+        cands = [ax(op.parallel_axis)] if operation == "grasp" else [ax(op.attach_axis), ax(op.parallel_axis)]
+        best = -np.inf
+        for c in cands:
+            for sign in (1.0, -1.0):
+                R = _frame_from_two(first_local, ax(op.approach_axis), second_local, sign * c)
+                if R is not None:
+                    best = max(best, _posture_score(side, R @ loc["palm"], R @ loc["fingers"]))
+        return best
+
+    return max(ops, key=score)
+
+
+def grasp_or_pinch(env, side: Side, obj_name: str, obj_id: int, operation: str,
+                   openness: float | None) -> Generated:
+    frame = HAND_BASE_FRAME[side]
+    op = _choose_operation(env, side, obj_name, obj_id, operation, openness)
+    kind = "grasp" if operation == "grasp" else "pinch"
+    hand_point = get_point_in_env(env, f"{kind}_point_base_{side}_hand")
+    target = get_point_in_env(env, op.point, obj_name, obj_id, openness=openness)
+
+    def axis(name: str) -> np.ndarray:
+        return get_axis_in_env(env, name, obj_type=obj_name, obj_id=obj_id, openness=openness)
+
+    approach, attach, parallel = axis(op.approach_axis), axis(op.attach_axis), axis(op.parallel_axis)
+    fingers_now = get_axis_in_env(env, f"{side}_grasp_wrist_2_palm_axis")
+    cons = [Constraint(env, "point2point", frame, hand_key_point=hand_point, object_key_point=target,
+                       name=f"{kind} point on {obj_name} {obj_id} {op.point}")]
+    if kind == "grasp":
+        # The palm faces the object along the approach; the fingers line up with the part's parallel axis.
+        palm = get_axis_in_env(env, f"{side}_grasp_axis")
+        r2i = get_axis_in_env(env, f"{side}_ring_2_index")
+        loc = hand_axes_local(side)
+        options = _natural_choices(side, loc["palm"], approach, loc["ring_2_index"], [parallel], fingers_now)
+        variants = [cons + [
+            Constraint(env, "parallel", frame, hand_axis=palm, object_axis=approach, name="palm faces the approach"),
+            Constraint(env, "parallel", frame, hand_axis=r2i, object_axis=along, name="fingers along the parallel axis"),
+        ] for along in options]
+    else:
+        # Thumb and index squeeze along the attach (or parallel) axis; the index edge leads the approach.
+        pinch = get_axis_in_env(env, f"{side}_pinch_axis")
+        r2i = get_axis_in_env(env, f"{side}_ring_2_index")
+        loc = hand_axes_local(side)
+        options = _natural_choices(side, loc["ring_2_index"], approach, loc["pinch"], [attach, parallel], fingers_now)
+        fingers_forward = Const(env, "parallel", frame, hand_axis=get_axis_in_env(env, f"{side}_pinch_wrist_2_palm_axis"),
+                                object_axis=np.array([1.0, 0.0, 0.0]), weight=0.1, name="fingers forward (preferred)")
+        variants = [cons + [
+            Constraint(env, "parallel", frame, hand_axis=r2i, object_axis=approach, name="index edge leads"),
+            Constraint(env, "parallel", frame, hand_axis=pinch, object_axis=squeeze, name="pinch along the attach axis"),
+            fingers_forward,
+        ] for squeeze in options]
+    body = env.scene.object(obj_name, obj_id).body
+    gen = Generated(variants[0], approach_axis=approach, approach_object=body, alternatives=variants[1:])
+    ann = env.scene.object(obj_name, obj_id).annotations
+    if openness is not None and ann.articulation is not None:
+        art = ann.articulation
+        gen.follow = {"body": body, "joint": f"{body}_{art.joint}", "q_target": art.closed + openness * (art.open - art.closed),
+                      "part_point": op.point, "obj": (obj_name, obj_id)}
+        gen.approach_axis = None  # the hand is already on the part: no approach
+    return gen
+
+
+def keep_orientation(env, side: Side, held: tuple[str, int] | None = None) -> list[Constraint]:
+    """Prefer the hand's present orientation (soft); a held object's up axis stays within 10 deg of now (hard)."""
+    frame = HAND_BASE_FRAME[side]
+    out: list[Constraint] = [
+        Const(env, "parallel", frame, hand_axis=get_axis_in_env(env, f"{side}_grasp_axis"),
+              object_axis=get_axis_in_env(env, f"{side}_grasp_axis"), weight=0.5, name="keep the palm's direction"),
+        Const(env, "parallel", frame, hand_axis=get_axis_in_env(env, f"{side}_ring_2_index"),
+              object_axis=get_axis_in_env(env, f"{side}_ring_2_index"), weight=0.5, name="keep the fingers' direction"),
+    ]
+    if held is not None:
+        up = get_axis_in_env(env, "z", obj_type=held[0], obj_id=held[1])
+        out.append(Constraint(env, "angle", frame, hand_axis=up, object_axis=up, lower=0.0, upper=np.radians(10),
+                              name=f"keep {held[0]} {held[1]} upright"))
+    return out
+
+
+def generate(env, holding: dict, obj_name: str, obj_id: int, action: str, side: Side, openness: float | None = None,
+             relative_obj_name: str | None = None, relative_obj_id: int | None = None,
+             relative_p: np.ndarray | None = None) -> Generated:
+    if action not in ACTIONS:
+        raise ConstraintGenerationError(f"unknown action {action!r}; use one of {', '.join(ACTIONS)}")
+    frame = HAND_BASE_FRAME[side]
+    env.scene.object(obj_name, obj_id)  # a clear error for an unknown object
+    if action in ("grasp", "pinch"):
+        return grasp_or_pinch(env, side, obj_name, obj_id, action, openness)
+    held = holding.get(side)
+    held_here = held is not None and (held.type_name, held.obj_id) == (obj_name, obj_id)
+    if action == "target":
+        if not held_here:
+            raise ConstraintGenerationError(f"'target' lifts what the {side} hand holds, and it does not hold {obj_name} {obj_id}")
+        c = get_point_in_env(env, "center", obj_name, obj_id)
+        return Generated([Constraint(env, "point2point", frame, hand_key_point=c, object_key_point=c + LIFT,
+                                     name=f"{obj_name} {obj_id} 10 cm higher"), *keep_orientation(env, side, (obj_name, obj_id))])
+    if action in ("target1", "target2"):
+        ann = env.scene.object(obj_name, obj_id).annotations
+        ops = [o for o in ann.operations if o.operation in ("push", "flip", "press")]
+        k = 0 if action == "target1" else 1
+        if len(ops) <= k:
+            raise ConstraintGenerationError(f"{obj_name} has {len(ops)} push/flip/press annotation(s); no {action}")
+        op = ops[k]
+        target = get_point_in_env(env, op.point, obj_name, obj_id, openness=openness)
+        approach = get_axis_in_env(env, op.approach_axis, obj_type=obj_name, obj_id=obj_id, openness=openness)
+        return Generated([
+            Constraint(env, "point2point", frame, hand_key_point=get_point_in_env(env, f"press_point_base_{side}_hand"),
+                       object_key_point=target, name=f"fingertip on {obj_name} {op.point}"),
+            Constraint(env, "parallel", frame, hand_axis=get_axis_in_env(env, f"{side}_press_axis"),
+                       object_axis=approach, name="fingertip along the push direction"),
+        ], approach_axis=approach, approach_object=env.scene.object(obj_name, obj_id).body)
+    # move
+    if relative_obj_name is None:
+        raise ConstraintGenerationError("'move' needs relative_obj_name (and relative_obj_id, relative_p)")
+    rel = get_point_in_env(env, "center", relative_obj_name, relative_obj_id or 0)
+    offset = np.zeros(3) if relative_p is None else np.asarray(relative_p, float)
+    hand_point = (get_point_in_env(env, "center", obj_name, obj_id) if held_here
+                  else get_point_in_env(env, f"grasp_point_base_{side}_hand"))
+    return Generated([Constraint(env, "point2point", frame, hand_key_point=hand_point, object_key_point=rel + offset,
+                                 name=f"{obj_name} {obj_id} at {relative_obj_name} {relative_obj_id or 0} + {offset.round(3).tolist()}"),
+                      *keep_orientation(env, side, (obj_name, obj_id) if held_here else None)])

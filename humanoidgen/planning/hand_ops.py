@@ -1,0 +1,65 @@
+"""What the hands' contacts say: is an object held (opposing contacts), and where did a released object end.
+Pure queries on the simulation state; the planner drives the fingers."""
+
+from __future__ import annotations
+
+import mujoco
+import numpy as np
+
+from humanoidgen.sim.layout import HAND_PREFIX, Side
+from humanoidgen.sim.scene import Scene, SceneObject
+
+
+def _root(model: mujoco.MjModel, geom: int) -> int:
+    return int(model.body_rootid[model.geom_bodyid[geom]])
+
+
+def finger_contacts(model: mujoco.MjModel, data: mujoco.MjData, side: Side, body: str) -> set[str]:
+    """Which fingers of `side` touch the object `body`: a subset of thumb, index, middle, ring, pinky, palm."""
+    root = model.body(body).id
+    prefix = HAND_PREFIX[side] + "_"
+    palm = f"{side}_wrist_yaw_link"
+    touched: set[str] = set()
+    for c in data.contact[: data.ncon]:
+        for mine, other in ((c.geom1, c.geom2), (c.geom2, c.geom1)):
+            if _root(model, other) != root:
+                continue
+            name = model.body(model.geom_bodyid[mine]).name
+            if name.startswith(prefix):
+                touched.add(name[len(prefix):].split("_")[0])
+            elif name == palm:
+                touched.add("palm")
+    return touched
+
+
+def is_held(touched: set[str]) -> bool:
+    """Held means squeezed from two sides: the thumb against a finger (or the palm)."""
+    return "thumb" in touched and bool(touched & {"index", "middle", "ring", "pinky", "palm"})
+
+
+def resting_on(scene: Scene, model: mujoco.MjModel, data: mujoco.MjData, obj: SceneObject) -> list[str]:
+    """What supports the object from below its centre: "table" and other objects ("cube 0"); hands don't count."""
+    root = model.body(obj.body).id
+    centre = data.xpos[root]
+    names: dict[int, str] = {model.body(o.body).id: f"{o.type_name} {o.obj_id}" for o in scene.objects}
+    out: list[str] = []
+    for c in data.contact[: data.ncon]:
+        r1, r2 = _root(model, c.geom1), _root(model, c.geom2)
+        if root not in (r1, r2) or c.pos[2] > centre[2]:
+            continue
+        other = r2 if r1 == root else r1
+        if other == 0:
+            label = "table"
+        elif other in names:
+            label = names[other]
+        else:
+            continue  # the robot
+        if label not in out:
+            out.append(label)
+    return out
+
+
+def body_speed(model: mujoco.MjModel, data: mujoco.MjData, body: str) -> float:
+    vel = np.zeros(6)
+    mujoco.mj_objectVelocity(model, data, mujoco.mjtObj.mjOBJ_BODY, model.body(body).id, vel, 0)
+    return float(np.linalg.norm(vel[3:]))

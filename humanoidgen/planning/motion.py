@@ -1,0 +1,186 @@
+"""Arm motions: a straight SE(3) (screw) motion tracked by IK, checked against collisions on the MuJoCo
+model; where it collides or leaves the joint limits, an OMPL RRT-Connect path in joint space. Paths are
+timed within velocity and acceleration limits; path constraints are held at every waypoint of a screw motion.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from humanoidgen.planning.collision import CollisionWorld
+from humanoidgen.planning.constraints import Constraint
+from humanoidgen.planning.kinematics import Kinematics
+from humanoidgen.planning.paths import is_valid, plan_rrt_connect, segment_valid, straight_path
+from humanoidgen.planning.poses import screw_interpolate
+from humanoidgen.sim.geometry import rotation_error
+from humanoidgen.sim.layout import Side
+
+ROT_WEIGHT = 0.2  # metres per radian when tracking poses
+
+
+@dataclass
+class JointPath:
+    """A joint-space path for one arm, and how it was made."""
+
+    waypoints: np.ndarray  # (n, 7)
+    method: str  # "screw", "rrt_connect" or "direct"
+    reason: str = ""
+
+
+class MotionError(RuntimeError):
+    pass
+
+
+def track_poses(kin: Kinematics, side: Side, q_start: np.ndarray, poses: list[tuple[np.ndarray, np.ndarray]],
+                path_constraints: list[Constraint] = (), iters: int = 30, tol: float = 5e-4) -> tuple[np.ndarray, str]:
+    """Follow end-effector poses with damped least squares from `q_start`; path constraints as extra rows.
+
+    Returns (waypoints (n, 7), "") or (partial waypoints, reason) when a pose cannot be tracked.
+    """
+    arm = kin.arms[side]
+    base = kin.data.qpos.copy()
+    q = np.array(q_start, float)
+    out = []
+    reason = ""
+    for k, (p_t, R_t) in enumerate(poses):
+        for _ in range(iters):
+            kin.set_arm(side, q)
+            kin.forward()
+            p, R = kin.ee_pose(side)
+            e = np.concatenate([p_t - p, ROT_WEIGHT * rotation_error(R, R_t)])
+            J = np.vstack([kin.point_jacobian(side, p), ROT_WEIGHT * kin.rotation_jacobian(side)])
+            rows_e, rows_J = [e], [J]
+            for c in path_constraints:
+                v, Jc = c.evaluate(kin)
+                lo, hi = c.bounds()
+                target = np.clip(v, lo, hi)
+                rows_e.append(target - v)
+                rows_J.append(Jc)
+            E, JJ = np.concatenate(rows_e), np.vstack(rows_J)
+            if np.linalg.norm(e) < tol and all(c.violation(kin) < 2e-3 for c in path_constraints):
+                break
+            dq = JJ.T @ np.linalg.solve(JJ @ JJ.T + 1e-4 * np.eye(len(E)), E)
+            q = q + np.clip(dq, -0.1, 0.1)
+            if np.any(q < arm.lo - 1e-6) or np.any(q > arm.hi + 1e-6):
+                q = np.clip(q, arm.lo, arm.hi)
+        kin.set_arm(side, q)
+        kin.forward()
+        p, R = kin.ee_pose(side)
+        pos_err = np.linalg.norm(p_t - p)
+        if pos_err > 5e-3 or np.linalg.norm(rotation_error(R, R_t)) > np.radians(3):
+            reason = (f"the straight motion leaves the arm's reach or joint limits at {100 * (k + 1) / len(poses):.0f}% "
+                      f"of the way ({pos_err * 1000:.0f} mm off)")
+            break
+        bad = [c.describe(kin) for c in path_constraints if c.violation(kin) >= 2e-3]
+        if bad:
+            reason = f"path constraint violated at {100 * (k + 1) / len(poses):.0f}% of the way: {'; '.join(bad)}"
+            break
+        out.append(q.copy())
+    kin.data.qpos[:] = base
+    kin.forward()
+    return np.array(out).reshape(-1, 7), reason
+
+
+def plan_arm_motion(kin: Kinematics, cw: CollisionWorld, side: Side, q_start: np.ndarray,
+                    target: tuple[np.ndarray, np.ndarray], q_goal: np.ndarray | None = None,
+                    path_constraints: list[Constraint] = (), allow_sampling: bool = True,
+                    seed: int = 0, time_limit: float = 2.0) -> JointPath:
+    """Screw motion to `target` (p, R); if it collides or fails, RRT-Connect to `q_goal` (no path constraints).
+
+    Without `q_goal`, the end of the tracked screw motion serves as the sampling planner's goal."""
+    kin.set_arm(side, q_start)
+    kin.forward()
+    p0, R0 = kin.ee_pose(side)
+    poses = screw_interpolate(p0, R0, target[0], target[1])
+    waypoints, reason = track_poses(kin, side, q_start, poses, path_constraints)
+    if not reason and q_goal is None:
+        q_goal = waypoints[-1]  # the tracked end is a valid goal for the sampling planner too
+    if not reason:
+        if q_goal is not None and np.max(np.abs(waypoints[-1] - q_goal)) < 0.3:
+            waypoints = np.vstack([waypoints, q_goal])  # land exactly on the solver's configuration
+        path = np.vstack([q_start, waypoints])
+        collision = first_collision(kin, cw, side, path)
+        if collision is None:
+            return JointPath(path, "screw")
+        reason = f"the straight motion collides at waypoint {collision} of {len(path)}"
+    if path_constraints:
+        raise MotionError(f"{reason}; no sampled path is tried because the move has path constraints")
+    if not allow_sampling or q_goal is None:
+        raise MotionError(reason)
+    result = plan_rrt_connect(kin, cw, side, q_start, q_goal, time_limit=time_limit, seed=seed,
+                              clearance=start_clearance(kin, cw, side, q_start))
+    if not result.ok:
+        raise MotionError(f"{reason}; the sampling planner found no path either: {result.reason}")
+    return JointPath(result.path, "rrt_connect", reason)
+
+
+# The arm keeps this far from obstacles along a path (the simulated arm cuts corners a little); a held object
+# may touch (CollisionWorld.held_slack). A motion that starts closer than this, say from a grasp, may leave
+# but not get any closer.
+MOTION_CLEARANCE = 0.004
+
+
+def start_clearance(kin: Kinematics, cw: CollisionWorld, side: Side, q: np.ndarray) -> float:
+    """The clearance a path from `q` must keep: MOTION_CLEARANCE, or less if it starts closer than that."""
+    base = kin.data.qpos.copy()
+    kin.set_arm(side, q)
+    kin.forward()
+    d, _ = cw.min_distance((side,))
+    kin.data.qpos[:] = base
+    kin.forward()
+    return min(MOTION_CLEARANCE, d - 1e-4)
+
+
+def first_collision(kin: Kinematics, cw: CollisionWorld, side: Side, path: np.ndarray) -> int | None:
+    base = kin.data.qpos.copy()
+    clearance = start_clearance(kin, cw, side, path[0])
+    try:
+        for i in range(1, len(path)):
+            if not segment_valid(kin, cw, side, path[i - 1], path[i], clearance=clearance):
+                return i
+        return None
+    finally:
+        kin.data.qpos[:] = base
+        kin.forward()
+
+
+def densify(path: np.ndarray, max_step: float = 0.02) -> np.ndarray:
+    out = [path[0]]
+    for a, b in zip(path[:-1], path[1:]):
+        out.extend(straight_path(a, b, max_step)[1:])
+    return np.array(out)
+
+
+__all__ = ["JointPath", "MotionError", "track_poses", "plan_arm_motion", "densify", "is_valid"]
+
+
+def time_dense_path(path: np.ndarray, dt: float, v_max: float = 1.0, a_max: float = 3.0) -> np.ndarray:
+    """Samples every `dt` along a dense, smooth path with one trapezoidal profile over its whole length.
+
+    Unlike `paths.time_parametrize` (rest at every corner, right for the few sharp corners of a sampled path),
+    a screw motion's waypoints bend only slightly, so the arm keeps moving through them. Length is measured
+    with the largest joint change, so no joint exceeds `v_max` and `a_max` along straight stretches.
+    """
+    if len(path) < 2:
+        return np.array(path)
+    seg = np.max(np.abs(np.diff(path, axis=0)), axis=1)
+    s = np.concatenate([[0.0], np.cumsum(seg)])
+    L = s[-1]
+    if L < 1e-9:
+        return path[-1:].copy()
+    t_acc = v_max / a_max
+    if a_max * t_acc**2 > L:  # triangle profile: never reaches v_max
+        t_acc = np.sqrt(L / a_max)
+        v_peak = a_max * t_acc
+        T = 2 * t_acc
+    else:
+        v_peak = v_max
+        T = 2 * t_acc + (L - a_max * t_acc**2) / v_max
+    n = max(1, int(np.ceil(T / dt)))
+    t = np.linspace(dt, n * dt, n) * (T / (n * dt))
+    sv = np.where(t < t_acc, 0.5 * a_max * t**2,
+                  np.where(t > T - t_acc, L - 0.5 * a_max * (T - t) ** 2, 0.5 * a_max * t_acc**2 + v_peak * (t - t_acc)))
+    sv = np.clip(sv, 0, L)
+    return np.stack([np.interp(sv, s, path[:, j]) for j in range(path.shape[1])], axis=1)

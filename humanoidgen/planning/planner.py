@@ -1,0 +1,454 @@
+"""The planner API that plan scripts (written by people or LLMs) call, as the paper's prompts use it.
+
+    planner.hand_pre_grasp("right")
+    c = planner.generate_constraints(obj_name="can", obj_id=0, action="grasp", hand_name="right")
+    _, pose = planner.generate_end_effector_pose(c, hand_name="right")
+    planner.move_to_pose_with_screw(pose, "right", attach_obj=False)
+    planner.hand_grasp("right", grasp_object="can", obj_id=0)
+
+Every call is recorded in `planner.log` (inputs, outcome, time) and notable outcomes in `planner.events`
+("grasped can 0", "released cube 1 and it stayed on cube 0"). A call that cannot do its job raises
+`PlanningError` with the call's name and the reason, so a script stops at the step that failed.
+"""
+
+from __future__ import annotations
+
+import functools
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import mujoco
+import numpy as np
+
+from humanoidgen.objects.hands import HAND_POSTURES
+from humanoidgen.planning import constraint_gen
+from humanoidgen.planning.collision import CollisionWorld
+from humanoidgen.planning.constraints import Const, Constraint, ConstraintError
+from humanoidgen.planning.goal_solver import GoalResult, GoalSolver
+from humanoidgen.planning.hand_ops import body_speed, finger_contacts, is_held, resting_on
+from humanoidgen.planning.kinematics import Kinematics
+from humanoidgen.planning.motion import (
+    JointPath,
+    MotionError,
+    first_collision,
+    plan_arm_motion,
+    time_dense_path,
+    track_poses,
+)
+from humanoidgen.planning.paths import time_parametrize
+from humanoidgen.planning.poses import Pose, screw_interpolate
+from humanoidgen.sim.action import ARM_SLICE, HAND_SLICE
+from humanoidgen.sim.env import HumanoidEnv
+from humanoidgen.sim.layout import SIDES, Side
+from humanoidgen.sim.scene import SceneObject
+
+APPROACH_DISTANCE = 0.08  # grasps and pinches come in straight along the approach axis over this distance
+HAND_MOTION_TIME = 0.5  # seconds to move the fingers between postures
+SETTLE_TIME = 0.3
+
+
+class PlanningError(RuntimeError):
+    """A planner call that could not do its job; `call` and `reason` go back to the plan's author."""
+
+    def __init__(self, call: str, reason: str) -> None:
+        super().__init__(f"{call}: {reason}")
+        self.call = call
+        self.reason = reason
+
+
+@dataclass
+class CallRecord:
+    call: str
+    args: dict
+    ok: bool
+    message: str
+    seconds: float
+    sim_time: float
+
+
+def _sides(hand_name: str) -> tuple[Side, ...]:
+    if hand_name == "all":
+        return SIDES
+    if hand_name in SIDES:
+        return (hand_name,)
+    raise PlanningError("hand", f"hand_name must be 'left', 'right' or 'all', got {hand_name!r}")
+
+
+def _summarize(value):
+    if isinstance(value, np.ndarray):
+        return np.round(value, 4).tolist()
+    if isinstance(value, Pose):
+        return {"p": np.round(value.p, 4).tolist(), "q": np.round(value.q, 4).tolist()}
+    if isinstance(value, (list, tuple)):
+        return [_summarize(v) for v in value]
+    if isinstance(value, (Constraint, Const)):
+        return value.name
+    return value
+
+
+def _logged(fn: Callable) -> Callable:
+    @functools.wraps(fn)
+    def wrapper(self: "HumanoidMotionPlanner", *args, **kwargs):
+        t0, sim0 = time.perf_counter(), self.env.time
+        record = CallRecord(fn.__name__, {"args": _summarize(list(args)), **{k: _summarize(v) for k, v in kwargs.items()}},
+                            False, "", 0.0, 0.0)
+        self.log.append(record)
+        try:
+            out = fn(self, *args, **kwargs)
+            record.ok, record.message = True, record.message or "ok"
+            return out
+        except PlanningError as exc:
+            record.message = exc.reason
+            raise
+        except (ConstraintError, constraint_gen.ConstraintGenerationError, KeyError, ValueError) as exc:
+            record.message = str(exc).strip("'\"")
+            raise PlanningError(fn.__name__, record.message) from None
+        finally:
+            record.seconds = time.perf_counter() - t0
+            record.sim_time = self.env.time - sim0
+
+    return wrapper
+
+
+@dataclass
+class HumanoidMotionPlanner:
+    env: HumanoidEnv
+    seed: int = 0
+    on_step: Callable[[np.ndarray], None] | None = None  # called after every control step with the action
+    events: list[str] = field(default_factory=list)
+    log: list[CallRecord] = field(default_factory=list)
+
+    def __post_init__(self) -> None:
+        self.kin = Kinematics(self.env.model)
+        self.env.kinematics = self.kin  # constraints anchor hand points with the planner's kinematics
+        self.collisions = CollisionWorld(self.kin)
+        self.solver = GoalSolver(self.kin, self.collisions, seed=self.seed)
+        self.action = self.env.joint_positions()
+        self.holding: dict[Side, SceneObject | None] = {s: None for s in SIDES}
+        self.kin.sync(self.env.data.qpos)
+        self.nominal = {s: self.env.init_action()[ARM_SLICE[s]] for s in SIDES}
+        self.left_hand_init_pose = self._current_pose("left", q=self.nominal["left"])
+        self.right_hand_init_pose = self._current_pose("right", q=self.nominal["right"])
+        self.goal_results: list[GoalResult] = []
+
+    # -- low level --------------------------------------------------------------------------------------
+    def _current_pose(self, side: Side, q: np.ndarray | None = None) -> Pose:
+        self.kin.sync(self.env.data.qpos)
+        if q is not None:
+            self.kin.set_arm(side, q)
+            self.kin.forward()
+        p, R = self.kin.ee_pose(side)
+        joint_q = self.kin.arm_q(side)
+        self.kin.sync(self.env.data.qpos)
+        return Pose.from_mat(p, R, joint_q=joint_q, side=side)
+
+    def _step(self) -> None:
+        self.env.step(self.action)
+        if self.on_step is not None:
+            self.on_step(self.action.copy())
+
+    def _run_arm_samples(self, samples: dict[Side, np.ndarray]) -> None:
+        n = max(len(s) for s in samples.values())
+        for k in range(n):
+            for side, s in samples.items():
+                self.action[ARM_SLICE[side]] = s[min(k, len(s) - 1)]
+            self._step()
+
+    def _settle(self, seconds: float = SETTLE_TIME) -> None:
+        for _ in range(int(round(seconds * self.env.control_hz))):
+            self._step()
+
+    def _move_fingers(self, sides: tuple[Side, ...], posture: str, seconds: float = HAND_MOTION_TIME) -> None:
+        start = {s: self.action[HAND_SLICE[s]].copy() for s in sides}
+        goal = np.array(HAND_POSTURES[posture])
+        n = max(1, int(round(seconds * self.env.control_hz)))
+        for k in range(1, n + 1):
+            for s in sides:
+                self.action[HAND_SLICE[s]] = start[s] + (goal - start[s]) * k / n
+            self._step()
+
+    # -- hands ------------------------------------------------------------------------------------------
+    @_logged
+    def hand_pre_grasp(self, hand_name: str = "all") -> None:
+        """Turn the thumb to face the fingers, ready to grasp. Call before moving to a grasp pose."""
+        self._move_fingers(_sides(hand_name), "pre_grasp")
+
+    @_logged
+    def hand_pre_pinch(self, hand_name: str = "all") -> None:
+        """Oppose thumb and index and tuck the other fingers away, ready to pinch."""
+        self._move_fingers(_sides(hand_name), "pre_pinch")
+
+    @_logged
+    def hand_press(self, hand_name: str = "all") -> None:
+        """Extend the index finger and curl the others, to press with the fingertip."""
+        self._move_fingers(_sides(hand_name), "press")
+
+    def _close_on(self, side: Side, obj_type: str, obj_id: int, posture: str, verb: str) -> None:
+        obj = self.env.scene.object(obj_type, obj_id)
+        self._move_fingers((side,), posture, seconds=0.6)
+        self._settle(0.3)
+        touched = finger_contacts(self.env.model, self.env.data, side, obj.body)
+        if not is_held(touched):
+            raise PlanningError(
+                f"hand_{verb}",
+                f"the {side} hand closed but does not hold {obj_type} {obj_id} "
+                f"(touching: {', '.join(sorted(touched)) or 'nothing'}; a hold needs the thumb against a finger)",
+            )
+        self.holding[side] = obj
+        self.events.append(f"{'grasped' if verb == 'grasp' else 'pinched'} {obj_type} {obj_id} with the {side} hand")
+
+    @_logged
+    def hand_grasp(self, hand_name: str, grasp_object: str, obj_id: int = 0) -> None:
+        """Close the whole hand on an object; succeeds only if the object is held between thumb and fingers."""
+        for side in _sides(hand_name):
+            self._close_on(side, grasp_object, obj_id, "grasp", "grasp")
+
+    @_logged
+    def hand_pinch(self, hand_name: str, pinch_object: str, obj_id: int = 0) -> None:
+        """Close thumb and index on a small object; succeeds only if it is held between them."""
+        for side in _sides(hand_name):
+            self._close_on(side, pinch_object, obj_id, "pinch", "pinch")
+
+    @_logged
+    def open_hand(self, hand_name: str = "all") -> None:
+        """Open the fingers. A released object is watched for a moment: where it came to rest is an event."""
+        sides = _sides(hand_name)
+        released = [(s, self.holding[s]) for s in sides if self.holding[s] is not None]
+        self._move_fingers(sides, "open")
+        for s in sides:
+            self.holding[s] = None
+            self.kin.detach(s)
+        if released:
+            self._settle(0.5)
+            for side, obj in released:
+                if obj.annotations is not None and obj.annotations.articulation is not None:
+                    self.events.append(f"released {obj.type_name} {obj.obj_id} from the {side} hand")
+                    continue
+                below = resting_on(self.env.scene, self.env.model, self.env.data, obj)
+                moving = body_speed(self.env.model, self.env.data, obj.body) > 0.02
+                where = " and ".join(below) if below else "nothing"
+                state = "is still moving" if moving else f"stayed on {where}"
+                self.events.append(f"released {obj.type_name} {obj.obj_id} and it {state}")
+
+    # -- collisions -------------------------------------------------------------------------------------
+    @_logged
+    def ignore_collision(self, obj_name: str, obj_id: int = 0) -> None:
+        """Let the hands touch this object (e.g. a drawer being pulled) until `restore_collision`."""
+        self.collisions.ignored_bodies.add(self.env.model.body(self.env.scene.object(obj_name, obj_id).body).id)
+
+    @_logged
+    def restore_collision(self, obj_name: str | None = None, obj_id: int = 0) -> None:
+        """Avoid this object again (all ignored objects when no name is given)."""
+        if obj_name is None:
+            self.collisions.ignored_bodies.clear()
+        else:
+            self.collisions.ignored_bodies.discard(self.env.model.body(self.env.scene.object(obj_name, obj_id).body).id)
+
+    # -- constraints and goal poses ---------------------------------------------------------------------
+    @_logged
+    def generate_constraints(self, obj_name: str, obj_id: int, action: str, hand_name: str,
+                             openness: float | None = None, relative_obj_name: str | None = None,
+                             relative_obj_id: int | None = None, relative_p: np.ndarray | None = None) -> list:
+        """Constraints for an action on an object, from its annotations (see `constraint_gen`)."""
+        (side,) = _sides(hand_name) if hand_name != "all" else (None,)
+        if side is None:
+            raise PlanningError("generate_constraints", "hand_name must be 'left' or 'right'")
+        self.kin.sync(self.env.data.qpos)
+        gen = constraint_gen.generate(self.env, self.holding, obj_name, obj_id, action, side, openness,
+                                      relative_obj_name, relative_obj_id, relative_p)
+        cons = list(gen.constraints)
+        for c in cons:
+            c.meta = gen  # the move needs the approach axis and the part to follow
+        return cons
+
+    @_logged
+    def generate_end_effector_pose(self, constraints: list, hand_name: str) -> tuple[GoalResult, Pose]:
+        """Solve for an arm configuration meeting the constraints; returns (result, target end-effector pose)."""
+        (side,) = _sides(hand_name)
+        if not constraints:
+            raise PlanningError("generate_end_effector_pose", "no constraints given")
+        self.kin.sync(self.env.data.qpos)
+        gen = getattr(constraints[0], "meta", None)
+        ignored_before = set(self.collisions.ignored_bodies)
+        if gen is not None and gen.approach_object is not None:
+            # The hand is meant to touch the object it grasps, pinches or pushes.
+            self.collisions.ignored_bodies.add(self.env.model.body(gen.approach_object).id)
+        held = self.holding[side]
+        if held is not None and held.annotations is not None and held.annotations.articulation is not None:
+            self.collisions.ignored_bodies.add(self.env.model.body(held.body).id)
+        self._attach_held(side)
+        try:
+            result = self.solver.solve(side, list(constraints), self.kin.arm_q(side), self.nominal[side])
+            for alternative in (gen.alternatives if gen is not None and not result.success else []):
+                retry = self.solver.solve(side, list(alternative), self.kin.arm_q(side), self.nominal[side])
+                if retry.success:
+                    result = retry
+                    break
+        finally:
+            self.collisions.ignored_bodies = ignored_before
+            self.kin.sync(self.env.data.qpos)
+        self.goal_results.append(result)
+        if not result.success:
+            raise PlanningError("generate_end_effector_pose", result.message())
+        pose = Pose.from_mat(result.ee_pos, result.ee_mat, joint_q=result.q, side=side)
+        if gen is not None:
+            pose.approach_axis = gen.approach_axis
+            pose.approach_object = gen.approach_object
+            pose.follow = gen.follow
+        return result, pose
+
+    def _attach_held(self, side: Side) -> None:
+        held = self.holding[side]
+        self.kin.detach(side)
+        if held is not None and (held.annotations is None or held.annotations.articulation is None):
+            self.kin.attach(side, held.body)
+
+    # -- motion -----------------------------------------------------------------------------------------
+    @_logged
+    def move_to_pose_with_screw(self, pose, hand_name: str, attach_obj=False, object_name=None, object_id=0) -> None:
+        """Move the hand's end effector to `pose` (both hands: lists, index 0 left, 1 right)."""
+        sides = _sides(hand_name)
+        poses = list(pose) if hand_name == "all" else [pose]
+        if len(poses) != len(sides):
+            raise PlanningError("move_to_pose_with_screw", "with hand_name='all', give a list of two poses [left, right]")
+        samples: dict[Side, np.ndarray] = {}
+        targets: dict[Side, Pose] = {}
+        for side, target in zip(sides, poses):
+            if not isinstance(target, Pose):
+                raise PlanningError("move_to_pose_with_screw", f"pose must be a Pose (from generate_end_effector_pose), got {type(target).__name__}")
+            samples[side] = self._plan_side(side, target)
+            targets[side] = target
+        if len(sides) == 2:
+            samples = self._coordinate_arms(samples)
+        carried = {s: self._relative_to_hand(s, self.holding[s]) for s in sides if self._carries(s)}
+        self._run_arm_samples(samples)
+        self._settle(0.2)
+        for side, target in targets.items():
+            err = np.linalg.norm(self._current_pose(side).p - target.p)
+            if err <= 0.02 or target.follow is not None:
+                continue
+            touching = target.approach_object is not None and finger_contacts(
+                self.env.model, self.env.data, side, target.approach_object)
+            if touching and err <= 0.05:  # the hand arrived against what it came to operate on
+                self.log[-1].message = f"stopped {err * 1000:.0f} mm short, touching {target.approach_object}"
+                continue
+            raise PlanningError("move_to_pose_with_screw", f"the {side} hand stopped {err * 1000:.0f} mm from its target")
+        for side, before in carried.items():
+            slip = np.linalg.norm(self._relative_to_hand(side, self.holding[side]) - before)
+            if slip > 0.01:
+                obj = self.holding[side]
+                self.holding[side] = None
+                raise PlanningError("move_to_pose_with_screw",
+                                    f"{obj.type_name} {obj.obj_id} slipped {slip * 1000:.0f} mm in the {side} hand")
+
+    def _coordinate_arms(self, samples: dict[Side, np.ndarray]) -> dict[Side, np.ndarray]:
+        """Both arms move at once: check every control step for arm-arm contact; if they would touch, move
+        them one after the other (left first, then right), and if that collides too, give up with a reason."""
+        from humanoidgen.planning.paths import is_valid
+
+        self.kin.sync(self.env.data.qpos)
+        for side in SIDES:
+            self._attach_held(side)
+
+        def clear(left: np.ndarray, right: np.ndarray) -> bool:
+            n = max(len(left), len(right))
+            for k in range(0, n, 2):
+                q = np.concatenate([left[min(k, len(left) - 1)], right[min(k, len(right) - 1)]])
+                if not is_valid(self.kin, self.collisions, "all", q, clearance=-0.003):
+                    return False
+            return True
+
+        try:
+            left, right = samples["left"], samples["right"]
+            if clear(left, right):
+                return samples
+            left_first = {"left": left, "right": np.vstack([np.repeat(right[:1], len(left), 0), right])}
+            if clear(left_first["left"], left_first["right"]):
+                self.log[-1].message = "moved the arms one after the other to keep them apart"
+                return left_first
+            raise PlanningError("move_to_pose_with_screw", "the two arms' motions would collide with each other")
+        finally:
+            self.kin.sync(self.env.data.qpos)
+
+    def _carries(self, side: Side) -> bool:
+        held = self.holding[side]
+        return held is not None and (held.annotations is None or held.annotations.articulation is None)
+
+    def _relative_to_hand(self, side: Side, obj: SceneObject) -> np.ndarray:
+        p_hand, R_hand = self.env.hand_pose(side)
+        return R_hand.T @ (self.env.object_pose(obj.body)[0] - p_hand)
+
+    def _plan_side(self, side: Side, target: Pose) -> np.ndarray:
+        self.kin.sync(self.env.data.qpos)
+        ignored_before = set(self.collisions.ignored_bodies)
+        held = self.holding[side]
+        self._attach_held(side)
+        if held is not None and held.annotations is not None and held.annotations.articulation is not None:
+            self.collisions.ignored_bodies.add(self.env.model.body(held.body).id)  # the hand is on the part
+        q0 = self.kin.arm_q(side)
+        dt = 1.0 / self.env.control_hz
+        try:
+            if target.follow is not None:
+                path = self._follow_part(side, q0, target)
+                return time_dense_path(path, dt, v_max=0.6, a_max=2.0)
+            legs = []
+            if target.approach_axis is not None and target.joint_q is not None:
+                # Come in straight along the approach axis: back out from the goal to find the pre-pose (same
+                # arm posture family), get there any collision-free way, then move in along the line.
+                pre = (target.p - APPROACH_DISTANCE * target.approach_axis, target.R)
+                self.collisions.ignored_bodies.add(self.env.model.body(target.approach_object).id)
+                back, reason = track_poses(self.kin, side, target.joint_q, screw_interpolate(target.p, target.R, *pre))
+                if reason:
+                    raise MotionError(f"no straight approach to the target: {reason}")
+                approach = np.vstack([back[::-1], target.joint_q])
+                if first_collision(self.kin, self.collisions, side, approach) is not None:
+                    raise MotionError("the straight approach along the operation's axis collides")
+                self.collisions.ignored_bodies = set(ignored_before)
+                legs.append(plan_arm_motion(self.kin, self.collisions, side, q0, pre, q_goal=back[-1], seed=self.seed))
+                legs.append(JointPath(approach, "screw"))
+            else:
+                legs.append(plan_arm_motion(self.kin, self.collisions, side, q0, (target.p, target.R),
+                                            q_goal=target.joint_q, seed=self.seed))
+        except MotionError as exc:
+            raise PlanningError("move_to_pose_with_screw", f"{side} arm: {exc}") from None
+        finally:
+            self.collisions.ignored_bodies = ignored_before
+            self.kin.sync(self.env.data.qpos)
+        out = []
+        for leg in legs:
+            if leg.method == "rrt_connect":
+                out.append(time_parametrize(leg.waypoints, dt=dt)[1])
+            else:
+                out.append(time_dense_path(leg.waypoints, dt))
+        return np.vstack(out)
+
+    def _follow_part(self, side: Side, q0: np.ndarray, target: Pose) -> np.ndarray:
+        """Track the hand along an articulated part's joint path (a drawer slides, a lid turns)."""
+        f = target.follow
+        m, d = self.env.model, self.kin.data
+        jid = m.joint(f["joint"]).id
+        adr = m.jnt_qposadr[jid]
+        part_body = m.jnt_bodyid[jid]
+        q_now = float(self.env.data.qpos[adr])
+        # Aim a little past the target along the joint: the arm lags a loaded part by about that much.
+        lo, hi = m.jnt_range[jid]
+        overshoot = 0.01 if m.jnt_type[jid] == mujoco.mjtJoint.mjJNT_SLIDE else 0.05
+        q_end = float(np.clip(f["q_target"] + np.sign(f["q_target"] - q_now) * overshoot, lo, hi))
+        p_hand, R_hand = self.kin.ee_pose(side)
+        part_p, part_R = d.xpos[part_body].copy(), d.xmat[part_body].reshape(3, 3).copy()
+        rel_p, rel_R = part_R.T @ (p_hand - part_p), part_R.T @ R_hand
+        poses = []
+        base = d.qpos.copy()
+        n = max(2, int(np.ceil(abs(f["q_target"] - q_now) / (0.01 if m.jnt_type[jid] == mujoco.mjtJoint.mjJNT_SLIDE else 0.03))))
+        for qj in np.linspace(q_now, q_end, n + 1)[1:]:
+            d.qpos[adr] = qj
+            mujoco.mj_kinematics(m, d)
+            pp, pR = d.xpos[part_body], d.xmat[part_body].reshape(3, 3)
+            poses.append((pp + pR @ rel_p, pR @ rel_R))
+        d.qpos[:] = base
+        self.kin.forward()
+        path, reason = track_poses(self.kin, side, q0, poses)
+        if reason:
+            raise MotionError(f"following {f['body']}'s joint: {reason}")
+        return np.vstack([q0, path])
