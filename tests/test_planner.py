@@ -176,3 +176,26 @@ def test_collision_ignore_list(two_cubes):
     assert cube in planner.collisions.ignored_bodies
     planner.restore_collision("cube", 1)
     assert cube not in planner.collisions.ignored_bodies
+
+
+def test_path_constraints_hold_along_the_motion(empty_scene):
+    env = HumanoidEnv(empty_scene)
+    palm_angles = []
+    planner = HumanoidMotionPlanner(env)
+
+    def palm_down():
+        return Constraint(planner.env, "parallel", "r_hand_base_link",
+                          hand_axis=get_axis_in_env(planner.env, "right_grasp_axis"), object_axis=[0, 0, -1])
+
+    def to(point):
+        c = [Constraint(planner.env, "point2point", "r_hand_base_link",
+                        hand_key_point=get_point_in_env(planner.env, "grasp_point_base_right_hand"),
+                        object_key_point=point), palm_down()]
+        return planner.generate_end_effector_pose(c, "right")[1]
+
+    planner.move_to_pose_with_screw(to([-0.40, -0.25, 0.15]), "right")
+    planner.on_step = lambda a: palm_angles.append(
+        np.degrees(np.arccos(np.clip(-get_axis_in_env(env, "right_grasp_axis")[2], -1, 1))))
+    planner.move_to_pose_with_screw(to([-0.32, -0.10, 0.10]), "right", path_constraints=[palm_down()])
+    assert len(palm_angles) > 10
+    assert max(palm_angles) < 4.0  # planned within 0.5 deg; the simulated arm lags a little

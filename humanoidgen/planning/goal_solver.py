@@ -19,7 +19,7 @@ from pydrake.autodiffutils import ExtractGradient, ExtractValue, InitializeAutoD
 from pydrake.solvers import MathematicalProgram, SnoptSolver, SolverOptions
 
 from humanoidgen.planning.collision import CollisionWorld
-from humanoidgen.planning.constraints import Constraint, Const
+from humanoidgen.planning.constraints import Constraint
 from humanoidgen.planning.kinematics import Kinematics
 from humanoidgen.sim.layout import Side
 

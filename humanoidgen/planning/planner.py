@@ -18,7 +18,6 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
-import mujoco
 import numpy as np
 
 from humanoidgen.objects.hands import HAND_POSTURES
@@ -27,34 +26,16 @@ from humanoidgen.planning.collision import CollisionWorld
 from humanoidgen.planning.constraints import Const, Constraint, ConstraintError
 from humanoidgen.planning.goal_solver import GoalResult, GoalSolver
 from humanoidgen.planning.hand_ops import body_speed, finger_contacts, is_held, resting_on
+from humanoidgen.planning.arm_moves import ArmMoves, PlanningError
 from humanoidgen.planning.kinematics import Kinematics
-from humanoidgen.planning.motion import (
-    JointPath,
-    MotionError,
-    first_collision,
-    plan_arm_motion,
-    time_dense_path,
-    track_poses,
-)
-from humanoidgen.planning.paths import time_parametrize
-from humanoidgen.planning.poses import Pose, screw_interpolate
+from humanoidgen.planning.poses import Pose
 from humanoidgen.sim.action import ARM_SLICE, HAND_SLICE
 from humanoidgen.sim.env import HumanoidEnv
 from humanoidgen.sim.layout import SIDES, Side
 from humanoidgen.sim.scene import SceneObject
 
-APPROACH_DISTANCE = 0.08  # grasps and pinches come in straight along the approach axis over this distance
 HAND_MOTION_TIME = 0.5  # seconds to move the fingers between postures
 SETTLE_TIME = 0.3
-
-
-class PlanningError(RuntimeError):
-    """A planner call that could not do its job; `call` and `reason` go back to the plan's author."""
-
-    def __init__(self, call: str, reason: str) -> None:
-        super().__init__(f"{call}: {reason}")
-        self.call = call
-        self.reason = reason
 
 
 @dataclass
@@ -112,12 +93,13 @@ def _logged(fn: Callable) -> Callable:
 
 
 @dataclass
-class HumanoidMotionPlanner:
+class HumanoidMotionPlanner(ArmMoves):
     env: HumanoidEnv
     seed: int = 0
     on_step: Callable[[np.ndarray], None] | None = None  # called after every control step with the action
     events: list[str] = field(default_factory=list)
     log: list[CallRecord] = field(default_factory=list)
+    plan_seconds: list[float] = field(default_factory=list)  # motion-planning time of each arm move
 
     def __post_init__(self) -> None:
         self.kin = Kinematics(self.env.model)
@@ -306,8 +288,11 @@ class HumanoidMotionPlanner:
 
     # -- motion -----------------------------------------------------------------------------------------
     @_logged
-    def move_to_pose_with_screw(self, pose, hand_name: str, attach_obj=False, object_name=None, object_id=0) -> None:
-        """Move the hand's end effector to `pose` (both hands: lists, index 0 left, 1 right)."""
+    def move_to_pose_with_screw(self, pose, hand_name: str, attach_obj=False, object_name=None, object_id=0,
+                                path_constraints: list | None = None) -> None:
+        """Move the hand's end effector to `pose` (both hands: lists, index 0 left, 1 right).
+
+        `path_constraints` (Constraint objects) hold at every waypoint, e.g. keep the palm facing down."""
         sides = _sides(hand_name)
         poses = list(pose) if hand_name == "all" else [pose]
         if len(poses) != len(sides):
@@ -317,7 +302,8 @@ class HumanoidMotionPlanner:
         for side, target in zip(sides, poses):
             if not isinstance(target, Pose):
                 raise PlanningError("move_to_pose_with_screw", f"pose must be a Pose (from generate_end_effector_pose), got {type(target).__name__}")
-            samples[side] = self._plan_side(side, target)
+            mine = [c for c in (path_constraints or []) if c.side == side]
+            samples[side] = self._plan_side(side, target, mine)
             targets[side] = target
         if len(sides) == 2:
             samples = self._coordinate_arms(samples)
@@ -341,114 +327,3 @@ class HumanoidMotionPlanner:
                 self.holding[side] = None
                 raise PlanningError("move_to_pose_with_screw",
                                     f"{obj.type_name} {obj.obj_id} slipped {slip * 1000:.0f} mm in the {side} hand")
-
-    def _coordinate_arms(self, samples: dict[Side, np.ndarray]) -> dict[Side, np.ndarray]:
-        """Both arms move at once: check every control step for arm-arm contact; if they would touch, move
-        them one after the other (left first, then right), and if that collides too, give up with a reason."""
-        from humanoidgen.planning.paths import is_valid
-
-        self.kin.sync(self.env.data.qpos)
-        for side in SIDES:
-            self._attach_held(side)
-
-        def clear(left: np.ndarray, right: np.ndarray) -> bool:
-            n = max(len(left), len(right))
-            for k in range(0, n, 2):
-                q = np.concatenate([left[min(k, len(left) - 1)], right[min(k, len(right) - 1)]])
-                if not is_valid(self.kin, self.collisions, "all", q, clearance=-0.003):
-                    return False
-            return True
-
-        try:
-            left, right = samples["left"], samples["right"]
-            if clear(left, right):
-                return samples
-            left_first = {"left": left, "right": np.vstack([np.repeat(right[:1], len(left), 0), right])}
-            if clear(left_first["left"], left_first["right"]):
-                self.log[-1].message = "moved the arms one after the other to keep them apart"
-                return left_first
-            raise PlanningError("move_to_pose_with_screw", "the two arms' motions would collide with each other")
-        finally:
-            self.kin.sync(self.env.data.qpos)
-
-    def _carries(self, side: Side) -> bool:
-        held = self.holding[side]
-        return held is not None and (held.annotations is None or held.annotations.articulation is None)
-
-    def _relative_to_hand(self, side: Side, obj: SceneObject) -> np.ndarray:
-        p_hand, R_hand = self.env.hand_pose(side)
-        return R_hand.T @ (self.env.object_pose(obj.body)[0] - p_hand)
-
-    def _plan_side(self, side: Side, target: Pose) -> np.ndarray:
-        self.kin.sync(self.env.data.qpos)
-        ignored_before = set(self.collisions.ignored_bodies)
-        held = self.holding[side]
-        self._attach_held(side)
-        if held is not None and held.annotations is not None and held.annotations.articulation is not None:
-            self.collisions.ignored_bodies.add(self.env.model.body(held.body).id)  # the hand is on the part
-        q0 = self.kin.arm_q(side)
-        dt = 1.0 / self.env.control_hz
-        try:
-            if target.follow is not None:
-                path = self._follow_part(side, q0, target)
-                return time_dense_path(path, dt, v_max=0.6, a_max=2.0)
-            legs = []
-            if target.approach_axis is not None and target.joint_q is not None:
-                # Come in straight along the approach axis: back out from the goal to find the pre-pose (same
-                # arm posture family), get there any collision-free way, then move in along the line.
-                pre = (target.p - APPROACH_DISTANCE * target.approach_axis, target.R)
-                self.collisions.ignored_bodies.add(self.env.model.body(target.approach_object).id)
-                back, reason = track_poses(self.kin, side, target.joint_q, screw_interpolate(target.p, target.R, *pre))
-                if reason:
-                    raise MotionError(f"no straight approach to the target: {reason}")
-                approach = np.vstack([back[::-1], target.joint_q])
-                if first_collision(self.kin, self.collisions, side, approach) is not None:
-                    raise MotionError("the straight approach along the operation's axis collides")
-                self.collisions.ignored_bodies = set(ignored_before)
-                legs.append(plan_arm_motion(self.kin, self.collisions, side, q0, pre, q_goal=back[-1], seed=self.seed))
-                legs.append(JointPath(approach, "screw"))
-            else:
-                legs.append(plan_arm_motion(self.kin, self.collisions, side, q0, (target.p, target.R),
-                                            q_goal=target.joint_q, seed=self.seed))
-        except MotionError as exc:
-            raise PlanningError("move_to_pose_with_screw", f"{side} arm: {exc}") from None
-        finally:
-            self.collisions.ignored_bodies = ignored_before
-            self.kin.sync(self.env.data.qpos)
-        out = []
-        for leg in legs:
-            if leg.method == "rrt_connect":
-                out.append(time_parametrize(leg.waypoints, dt=dt)[1])
-            else:
-                out.append(time_dense_path(leg.waypoints, dt))
-        return np.vstack(out)
-
-    def _follow_part(self, side: Side, q0: np.ndarray, target: Pose) -> np.ndarray:
-        """Track the hand along an articulated part's joint path (a drawer slides, a lid turns)."""
-        f = target.follow
-        m, d = self.env.model, self.kin.data
-        jid = m.joint(f["joint"]).id
-        adr = m.jnt_qposadr[jid]
-        part_body = m.jnt_bodyid[jid]
-        q_now = float(self.env.data.qpos[adr])
-        # Aim a little past the target along the joint: the arm lags a loaded part by about that much.
-        lo, hi = m.jnt_range[jid]
-        overshoot = 0.01 if m.jnt_type[jid] == mujoco.mjtJoint.mjJNT_SLIDE else 0.05
-        q_end = float(np.clip(f["q_target"] + np.sign(f["q_target"] - q_now) * overshoot, lo, hi))
-        p_hand, R_hand = self.kin.ee_pose(side)
-        part_p, part_R = d.xpos[part_body].copy(), d.xmat[part_body].reshape(3, 3).copy()
-        rel_p, rel_R = part_R.T @ (p_hand - part_p), part_R.T @ R_hand
-        poses = []
-        base = d.qpos.copy()
-        n = max(2, int(np.ceil(abs(f["q_target"] - q_now) / (0.01 if m.jnt_type[jid] == mujoco.mjtJoint.mjJNT_SLIDE else 0.03))))
-        for qj in np.linspace(q_now, q_end, n + 1)[1:]:
-            d.qpos[adr] = qj
-            mujoco.mj_kinematics(m, d)
-            pp, pR = d.xpos[part_body], d.xmat[part_body].reshape(3, 3)
-            poses.append((pp + pR @ rel_p, pR @ rel_R))
-        d.qpos[:] = base
-        self.kin.forward()
-        path, reason = track_poses(self.kin, side, q0, poses)
-        if reason:
-            raise MotionError(f"following {f['body']}'s joint: {reason}")
-        return np.vstack([q0, path])

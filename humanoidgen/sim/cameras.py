@@ -7,7 +7,7 @@ third-person cameras watch the table from the front, the left and the right.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import mujoco
 import numpy as np

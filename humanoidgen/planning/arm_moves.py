@@ -1,0 +1,154 @@
+"""How the planner moves an arm: plans (screw motion, straight approach, sampled detour, part following),
+timing, and the check that two arms moving at once keep apart. A mixin of HumanoidMotionPlanner."""
+
+from __future__ import annotations
+
+import time
+
+import mujoco
+import numpy as np
+
+from humanoidgen.planning.motion import (
+    JointPath,
+    MotionError,
+    first_collision,
+    plan_arm_motion,
+    time_dense_path,
+    track_poses,
+)
+from humanoidgen.planning.paths import is_valid, time_parametrize
+from humanoidgen.planning.poses import Pose, screw_interpolate
+from humanoidgen.sim.layout import SIDES, Side
+from humanoidgen.sim.scene import SceneObject
+
+APPROACH_DISTANCE = 0.08  # grasps and pinches come in straight along the approach axis over this distance
+
+
+class PlanningError(RuntimeError):
+    """A planner call that could not do its job; `call` and `reason` go back to the plan's author."""
+
+    def __init__(self, call: str, reason: str) -> None:
+        super().__init__(f"{call}: {reason}")
+        self.call = call
+        self.reason = reason
+
+
+class ArmMoves:
+    """Arm motion planning for HumanoidMotionPlanner (uses its env, kin, collisions, holding, log, seed)."""
+
+    def _coordinate_arms(self, samples: dict[Side, np.ndarray]) -> dict[Side, np.ndarray]:
+        """Both arms move at once: check every control step for arm-arm contact; if they would touch, move
+        them one after the other (left first, then right), and if that collides too, give up with a reason."""
+        self.kin.sync(self.env.data.qpos)
+        for side in SIDES:
+            self._attach_held(side)
+
+        def clear(left: np.ndarray, right: np.ndarray) -> bool:
+            n = max(len(left), len(right))
+            for k in range(0, n, 2):
+                q = np.concatenate([left[min(k, len(left) - 1)], right[min(k, len(right) - 1)]])
+                if not is_valid(self.kin, self.collisions, "all", q, clearance=-0.003):
+                    return False
+            return True
+
+        try:
+            left, right = samples["left"], samples["right"]
+            if clear(left, right):
+                return samples
+            left_first = {"left": left, "right": np.vstack([np.repeat(right[:1], len(left), 0), right])}
+            if clear(left_first["left"], left_first["right"]):
+                self.log[-1].message = "moved the arms one after the other to keep them apart"
+                return left_first
+            raise PlanningError("move_to_pose_with_screw", "the two arms' motions would collide with each other")
+        finally:
+            self.kin.sync(self.env.data.qpos)
+
+    def _carries(self, side: Side) -> bool:
+        held = self.holding[side]
+        return held is not None and (held.annotations is None or held.annotations.articulation is None)
+
+    def _relative_to_hand(self, side: Side, obj: SceneObject) -> np.ndarray:
+        p_hand, R_hand = self.env.hand_pose(side)
+        return R_hand.T @ (self.env.object_pose(obj.body)[0] - p_hand)
+
+    def _plan_side(self, side: Side, target: Pose, path_constraints: list = ()) -> np.ndarray:
+        t0 = time.perf_counter()
+        try:
+            return self._plan_side_timed(side, target, path_constraints)
+        finally:
+            self.plan_seconds.append(time.perf_counter() - t0)
+
+    def _plan_side_timed(self, side: Side, target: Pose, path_constraints: list) -> np.ndarray:
+        self.kin.sync(self.env.data.qpos)
+        ignored_before = set(self.collisions.ignored_bodies)
+        held = self.holding[side]
+        self._attach_held(side)
+        if held is not None and held.annotations is not None and held.annotations.articulation is not None:
+            self.collisions.ignored_bodies.add(self.env.model.body(held.body).id)  # the hand is on the part
+        q0 = self.kin.arm_q(side)
+        dt = 1.0 / self.env.control_hz
+        try:
+            if target.follow is not None:
+                path = self._follow_part(side, q0, target)
+                return time_dense_path(path, dt, v_max=0.6, a_max=2.0)
+            legs = []
+            if target.approach_axis is not None and target.joint_q is not None:
+                # Come in straight along the approach axis: back out from the goal to find the pre-pose (same
+                # arm posture family), get there any collision-free way, then move in along the line.
+                pre = (target.p - APPROACH_DISTANCE * target.approach_axis, target.R)
+                self.collisions.ignored_bodies.add(self.env.model.body(target.approach_object).id)
+                back, reason = track_poses(self.kin, side, target.joint_q, screw_interpolate(target.p, target.R, *pre))
+                if reason:
+                    raise MotionError(f"no straight approach to the target: {reason}")
+                approach = np.vstack([back[::-1], target.joint_q])
+                if first_collision(self.kin, self.collisions, side, approach) is not None:
+                    raise MotionError("the straight approach along the operation's axis collides")
+                self.collisions.ignored_bodies = set(ignored_before)
+                legs.append(plan_arm_motion(self.kin, self.collisions, side, q0, pre, q_goal=back[-1], seed=self.seed))
+                legs.append(JointPath(approach, "screw"))
+            else:
+                legs.append(plan_arm_motion(self.kin, self.collisions, side, q0, (target.p, target.R),
+                                            q_goal=target.joint_q, path_constraints=path_constraints,
+                                            seed=self.seed))
+        except MotionError as exc:
+            raise PlanningError("move_to_pose_with_screw", f"{side} arm: {exc}") from None
+        finally:
+            self.collisions.ignored_bodies = ignored_before
+            self.kin.sync(self.env.data.qpos)
+        out = []
+        for leg in legs:
+            if leg.method == "rrt_connect":
+                out.append(time_parametrize(leg.waypoints, dt=dt)[1])
+            else:
+                out.append(time_dense_path(leg.waypoints, dt))
+        return np.vstack(out)
+
+    def _follow_part(self, side: Side, q0: np.ndarray, target: Pose) -> np.ndarray:
+        """Track the hand along an articulated part's joint path (a drawer slides, a lid turns)."""
+        f = target.follow
+        m, d = self.env.model, self.kin.data
+        jid = m.joint(f["joint"]).id
+        adr = m.jnt_qposadr[jid]
+        part_body = m.jnt_bodyid[jid]
+        q_now = float(self.env.data.qpos[adr])
+        # Aim a little past the target along the joint: the arm lags a loaded part by about that much.
+        lo, hi = m.jnt_range[jid]
+        overshoot = 0.01 if m.jnt_type[jid] == mujoco.mjtJoint.mjJNT_SLIDE else 0.05
+        q_end = float(np.clip(f["q_target"] + np.sign(f["q_target"] - q_now) * overshoot, lo, hi))
+        p_hand, R_hand = self.kin.ee_pose(side)
+        part_p, part_R = d.xpos[part_body].copy(), d.xmat[part_body].reshape(3, 3).copy()
+        rel_p, rel_R = part_R.T @ (p_hand - part_p), part_R.T @ R_hand
+        poses = []
+        base = d.qpos.copy()
+        n = max(2, int(np.ceil(abs(f["q_target"] - q_now) / (0.01 if m.jnt_type[jid] == mujoco.mjtJoint.mjJNT_SLIDE else 0.03))))
+        for qj in np.linspace(q_now, q_end, n + 1)[1:]:
+            d.qpos[adr] = qj
+            mujoco.mj_kinematics(m, d)
+            pp, pR = d.xpos[part_body], d.xmat[part_body].reshape(3, 3)
+            poses.append((pp + pR @ rel_p, pR @ rel_R))
+        d.qpos[:] = base
+        self.kin.forward()
+        path, reason = track_poses(self.kin, side, q0, poses)
+        if reason:
+            raise MotionError(f"following {f['body']}'s joint: {reason}")
+        return np.vstack([q0, path])
