@@ -7,7 +7,7 @@ from pathlib import Path
 
 import typer
 
-from humanoidgen.cli import assets_cmd
+from humanoidgen.cli import assets_cmd, episodes_cmd
 
 app = typer.Typer(
     help=(
@@ -19,6 +19,9 @@ app = typer.Typer(
     pretty_exceptions_show_locals=False,
 )
 app.add_typer(assets_cmd.app, name="assets")
+app.command()(episodes_cmd.tasks)
+app.command()(episodes_cmd.run)
+app.command()(episodes_cmd.collect)
 
 
 @app.command()

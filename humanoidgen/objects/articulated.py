@@ -232,7 +232,7 @@ class DrawerFamily(_ArticulatedFamily):
         wy = W / 2 - t - g  # drawer half width
         zb, zt = -H / 2 + t + g, H / 2 - t - g
         return dict(D=D, W=W, H=H, t=t, dt=dt, dx=dx, wy=wy, zb=zb, zt=zt, zc=(zb + zt) / 2, hz=(zt - zb) / 2,
-                    xc=-D / 2 + dx / 2, bar_x=-D / 2 - 0.031, bar_h=0.006, bar_z=zt - 0.03)
+                    xc=-D / 2 + dx / 2, bar_x=-D / 2 - 0.06, bar_h=0.006, bar_z=zt - 0.03)
 
     def _design(self, p: dict) -> _Design:
         q = self._geometry(p)
@@ -246,8 +246,9 @@ class DrawerFamily(_ArticulatedFamily):
             _Geom("drawer_bottom", ((dx - 2 * dt) / 2, wy - dt, dt / 2), (xc, 0, zb + dt / 2), dc, 0.05),
             # A horizontal bar near the top of the front: the hand hooks it palm forward, fingers down, and
             # the fingers then stay clear of the table.
-            _Geom("handle_post_left", (0.0125, 0.005, 0.005), (-D / 2 - 0.0125, 0.035, q["bar_z"]), metal, 0.01),
-            _Geom("handle_post_right", (0.0125, 0.005, 0.005), (-D / 2 - 0.0125, -0.035, q["bar_z"]), metal, 0.01),
+            # Long posts: the opposed thumb reaches ~5 cm past the bar and must not hit the drawer front.
+            _Geom("handle_post_left", (0.027, 0.005, 0.005), (-D / 2 - 0.027, 0.035, q["bar_z"]), metal, 0.01),
+            _Geom("handle_post_right", (0.027, 0.005, 0.005), (-D / 2 - 0.027, -0.035, q["bar_z"]), metal, 0.01),
             _Geom("handle_bar", (q["bar_h"], 0.05, q["bar_h"]), (q["bar_x"], 0, q["bar_z"]), metal, 0.02),
         ]
         slide = _Joint("slide", "slide", (-1, 0, 0), (0.0, p["travel"]), damping=8.0, frictionloss=2.0)

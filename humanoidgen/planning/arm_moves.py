@@ -21,7 +21,9 @@ from humanoidgen.planning.poses import Pose, screw_interpolate
 from humanoidgen.sim.layout import SIDES, Side
 from humanoidgen.sim.scene import SceneObject
 
-APPROACH_DISTANCE = 0.08  # grasps and pinches come in straight along the approach axis over this distance
+# Grasps and pinches come in straight along the approach axis over the first of these that fits (metres).
+APPROACH_DISTANCES = (0.08, 0.05, 0.03)
+RETREAT_DISTANCE = 0.06  # after letting go, the hand backs out along its approach axis this far
 
 
 class PlanningError(RuntimeError):
@@ -35,6 +37,39 @@ class PlanningError(RuntimeError):
 
 class ArmMoves:
     """Arm motion planning for HumanoidMotionPlanner (uses its env, kin, collisions, holding, log, seed)."""
+
+    def _retreat(self, side: Side, open_fingers: bool = False) -> None:
+        """Back the hand out along its last approach axis (best effort: skipped if that way is blocked),
+        optionally opening the fingers on the way."""
+        axis = self.last_approach.get(side)
+        if axis is None:
+            if open_fingers:
+                self._move_fingers((side,), "open")
+            return
+        self.kin.sync(self.env.data.qpos)
+        p, R = self.kin.ee_pose(side)
+        try:
+            path = plan_arm_motion(self.kin, self.collisions, side, self.kin.arm_q(side),
+                                   (p - RETREAT_DISTANCE * axis, R), allow_sampling=False)
+        except MotionError:
+            if open_fingers:
+                self._move_fingers((side,), "open")
+            return
+        finally:
+            self.kin.sync(self.env.data.qpos)
+        samples = time_dense_path(path.waypoints, 1.0 / self.env.control_hz, v_max=0.3)
+        if open_fingers:
+            from humanoidgen.objects.hands import HAND_POSTURES
+            from humanoidgen.sim.action import ARM_SLICE, HAND_SLICE
+
+            start, goal = self.action[HAND_SLICE[side]].copy(), np.array(HAND_POSTURES["open"])
+            for k, q in enumerate(samples, 1):
+                self.action[ARM_SLICE[side]] = q
+                self.action[HAND_SLICE[side]] = start + (goal - start) * min(1.0, 2.0 * k / len(samples))
+                self._step()
+        else:
+            self._run_arm_samples({side: samples})
+        self.last_approach[side] = None
 
     def _coordinate_arms(self, samples: dict[Side, np.ndarray]) -> dict[Side, np.ndarray]:
         """Both arms move at once: check every control step for arm-arm contact; if they would touch, move
@@ -95,14 +130,20 @@ class ArmMoves:
             if target.approach_axis is not None and target.joint_q is not None:
                 # Come in straight along the approach axis: back out from the goal to find the pre-pose (same
                 # arm posture family), get there any collision-free way, then move in along the line.
-                pre = (target.p - APPROACH_DISTANCE * target.approach_axis, target.R)
                 self.collisions.ignored_bodies.add(self.env.model.body(target.approach_object).id)
-                back, reason = track_poses(self.kin, side, target.joint_q, screw_interpolate(target.p, target.R, *pre))
-                if reason:
-                    raise MotionError(f"no straight approach to the target: {reason}")
-                approach = np.vstack([back[::-1], target.joint_q])
-                if first_collision(self.kin, self.collisions, side, approach) is not None:
-                    raise MotionError("the straight approach along the operation's axis collides")
+                reasons = []
+                for distance in APPROACH_DISTANCES:  # a shorter straight approach where the long one won't fit
+                    pre = (target.p - distance * target.approach_axis, target.R)
+                    back, reason = track_poses(self.kin, side, target.joint_q,
+                                               screw_interpolate(target.p, target.R, *pre))
+                    if not reason:
+                        approach = np.vstack([back[::-1], target.joint_q])
+                        if first_collision(self.kin, self.collisions, side, approach) is None:
+                            break
+                        reason = "the straight approach along the operation's axis collides"
+                    reasons.append(f"{distance * 100:.0f} cm: {reason}")
+                else:
+                    raise MotionError("no straight approach to the target (" + "; ".join(reasons) + ")")
                 self.collisions.ignored_bodies = set(ignored_before)
                 legs.append(plan_arm_motion(self.kin, self.collisions, side, q0, pre, q_goal=back[-1], seed=self.seed))
                 legs.append(JointPath(approach, "screw"))

@@ -110,7 +110,8 @@ def plan_arm_motion(kin: Kinematics, cw: CollisionWorld, side: Side, q_start: np
     if not allow_sampling or q_goal is None:
         raise MotionError(reason)
     result = plan_rrt_connect(kin, cw, side, q_start, q_goal, time_limit=time_limit, seed=seed,
-                              clearance=start_clearance(kin, cw, side, q_start))
+                              clearance=min(start_clearance(kin, cw, side, q_start),
+                                            start_clearance(kin, cw, side, q_goal)))
     if not result.ok:
         raise MotionError(f"{reason}; the sampling planner found no path either: {result.reason}")
     return JointPath(result.path, "rrt_connect", reason)
@@ -123,7 +124,7 @@ MOTION_CLEARANCE = 0.004
 
 
 def start_clearance(kin: Kinematics, cw: CollisionWorld, side: Side, q: np.ndarray) -> float:
-    """The clearance a path from `q` must keep: MOTION_CLEARANCE, or less if it starts closer than that."""
+    """The clearance a path from (or to) `q` must keep: MOTION_CLEARANCE, or less if `q` is closer than that."""
     base = kin.data.qpos.copy()
     kin.set_arm(side, q)
     kin.forward()

@@ -100,6 +100,8 @@ class HumanoidMotionPlanner(ArmMoves):
     events: list[str] = field(default_factory=list)
     log: list[CallRecord] = field(default_factory=list)
     plan_seconds: list[float] = field(default_factory=list)  # motion-planning time of each arm move
+    last_approach: dict = field(default_factory=dict)  # side -> approach axis of the hand's last grasp/pinch
+    grip: dict = field(default_factory=dict)  # side -> "grasp" or "pinch": how the held object is held
 
     def __post_init__(self) -> None:
         self.kin = Kinematics(self.env.model)
@@ -178,6 +180,7 @@ class HumanoidMotionPlanner(ArmMoves):
                 f"(touching: {', '.join(sorted(touched)) or 'nothing'}; a hold needs the thumb against a finger)",
             )
         self.holding[side] = obj
+        self.grip[side] = verb
         self.events.append(f"{'grasped' if verb == 'grasp' else 'pinched'} {obj_type} {obj_id} with the {side} hand")
 
     @_logged
@@ -194,15 +197,31 @@ class HumanoidMotionPlanner(ArmMoves):
 
     @_logged
     def open_hand(self, hand_name: str = "all") -> None:
-        """Open the fingers. A released object is watched for a moment: where it came to rest is an event."""
+        """Open the fingers and, if they held something, back the hand out along the way it came in, so the
+        fingers do not drag the object along on the next move. Where the released object came to rest is an
+        event."""
         sides = _sides(hand_name)
         released = [(s, self.holding[s]) for s in sides if self.holding[s] is not None]
-        self._move_fingers(sides, "open")
+        # Let go by loosening into the grip's "pre" posture (a small finger motion that does not sweep the
+        # object), back out, and only then open fully.
         for s in sides:
+            held = self.holding[s]
+            if held is not None and held.annotations is not None and held.annotations.articulation is not None:
+                # A hooked handle: back away while the fingers open, so they do not push the part back.
+                self.holding[s] = None
+                self._retreat(s, open_fingers=True)
+                continue
+            self._move_fingers((s,), f"pre_{self.grip[s]}" if held is not None else "open")
             self.holding[s] = None
             self.kin.detach(s)
+        rigid = [(s, o) for s, o in released if o.annotations is None or o.annotations.articulation is None]
+        if rigid:
+            self._settle(0.3)
+            for side, _ in rigid:
+                self._retreat(side)
+            self._move_fingers(tuple(s for s, _ in rigid), "open", seconds=0.3)
         if released:
-            self._settle(0.5)
+            self._settle(0.2)
             for side, obj in released:
                 if obj.annotations is not None and obj.annotations.articulation is not None:
                     self.events.append(f"released {obj.type_name} {obj.obj_id} from the {side} hand")
@@ -304,6 +323,7 @@ class HumanoidMotionPlanner(ArmMoves):
                 raise PlanningError("move_to_pose_with_screw", f"pose must be a Pose (from generate_end_effector_pose), got {type(target).__name__}")
             mine = [c for c in (path_constraints or []) if c.side == side]
             samples[side] = self._plan_side(side, target, mine)
+            self.last_approach[side] = target.approach_axis if target.approach_axis is not None else self.last_approach.get(side)
             targets[side] = target
         if len(sides) == 2:
             samples = self._coordinate_arms(samples)

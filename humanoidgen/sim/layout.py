@@ -18,7 +18,7 @@ ROBOT_BASE_POS = np.array([-0.85, 0.0, 0.0])
 TABLE_TOP_Z = 0.0
 
 # Table top extent: covers both hands' operable ranges with margin and stays clear of the torso.
-TABLE_X = (-0.62, 0.08)
+TABLE_X = (-0.62, 0.20)
 TABLE_Y = (-0.80, 0.80)
 TABLE_THICKNESS = 0.04
 

@@ -1,0 +1,137 @@
+"""`hgen tasks`, `hgen run`, `hgen collect`: the benchmark tasks, single episodes, demonstration collection."""
+
+from __future__ import annotations
+
+import json
+import os
+from pathlib import Path
+
+import typer
+from rich.console import Console
+from rich.table import Table
+
+console = Console()
+
+
+def _fail(message: str) -> None:
+    typer.secho(message, fg=typer.colors.RED, err=True)
+    raise typer.Exit(1)
+
+
+def tasks() -> None:
+    """List the benchmark tasks with their descriptions.
+
+    Example: hgen tasks
+    """
+    from humanoidgen.tasks.registry import list_tasks
+
+    table = Table("task", "arms", "horizon", "objects", "reference plan", "description")
+    for spec in list_tasks():
+        objs = ", ".join(sorted({o.type for o in spec.objects}))
+        table.add_row(spec.name, spec.arms, spec.horizon, objs, "yes" if spec.plan else "-", spec.description)
+    console.print(table)
+
+
+def run(
+    task: str = typer.Argument(..., help="A task name (see `hgen tasks`) or a task YAML file."),
+    seed: int = typer.Option(None, help="Randomize the scene with this seed (default: the task's default layout)."),
+    script: Path = typer.Option(None, exists=True, dir_okay=False,
+                                help="A plan file: ours (`# step:` blocks) or the paper's `def step(planner):` form."),
+    video: Path = typer.Option(None, help="Write an MP4 of the episode (front camera)."),
+    video_camera: str = typer.Option("front", help="Camera for --video."),
+    json_out: Path = typer.Option(None, "--json", help="Write the result (steps, timings, final object poses) as JSON."),
+) -> None:
+    """Run one episode of a task and report success, the step log and timings.
+
+    Example: hgen run blocks_stack_easy --seed 3 --video stack.mp4 --json stack.json
+    """
+    os.environ.setdefault("MUJOCO_GL", "egl")
+    from humanoidgen.assets.robot_files import AssetsError
+    from humanoidgen.episodes.plans import PlanFormatError
+    from humanoidgen.episodes.task_episode import EpisodeRequest, run_task_episode
+    from humanoidgen.episodes.video import VideoWriter
+
+    writer = None
+    try:
+        if video is not None:
+            writer = VideoWriter(video, video_camera)
+        result, _ = run_task_episode(EpisodeRequest(task, seed, str(script) if script else None),
+                                     observers=(writer,) if writer else ())
+    except (KeyError, ValueError, FileNotFoundError, PlanFormatError, AssetsError) as exc:
+        _fail(str(exc).strip("'\""))
+        return
+    finally:
+        if writer is not None:
+            writer.close()
+    table = Table("#", "step", "result", "wall s", "sim s", "events")
+    for s in result.steps:
+        table.add_row(str(s.index), s.title, "ok" if s.ok else f"[red]{s.error}[/red]", f"{s.seconds:.2f}",
+                      f"{s.sim_seconds:.1f}", "; ".join(s.events))
+    console.print(table)
+    for c in result.checks:
+        console.print(("[green]✓[/green] " if c["ok"] else "[red]✗[/red] ") + f"{c['predicate']}: {c['detail']}")
+    verdict = "[green]SUCCESS[/green]" if result.success else "[red]FAILURE[/red]"
+    console.print(f"{verdict}  {result.task} seed={seed}  wall {result.wall_seconds:.1f} s "
+                  f"(planning {result.plan_seconds:.1f} s), simulated {result.sim_seconds:.1f} s")
+    if video is not None:
+        console.print(f"video: {video}")
+    if json_out is not None:
+        json_out.write_text(json.dumps(result.to_dict(), indent=2))
+    raise typer.Exit(0 if result.success else 2)
+
+
+def collect(
+    task: str = typer.Argument(..., help="A task name or task YAML."),
+    n: int = typer.Option(..., "-n", min=1, help="How many successful episodes to keep."),
+    out: Path = typer.Option(..., "--out", help="Dataset folder (episodes are written one by one)."),
+    workers: int = typer.Option(1, min=1, help="Worker processes; the dataset is the same for any number."),
+    seed: int = typer.Option(0, help="First seed; attempts use seed, seed+1, ..."),
+    resume: bool = typer.Option(False, help="Continue an interrupted collection in --out."),
+    cameras: str = typer.Option("all", help="Cameras to record: 'all', 'none' or a comma list (head,front,...)."),
+    width: int = typer.Option(320, help="Image width."),
+    height: int = typer.Option(240, help="Image height."),
+    every: int = typer.Option(5, min=1, help="Record every n-th control step (50 Hz control; 5 -> 10 Hz)."),
+    point_cloud: bool = typer.Option(True, help="Record the fused 1024-point cloud."),
+    script: Path = typer.Option(None, exists=True, dir_okay=False, help="A plan file instead of the reference plan."),
+) -> None:
+    """Collect N successful randomized demonstrations of a task.
+
+    Example: hgen collect blocks_stack_easy -n 50 --out data/stack --workers 2
+    """
+    os.environ.setdefault("MUJOCO_GL", "egl")
+    from tqdm import tqdm
+
+    from humanoidgen.episodes.collect import collect as run_collect
+    from humanoidgen.episodes.dataset import DatasetError
+    from humanoidgen.episodes.recorder import RecorderConfig
+    from humanoidgen.sim.cameras import CAMERA_NAMES
+
+    cams = CAMERA_NAMES if cameras == "all" else () if cameras == "none" else tuple(c.strip() for c in cameras.split(","))
+    try:
+        rec = RecorderConfig(every=every, cameras=cams, width=width, height=height, point_cloud=point_cloud)
+    except ValueError as exc:
+        _fail(str(exc))
+        return
+    bar = tqdm(total=n, unit="episode", desc=f"collect {task}")
+
+    def progress(kept: int, tried: int) -> None:
+        bar.n = kept
+        bar.set_postfix_str(f"kept {kept}/tried {tried} ({100 * kept / max(tried, 1):.0f}% success)")
+        bar.refresh()
+
+    try:
+        stats = run_collect(task, n, out, workers=workers, seed=seed, resume=resume, recorder=rec,
+                            plan_path=str(script) if script else None, progress=progress)
+    except KeyboardInterrupt:
+        bar.close()
+        _fail(f"interrupted; what was kept is in {out}. Continue with: hgen collect {task} -n {n} --out {out} --resume")
+        return
+    except (DatasetError, KeyError, ValueError, FileNotFoundError) as exc:
+        bar.close()
+        _fail(str(exc).strip("'\""))
+        return
+    bar.close()
+    typer.echo(f"kept {stats.kept} of {stats.tried} attempts ({100 * stats.success_rate:.0f}% success) "
+               f"in {stats.wall_seconds:.0f} s -> {out}")
+    if stats.kept < n:
+        _fail(f"stopped after {stats.tried} attempts with only {stats.kept} successes; see {out}/index.jsonl")

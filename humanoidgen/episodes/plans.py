@@ -1,0 +1,96 @@
+"""Plan scripts: a sequence of steps, each a block of planner-API code.
+
+Two file forms are read:
+- ours: top-level code split into steps by `# step: <title>` comment lines;
+- the paper's: a `def step(planner):` function (its import line is dropped); its body is split at
+  `# Step N: ...` comments when it has them, else it is one step.
+"""
+
+from __future__ import annotations
+
+import ast
+import re
+import textwrap
+from dataclasses import dataclass
+from pathlib import Path
+
+STEP_MARK = re.compile(r"^#\s*step\s*:?\s*(.*)$", re.IGNORECASE)
+PAPER_STEP_MARK = re.compile(r"^\s*#\s*Step\s+\d+\s*[:.-]?\s*(.*)$", re.IGNORECASE)
+API_IMPORT = re.compile(r"^\s*(from\s+humanoidgen[\w.]*\s+import\s+.*|import\s+humanoidgen[\w.]*.*)$")
+
+
+class PlanFormatError(ValueError):
+    pass
+
+
+@dataclass(frozen=True)
+class PlanStep:
+    title: str
+    code: str
+
+
+@dataclass(frozen=True)
+class Plan:
+    steps: tuple[PlanStep, ...]
+    source: str = ""
+
+    def code(self) -> str:
+        return "\n".join(f"# step: {s.title}\n{s.code.rstrip()}\n" for s in self.steps)
+
+
+def _split_marked(lines: list[str], mark: re.Pattern) -> list[PlanStep]:
+    steps: list[PlanStep] = []
+    title, body = None, []
+    for line in lines:
+        m = mark.match(line.strip()) if mark is STEP_MARK else mark.match(line)
+        if m:
+            if title is not None or any(b.strip() for b in body):
+                steps.append(PlanStep(title or f"step {len(steps) + 1}", "\n".join(body).strip("\n")))
+            title, body = m.group(1).strip() or f"step {len(steps) + 1}", []
+        else:
+            body.append(line)
+    if title is not None or any(b.strip() for b in body):
+        steps.append(PlanStep(title or f"step {len(steps) + 1}", "\n".join(body).strip("\n")))
+    return [s for s in steps if _has_code(s.code)]
+
+
+def _has_code(code: str) -> bool:
+    return any(line.strip() and not line.strip().startswith("#") for line in code.splitlines())
+
+
+def parse_plan(text: str) -> Plan:
+    """Read a plan from text in either form (see the module docstring)."""
+    lines = [ln for ln in text.splitlines() if not API_IMPORT.match(ln)]
+    stripped = "\n".join(lines)
+    try:
+        tree = ast.parse(stripped)
+    except SyntaxError as exc:
+        raise PlanFormatError(f"the plan is not valid Python (line {exc.lineno}): {exc.msg}") from None
+    funcs = [n for n in tree.body if isinstance(n, ast.FunctionDef) and n.name == "step"]
+    if funcs:
+        fn = funcs[0]
+        body_lines = stripped.splitlines()[fn.body[0].lineno - 1: fn.end_lineno]
+        # Comments right above the first statement belong to the body too.
+        k = fn.body[0].lineno - 2
+        while k >= fn.lineno and stripped.splitlines()[k].strip().startswith("#"):
+            body_lines.insert(0, stripped.splitlines()[k])
+            k -= 1
+        body = textwrap.dedent("\n".join(body_lines)).splitlines()
+        steps = _split_marked(body, PAPER_STEP_MARK)
+        if len(steps) <= 1:
+            steps = [PlanStep("step", textwrap.dedent("\n".join(body)).strip("\n"))]
+        return Plan(tuple(PlanStep(s.title, textwrap.dedent(s.code)) for s in steps), text)
+    steps = _split_marked(stripped.splitlines(), STEP_MARK)
+    if not steps:
+        raise PlanFormatError("the plan has no code")
+    return Plan(tuple(PlanStep(s.title, textwrap.dedent(s.code)) for s in steps), text)
+
+
+def load_plan(path: Path) -> Plan:
+    path = Path(path)
+    if not path.exists():
+        raise PlanFormatError(f"no plan file at {path}")
+    try:
+        return parse_plan(path.read_text())
+    except PlanFormatError as exc:
+        raise PlanFormatError(f"{path}: {exc}") from None

@@ -1,0 +1,35 @@
+"""Exceptions of the LLM layer; messages say what to fix, never contain the API key."""
+
+from __future__ import annotations
+
+
+class LLMError(RuntimeError):
+    """Base class of every error raised by `humanoidgen.llm`."""
+
+
+class LLMNotConfigured(LLMError):
+    """Live mode without a base URL or API key."""
+
+
+class LLMUnreachable(LLMError):
+    """Connection refused / DNS failure / timeout, after retries."""
+
+
+class LLMAuthError(LLMError):
+    """401/403: the endpoint rejected the key."""
+
+
+class LLMRateLimited(LLMError):
+    """429 on every attempt."""
+
+
+class LLMServerError(LLMError):
+    """5xx on every attempt."""
+
+
+class LLMRequestError(LLMError):
+    """Other 4xx (bad request, unknown model, wrong path): retrying cannot help."""
+
+
+class LLMReplayMissing(LLMError):
+    """Replay mode and the recording has no (more) responses for this request."""

@@ -1,0 +1,183 @@
+"""Task specifications: which objects go where, how their layout is randomized, and what counts as success.
+
+A `TaskSpec` is plain data (one YAML file per task under `specs/`), validated strictly by pydantic: unknown
+fields, unknown object types/models and predicates that name absent objects are errors that name the field.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Literal
+
+import numpy as np
+from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
+
+from humanoidgen.objects import library
+from humanoidgen.tasks.predicates import Predicate
+
+SAMPLE_ATTEMPTS = 200  # layouts redrawn (same rng stream) until no two footprints overlap
+
+
+class _Strict(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+
+class ObjectSpec(_Strict):
+    """One object of the task, at its default (un-randomized) pose."""
+
+    type: str
+    type_id: int = Field(default=0, ge=0)
+    pos: tuple[float, float] | tuple[float, float, float]  # a missing z puts the object on the table
+    yaw_deg: float = 0.0
+    openness: float | None = Field(default=None, ge=0.0, le=1.0)
+    # Index of an earlier object this one rides with (contents of a cup): it takes that object's position
+    # offset and turns with it about its centre, so randomization never pulls contents out of their container.
+    follow: int | None = Field(default=None, ge=0)
+
+    @field_validator("type")
+    @classmethod
+    def _known_type(cls, v: str) -> str:
+        fams = library.families()
+        if v not in fams:
+            raise ValueError(f"unknown object type {v!r}; valid types: {', '.join(sorted(fams))}")
+        return v
+
+    @model_validator(mode="after")
+    def _known_model(self) -> ObjectSpec:
+        ids = [m.type_id for m in library.family(self.type).models()]
+        if self.type_id not in ids:
+            raise ValueError(f"type_id {self.type_id} is not a {self.type} model; valid type_ids: {ids}")
+        if self.openness is not None and not library.family(self.type).articulated:
+            raise ValueError(f"openness applies only to articulated types, not {self.type!r}")
+        return self
+
+    @property
+    def articulated(self) -> bool:
+        return library.family(self.type).articulated
+
+
+class Randomization(_Strict):
+    """The paper's randomization: offsets added to each object's default position and yaw."""
+
+    position: tuple[float, float, float, float] = (0.0, 0.0, 0.0, 0.0)  # [x1, x2, y1, y2] metres
+    yaw_deg: tuple[float, float] = (0.0, 0.0)
+    openness: tuple[float, float] | None = None  # replaces articulated objects' openness when set
+    per_object: list[int] | None = None  # indices of the objects to randomize (None: all)
+
+    @field_validator("position")
+    @classmethod
+    def _sort_position(cls, v: tuple[float, ...]) -> tuple[float, ...]:
+        # The paper's table writes some ranges high-to-low ([0.18, -0.18]); they mean the same box.
+        x1, x2, y1, y2 = v
+        return (min(x1, x2), max(x1, x2), min(y1, y2), max(y1, y2))
+
+    @field_validator("yaw_deg")
+    @classmethod
+    def _sort_yaw(cls, v: tuple[float, float]) -> tuple[float, float]:
+        return (min(v), max(v))
+
+    @field_validator("openness")
+    @classmethod
+    def _openness_range(cls, v: tuple[float, float] | None) -> tuple[float, float] | None:
+        if v is None:
+            return v
+        lo, hi = min(v), max(v)
+        if lo < 0.0 or hi > 1.0:
+            raise ValueError(f"openness range must lie in [0, 1], got {list(v)}")
+        return (lo, hi)
+
+
+class ResolvedObject(_Strict):
+    """An object's pose for one episode: what `build_scene` places."""
+
+    type: str
+    type_id: int
+    pos: tuple[float, float] | tuple[float, float, float]
+    yaw: float  # radians
+    openness: float | None = None
+
+
+class TaskSpec(_Strict):
+    name: str = Field(pattern=r"^[a-z0-9_]+$")
+    description: str = Field(min_length=1)
+    arms: Literal["single", "bimanual"]
+    horizon: Literal["short", "long"]
+    objects: list[ObjectSpec] = Field(min_length=1)
+    randomization: Randomization = Field(default_factory=Randomization)
+    success: list[Predicate] = Field(min_length=1)  # all must hold
+    time_limit_s: float = Field(default=30.0, gt=0)
+    max_steps: int | None = Field(default=None, gt=0)  # control steps; None: time_limit_s at the control rate
+    plan: str | None = None  # a reference plan (.py) next to the YAML, written separately
+
+    @model_validator(mode="after")
+    def _references(self) -> TaskSpec:
+        n = len(self.objects)
+        for i, o in enumerate(self.objects):
+            if o.follow is not None and o.follow >= i:
+                raise ValueError(f"objects.{i}.follow: must name an earlier object (index < {i}), got {o.follow}")
+        for i in self.randomization.per_object or []:
+            if not 0 <= i < n:
+                raise ValueError(f"randomization.per_object: index {i} out of range (there are {n} objects)")
+        counts: dict[str, int] = {}
+        for o in self.objects:
+            counts[o.type] = counts.get(o.type, 0) + 1
+        present = ", ".join(f"{t}[0..{c - 1}]" for t, c in counts.items())
+        for k, pred in enumerate(self.success):
+            for ref in pred.refs():
+                if ref.id >= counts.get(ref.type, 0):
+                    raise ValueError(f"success.{k} ({pred.type}): no object {ref}; the task has {present}")
+        if self.plan is not None and not self.plan.endswith(".py"):
+            raise ValueError(f"plan: expected a .py file name, got {self.plan!r}")
+        return self
+
+    def step_limit(self, control_hz: float = 50.0) -> int:
+        return self.max_steps if self.max_steps is not None else math.ceil(self.time_limit_s * control_hz)
+
+    def default_layout(self) -> list[ResolvedObject]:
+        return [ResolvedObject(type=o.type, type_id=o.type_id, pos=o.pos, yaw=math.radians(o.yaw_deg),
+                               openness=o.openness) for o in self.objects]
+
+    def sample_layout(self, seed: int | None) -> list[ResolvedObject]:
+        """The objects' poses for episode `seed` (deterministic per seed; None: the default layout).
+        Draws are repeated until no two footprints overlap."""
+        if seed is None:
+            return self.default_layout()
+        from humanoidgen.tasks.scene import overlapping_pairs
+
+        rng = np.random.default_rng(seed)
+        for _ in range(SAMPLE_ATTEMPTS):
+            layout = self._draw(rng)
+            if not overlapping_pairs(layout, skip=self._follow_pairs()):
+                return layout
+        raise ValueError(f"{self.name}: no overlap-free layout in {SAMPLE_ATTEMPTS} draws for seed {seed}")
+
+    def _follow_pairs(self) -> set[tuple[int, int]]:
+        return {(o.follow, i) for i, o in enumerate(self.objects) if o.follow is not None}
+
+    def _draw(self, rng: np.random.Generator) -> list[ResolvedObject]:
+        r = self.randomization
+        chosen = set(range(len(self.objects)) if r.per_object is None else r.per_object)
+        x1, x2, y1, y2 = r.position
+        offsets: list[tuple[float, float, float]] = []
+        out: list[ResolvedObject] = []
+        for i, o in enumerate(self.objects):
+            # Always draw, so one object's draws don't depend on whether another is randomized.
+            d = (rng.uniform(x1, x2), rng.uniform(y1, y2), math.radians(rng.uniform(*r.yaw_deg)))
+            op = rng.uniform(*r.openness) if r.openness is not None else None
+            if o.follow is not None:
+                parent = self.objects[o.follow]
+                pdx, pdy, pyaw = offsets[o.follow]
+                rel = np.subtract(o.pos[:2], parent.pos[:2])
+                c, s = math.cos(pyaw), math.sin(pyaw)
+                xy = (parent.pos[0] + pdx + c * rel[0] - s * rel[1], parent.pos[1] + pdy + s * rel[0] + c * rel[1])
+                d = (xy[0] - o.pos[0], xy[1] - o.pos[1], pyaw)
+            elif i not in chosen:
+                d = (0.0, 0.0, 0.0)
+            offsets.append(d)
+            pos = (o.pos[0] + d[0], o.pos[1] + d[1], *o.pos[2:])
+            openness = o.openness
+            if o.articulated and op is not None and (i in chosen):
+                openness = float(op)
+            out.append(ResolvedObject(type=o.type, type_id=o.type_id, pos=pos,
+                                      yaw=math.radians(o.yaw_deg) + d[2], openness=openness))
+        return out

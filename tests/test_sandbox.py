@@ -1,0 +1,280 @@
+"""The sandbox for LLM-written plan steps: static checker, step splitting and the worker process."""
+
+from __future__ import annotations
+
+import contextlib
+import math
+import os
+import statistics
+import time
+import types
+from collections import deque
+
+import numpy as np
+import pytest
+
+from humanoidgen.sandbox import (
+    CodeRejected,
+    SandboxWorker,
+    check_code,
+    split_steps,
+    strip_api_imports,
+)
+from humanoidgen.sandbox.checker import BLOCKED_ATTRIBUTES
+
+NAMES = {"planner", "np", "math", "spin", "calls", "crash"}
+
+PAPER_SCRIPT = '''from humanoidgen.motion_planning.h1_2.solution.generated.solver_env import *
+def step(planner:HumanoidMotionPlanner):
+    # Step 1: Left hand grasps the drawer
+    planner.hand_pre_grasp("left")
+    constraint_r = planner.generate_constraints(
+            obj_name="drawer",
+            obj_id=0,
+            action="grasp",
+            hand_name="left"
+        )
+    _, target_effector_pose = planner.generate_end_effector_pose(constraint_r, "left")
+    planner.move_to_pose_with_screw(
+        target_effector_pose,
+        "left",
+        attach_obj=False
+    )
+    planner.hand_grasp("left", grasp_object="drawer", obj_id=0)
+'''
+
+
+# -- checker ---------------------------------------------------------------------------------------------
+@pytest.mark.parametrize("source, needle", [
+    ("import os", "import"),
+    ("from os import path", "from ... import"),
+    ("open('/etc/passwd')", "open"),
+    ("x = ().__class__.__bases__", "__class__"),
+    ("getattr(planner, '_x')", "getattr"),
+    ("eval('1')", "eval"),
+    ("__import__('os')", "__import__"),
+    ("while True:\n    pass", "while"),
+    ("planner._private", "_private"),
+    ("foo(1)", "unknown name `foo`"),
+    ("np.f2py.os.system('ls')", "f2py"),
+    ("g = (i for i in [1])\ng.gi_frame.f_back", "gi_frame"),
+    ("f = lambda: 1", "lambda"),
+    ("class A:\n    pass", "class"),
+    ("try:\n    pass\nexcept Exception:\n    pass", "try"),
+    ("def helper(x):\n    return x", "only `def step"),
+    ("def step(planner):\n    def inner():\n        pass", "top level"),
+    ("for i in iter(int, 1):\n    pass", "for"),
+    ("del planner", "del"),
+    ("import humanoidgen.sandbox as h", "import"),  # only the exact paper import lines are stripped
+])
+def test_checker_rejects(source: str, needle: str) -> None:
+    with pytest.raises(CodeRejected) as e:
+        check_code(strip_api_imports(source), NAMES)
+    assert any(needle in v.message for v in e.value.violations), e.value.violations
+
+
+def test_violations_report_line_numbers() -> None:
+    with pytest.raises(CodeRejected) as e:
+        check_code("x = 1\ny = 2\nimport os\nplanner._env", NAMES)
+    assert [v.line for v in e.value.violations] == [3, 4]
+
+
+def test_size_and_node_caps() -> None:
+    with pytest.raises(CodeRejected, match="bytes"):
+        check_code("x = 1\n" * 5000, NAMES)
+    with pytest.raises(CodeRejected, match="nodes"):
+        check_code("x = [" + "1, " * 6000 + "]", NAMES)
+    with pytest.raises(CodeRejected, match="syntax"):
+        check_code("x = (", NAMES)
+
+
+def test_checker_accepts_paper_script_unchanged() -> None:
+    checked = check_code(strip_api_imports(PAPER_SCRIPT), NAMES)
+    assert checked.defines_step
+    assert strip_api_imports(PAPER_SCRIPT).split("\n")[1] == PAPER_SCRIPT.split("\n")[1]  # lines kept
+
+
+def test_checker_accepts_typical_steps() -> None:
+    src = """
+hand = "right"
+pose = planner.right_hand_init_pose
+target = np.array([0.1, -0.2, 0.3]) + 0.01 * math.cos(math.pi)
+for i in range(3):
+    target[i] += 0.001 * i
+for side in ["left", "right"]:
+    planner.hand_pre_grasp(side)
+a, (b, c) = 1, (2, 3)
+a += len([x ** 2 for x in range(4) if x % 2]) + sum(v for v in {1, 2})
+d = {k: v for k, v in zip("ab", [1, 2])}
+if a > 1 and not b:
+    pass
+else:
+    print(f"target {target!r:>10} {d['a']}")
+assert abs(target[0]) < 1, "out of reach"
+_, pose = planner.generate_end_effector_pose(None, hand_name=hand)
+planner.move_to_pose_with_screw(pose, *[hand], **{"attach_obj": False})
+"""
+    check_code(src, NAMES)
+
+
+def test_split_steps_fenced_blocks() -> None:
+    response = (
+        "Step 1: pre-grasp\n```python\n    planner.hand_pre_grasp(\"right\")\n```\n"
+        "Step 2:\n```python\n    from humanoidgen.x.solver_env import *\n    c = planner.generate_constraints(\n"
+        "        obj_name=\"can\", obj_id=0)\n```\nDone."
+    )
+    steps = split_steps(response)
+    assert steps == ['planner.hand_pre_grasp("right")',
+                     'c = planner.generate_constraints(\n    obj_name="can", obj_id=0)']
+    for s in steps:
+        check_code(s, NAMES)
+
+
+def test_split_steps_whole_file_with_step_function() -> None:
+    (body,) = split_steps(PAPER_SCRIPT)
+    assert body.startswith("# Step 1") and body.endswith('obj_id=0)')
+    check_code(body, NAMES)
+
+
+def test_numpy_attribute_walk_reaches_no_dangerous_module() -> None:
+    """Every object reachable from `np`/`math` through attributes the checker allows is harmless."""
+    dangerous = {"os", "sys", "subprocess", "builtins", "importlib", "ctypes", "pickle", "io", "shutil",
+                 "pathlib", "inspect", "types", "marshal", "runpy", "posix", "gc"}
+    bad_functions = [open, exec, eval, compile, getattr, __import__]
+    seen, found = set(), []
+    queue = deque([("np", np), ("math", math)])
+    while queue:
+        path, obj = queue.popleft()
+        if id(obj) in seen or path.count(".") > 4:
+            continue
+        seen.add(id(obj))
+        if isinstance(obj, types.ModuleType) and obj.__name__.split(".")[0] in dangerous or any(obj is f for f in bad_functions):
+            found.append(path)
+        elif isinstance(obj, (types.ModuleType, type)):
+            for name in dir(obj):
+                if name.startswith("_") or name in BLOCKED_ATTRIBUTES:
+                    continue
+                with contextlib.suppress(Exception):  # lazy attributes that fail to import
+                    queue.append((f"{path}.{name}", getattr(obj, name)))
+    assert not found
+
+
+# -- runner ----------------------------------------------------------------------------------------------
+class FakePlanner:
+    def __init__(self) -> None:
+        self.calls: list[tuple] = []
+        self._private = "secret"
+
+    def hand_pre_grasp(self, hand_name: str) -> None:
+        self.calls.append(("pre_grasp", hand_name))
+
+    def generate_constraints(self, **kwargs):
+        return kwargs
+
+    def generate_end_effector_pose(self, constraint, hand_name):
+        return None, ("pose", constraint["obj_name"], hand_name)
+
+    def move_to_pose_with_screw(self, pose, hand_name, attach_obj=False) -> None:
+        self.calls.append(("move", pose, hand_name))
+
+    def hand_grasp(self, hand_name, grasp_object, obj_id) -> None:
+        if grasp_object == "ghost":
+            raise ValueError("no ghost in the scene")
+        self.calls.append(("grasp", grasp_object, obj_id))
+
+
+def fake_setup() -> dict:
+    """Runs in the worker process (module-level so the spawn context can pickle it)."""
+    planner = FakePlanner()
+
+    def spin() -> None:
+        while True:
+            pass
+
+    def calls() -> list:
+        return list(planner.calls)
+
+    def crash() -> None:
+        os._exit(3)  # stands in for a segfault in the simulator
+
+    return {"planner": planner, "np": np, "math": math, "spin": spin, "calls": calls, "crash": crash}
+
+
+@pytest.fixture(scope="module")
+def worker():
+    with SandboxWorker(fake_setup, memory_limit=2 << 30) as w:
+        yield w
+
+
+def test_namespace_persists_across_steps(worker: SandboxWorker) -> None:
+    steps = split_steps(PAPER_SCRIPT.replace('"drawer"', '"can"'))
+    out = worker.run_step(steps[0])
+    assert out.ok, out
+    out = worker.run_step("n = len(planner.calls)\nprint('calls', n, constraint_r['obj_name'])")
+    assert out.ok and out.stdout == "calls 3 can\n", out
+    assert worker.call("calls")[-1] == ("grasp", "can", 0)
+    # The paper's whole-file form: the runner calls `step(planner)` after defining it.
+    out = worker.run_step(strip_api_imports(PAPER_SCRIPT))
+    assert out.ok, out
+    assert worker.call("calls")[-1] == ("grasp", "drawer", 0)
+
+
+def test_step_errors_come_back_as_data(worker: SandboxWorker) -> None:
+    out = worker.run_step('x = 1\n\nplanner.hand_grasp("right", grasp_object="ghost", obj_id=0)\n')
+    assert not out.ok and out.error_type == "ValueError" and out.line == 3 and "ghost" in out.message
+    out = worker.run_step("y = 1\nplanner._private")
+    assert out.error_type == "CodeRejected" and out.line == 2
+    out = worker.run_step("y = [1][5]")
+    assert out.error_type == "IndexError" and out.line == 1
+    assert worker.run_step("z = x + 1").ok  # the worker survived and kept `x`
+
+
+def test_timeout_kills_and_restarts_worker(worker: SandboxWorker) -> None:
+    assert worker.run_step("kept = 1").ok
+    t0 = time.perf_counter()
+    out = worker.run_step("a = 1\nspin()", timeout_s=1.0)
+    assert out.error_type == "Timeout" and not out.ok
+    assert time.perf_counter() - t0 < 5.0
+    out = worker.run_step("b = 2")
+    assert out.ok and out.worker_restarted
+    out = worker.run_step("c = kept")  # state was lost with the killed worker
+    assert out.error_type == "CodeRejected" and "kept" in out.message and not out.worker_restarted
+
+
+@pytest.mark.parametrize("bomb", [
+    "x = [0] * (4 * 10**8)",  # one 3.2 GB allocation
+    "x = np.ones(10**11)",  # 800 GB
+    "x = [[0] * 10**6 for i in range(500)]",  # grows 8 MB at a time up to 4 GB: only the rlimit stops it
+])
+def test_memory_bomb_is_contained(worker: SandboxWorker, bomb: str) -> None:
+    out = worker.run_step(bomb, timeout_s=30.0)
+    assert not out.ok and out.error_type in {"MemoryError", "_ArrayMemoryError", "WorkerDied"}, out
+    assert worker.run_step("y = 1").ok
+
+
+def test_worker_death_is_reported(worker: SandboxWorker) -> None:
+    out = worker.run_step("crash()")
+    assert out.error_type == "WorkerDied" and "exit code 3" in out.message
+    assert worker.run_step("y = 1").worker_restarted
+
+
+def test_call_errors(worker: SandboxWorker) -> None:
+    from humanoidgen.sandbox import SandboxError
+
+    with pytest.raises(SandboxError, match="KeyError"):
+        worker.call("nonexistent")
+    worker.run_step("calls = 5")  # a step cannot replace what setup registered for `call`
+    assert isinstance(worker.call("calls"), list)
+
+
+def test_step_overhead(worker: SandboxWorker) -> None:
+    worker.run_step("x = 0")
+    times = []
+    for _ in range(50):
+        t0 = time.perf_counter()
+        out = worker.run_step("x = x + 1")
+        times.append(time.perf_counter() - t0)
+        assert out.ok
+    median = statistics.median(times)
+    print(f"sandbox per-step overhead: median {median * 1e3:.2f} ms, max {max(times) * 1e3:.2f} ms")
+    assert median < 0.020
