@@ -25,7 +25,10 @@ def tasks() -> None:
     """
     from humanoidgen.tasks.registry import list_tasks
 
-    table = Table("task", "arms", "horizon", "objects", "reference plan", "description")
+    table = Table()
+    table.add_column("task", no_wrap=True)
+    for col in ("arms", "horizon", "objects", "plan", "description"):
+        table.add_column(col)
     for spec in list_tasks():
         objs = ", ".join(sorted({o.type for o in spec.objects}))
         table.add_row(spec.name, spec.arms, spec.horizon, objs, "yes" if spec.plan else "-", spec.description)

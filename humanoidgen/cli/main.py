@@ -7,7 +7,7 @@ from pathlib import Path
 
 import typer
 
-from humanoidgen.cli import assets_cmd, episodes_cmd
+from humanoidgen.cli import assets_cmd, dataset_cmd, episodes_cmd
 
 app = typer.Typer(
     help=(
@@ -22,6 +22,7 @@ app.add_typer(assets_cmd.app, name="assets")
 app.command()(episodes_cmd.tasks)
 app.command()(episodes_cmd.run)
 app.command()(episodes_cmd.collect)
+app.add_typer(dataset_cmd.app, name="dataset")
 
 
 @app.command()

@@ -190,6 +190,13 @@ class ArmMoves:
         d.qpos[:] = base
         self.kin.forward()
         path, reason = track_poses(self.kin, side, q0, poses)
-        if reason:
-            raise MotionError(f"following {f['body']}'s joint: {reason}")
-        return np.vstack([q0, path])
+        if not reason:
+            return np.vstack([q0, path])
+        if target.joint_q is not None:
+            # The solver's goal may sit in another arm posture family: track backward from it to the start and
+            # use that path if it ends where the arm is now.
+            start = (self.kin.ee_pose(side),)
+            back, back_reason = track_poses(self.kin, side, target.joint_q, poses[-2::-1] + [start[0]])
+            if not back_reason and np.max(np.abs(back[-1] - q0)) < 0.15:
+                return np.vstack([q0, back[::-1][1:], target.joint_q])
+        raise MotionError(f"following {f['body']}'s joint: {reason}")

@@ -86,7 +86,7 @@ def track_poses(kin: Kinematics, side: Side, q_start: np.ndarray, poses: list[tu
 def plan_arm_motion(kin: Kinematics, cw: CollisionWorld, side: Side, q_start: np.ndarray,
                     target: tuple[np.ndarray, np.ndarray], q_goal: np.ndarray | None = None,
                     path_constraints: list[Constraint] = (), allow_sampling: bool = True,
-                    seed: int = 0, time_limit: float = 2.0) -> JointPath:
+                    seed: int = 0, time_limit: float = 4.0) -> JointPath:
     """Screw motion to `target` (p, R); if it collides or fails, RRT-Connect to `q_goal` (no path constraints).
 
     Without `q_goal`, the end of the tracked screw motion serves as the sampling planner's goal."""

@@ -1,0 +1,114 @@
+"""`hgen dataset ...`: look at, export and replay collected demonstrations."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import numpy as np
+import typer
+from rich.console import Console
+from rich.table import Table
+
+app = typer.Typer(help="Inspect, export and replay datasets written by `hgen collect`.\n\n"
+                       "Example: hgen dataset info data/stack", no_args_is_help=True)
+console = Console()
+
+
+def _store(path: Path):
+    from humanoidgen.episodes.dataset import DatasetError, EpisodeStore
+
+    store = EpisodeStore(path)
+    try:
+        store.meta()
+    except DatasetError as exc:
+        typer.secho(str(exc), fg=typer.colors.RED, err=True)
+        raise typer.Exit(1) from None
+    return store
+
+
+@app.command()
+def info(path: Path = typer.Argument(..., help="A dataset folder.")) -> None:
+    """Summarize a dataset: task, episodes kept and tried, lengths, what was recorded.
+
+    Example: hgen dataset info data/stack
+    """
+    store = _store(path)
+    meta, attempts, kept = store.meta(), store.attempts(), store.kept()
+    lengths = [k["length"] for k in kept]
+    console.print(f"[bold]{meta['task']}[/bold]: {len(kept)} episodes kept of {len(attempts)} attempts "
+                  f"({100 * len(kept) / max(len(attempts), 1):.0f}% success)")
+    if lengths:
+        console.print(f"frames per episode: min {min(lengths)}, mean {np.mean(lengths):.0f}, max {max(lengths)} "
+                      f"(every {meta['recorder']['every']} control steps at {meta['control_hz']:.0f} Hz)")
+        table = Table("array", "shape (episode 0)", "dtype")
+        for name, arr in store.load(kept[0]["episode"]).items():
+            table.add_row(name, str(arr.shape), str(arr.dtype))
+        console.print(table)
+    failed = [a for a in attempts if not a["success"]]
+    for a in failed[:5]:
+        console.print(f"  seed {a['seed']} failed: {a.get('error', '')[:150]}")
+
+
+@app.command()
+def export(
+    path: Path = typer.Argument(..., help="A dataset folder."),
+    zarr_out: Path = typer.Option(..., "--zarr", help="Write the Diffusion Policy / DP3 zarr layout here."),
+    camera: str = typer.Option("head", help="Camera whose images go to data/img and data/depth."),
+) -> None:
+    """Export to the zarr layout DP and DP3 train from: data/{state, action, point_cloud, img, depth},
+    meta/episode_ends.
+
+    Example: hgen dataset export data/stack --zarr data/stack.zarr
+    """
+    from humanoidgen.episodes.dataset import DatasetError, export_zarr
+
+    try:
+        shapes = export_zarr(_store(path), zarr_out, image_camera=camera)
+    except DatasetError as exc:
+        typer.secho(str(exc), fg=typer.colors.RED, err=True)
+        raise typer.Exit(1) from None
+    for name, shape in shapes.items():
+        console.print(f"{name}: {shape}")
+    console.print(f"wrote {zarr_out}")
+
+
+@app.command()
+def replay(
+    path: Path = typer.Argument(..., help="A dataset folder."),
+    episode: int = typer.Option(0, help="Episode index."),
+    video: Path = typer.Option(..., help="MP4 file to write."),
+    camera: str = typer.Option("front", help="Camera to render from."),
+) -> None:
+    """Render a recorded episode again from its recorded simulator states.
+
+    Example: hgen dataset replay data/stack --episode 3 --video ep3.mp4 --camera head
+    """
+    os.environ.setdefault("MUJOCO_GL", "egl")
+    import mujoco
+
+    from humanoidgen.episodes.dataset import DatasetError
+    from humanoidgen.episodes.task_episode import load_spec
+    from humanoidgen.episodes.video import VideoWriter
+    from humanoidgen.tasks.scene import build_scene
+
+    store = _store(path)
+    meta = store.meta()
+    try:
+        frames = store.load(episode)
+    except DatasetError as exc:
+        typer.secho(str(exc), fg=typer.colors.RED, err=True)
+        raise typer.Exit(1) from None
+    seed = next(a["seed"] for a in store.kept() if a["episode"] == episode)
+    _, env = build_scene(load_spec(meta.get("task_source", meta["task"])), seed)
+    fps = meta["control_hz"] / meta["recorder"]["every"]
+    writer = VideoWriter(video, camera, fps=int(round(fps)), control_hz=fps)
+    writer.attach(env)
+    try:
+        for qpos in frames["qpos"]:
+            env.data.qpos[:] = qpos
+            mujoco.mj_forward(env.model, env.data)
+            writer(None)
+    finally:
+        writer.close()
+    console.print(f"wrote {video} ({len(frames['qpos'])} frames at {fps:.0f} fps)")

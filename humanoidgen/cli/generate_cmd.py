@@ -1,0 +1,175 @@
+"""`hgen generate scene|script|eval`: LLM-generated task scenes and demonstration scripts.
+
+Endpoint: --base-url / --model override $OPENAI_BASE_URL / $HGEN_LLM_MODEL; the key is read from
+$OPENAI_API_KEY (not needed for a loopback server). With no endpoint configured, each command prints one line
+saying so and exits with code 3 (1 for other errors: unreachable endpoint, rejected key, no valid result)."""
+
+from __future__ import annotations
+
+import json
+import os
+from pathlib import Path
+
+import typer
+
+app = typer.Typer(
+    help=(
+        "Generate task scenes and demonstration scripts with an LLM (OpenAI-compatible endpoint).\n\n"
+        "Set $OPENAI_BASE_URL (e.g. https://api.deepseek.com/v1) and $OPENAI_API_KEY, or pass --base-url.\n\n"
+        "Examples:\n\n"
+        "  hgen generate scene \"stack the red cube on the green cube\" --out stack.yaml\n\n"
+        "  hgen generate script stack.yaml --attempts 3 --out plan.py --log log.json\n\n"
+        "  hgen run stack.yaml --script plan.py\n\n"
+        "  hgen generate eval --tasks block_stack_single,open_drawer --trials 5 --json eval.json"
+    ),
+    no_args_is_help=True,
+)
+
+EXIT_NOT_CONFIGURED = 3
+
+_BASE_URL = typer.Option(None, "--base-url", help="OpenAI-compatible endpoint (default: $OPENAI_BASE_URL).")
+_MODEL = typer.Option(None, "--model", help="Model name (default: $HGEN_LLM_MODEL, else deepseek-reasoner).")
+_CACHE = typer.Option(None, "--cache-dir", help="Cache responses here; identical requests are not re-sent.")
+_RECORD = typer.Option(None, "--record", help="Append every request and response to this JSONL file.")
+_REPLAY = typer.Option(None, "--replay", help="Answer from a --record file instead of the endpoint.")
+_RETRIES = typer.Option(4, "--retries", min=0, help="Retries of a failed request (429, 5xx, unreachable).")
+
+
+def _fail(message: str, code: int = 1) -> None:
+    typer.secho(message, fg=typer.colors.RED, err=True)
+    raise typer.Exit(code)
+
+
+def _client(base_url: str | None, model: str | None, cache_dir: Path | None, record: Path | None,
+            replay: Path | None, retries: int = 4):
+    from humanoidgen.llm import LLMClient, LLMConfig
+
+    if record is not None and replay is not None:
+        _fail("use --record or --replay, not both")
+    mode = "replay" if replay else "record" if record else "live"
+    cfg = LLMConfig.from_env(base_url=base_url, model=model, cache_dir=cache_dir, mode=mode,
+                             recording_path=replay or record, max_retries=retries)
+    if mode != "replay" and not cfg.base_url:
+        _fail("no LLM endpoint configured: set $OPENAI_BASE_URL (and $OPENAI_API_KEY) or pass --base-url, "
+              "or answer from a recording with --replay", EXIT_NOT_CONFIGURED)
+    return LLMClient(cfg)
+
+
+def _llm_errors():
+    from humanoidgen.llm import LLMError, LLMNotConfigured
+
+    return LLMError, LLMNotConfigured
+
+
+@app.command()
+def scene(
+    description: str = typer.Argument(..., help="What the task is, in words."),
+    out: Path = typer.Option(..., "--out", "-o", help="Where to write the task YAML."),
+    max_repairs: int = typer.Option(2, min=0, help="How many times invalid specs are sent back for repair."),
+    log: Path = typer.Option(None, "--log", help="Write every turn (prompt, answer, problems, tokens) as JSON."),
+    base_url: str = _BASE_URL, model: str = _MODEL, cache_dir: Path = _CACHE, record: Path = _RECORD,
+    replay: Path = _REPLAY, retries: int = _RETRIES,
+) -> None:
+    """Generate a task spec (objects, layout, success predicates) from a description, validated in simulation.
+
+    Example: hgen generate scene "put cube 1 on cube 0 with the right hand" --out stack.yaml
+    """
+    os.environ.setdefault("MUJOCO_GL", "egl")
+    from humanoidgen.generation.scene_gen import SceneGenerationError, generate_scene
+
+    client = _client(base_url, model, cache_dir, record, replay, retries)
+    LLMError, NotConfigured = _llm_errors()
+    turns = None
+    try:
+        spec, turns = generate_scene(description, client, max_repairs=max_repairs, out=out)
+    except SceneGenerationError as exc:
+        turns = exc.log
+        _fail(str(exc))
+    except NotConfigured as exc:
+        _fail(str(exc), EXIT_NOT_CONFIGURED)
+    except LLMError as exc:
+        _fail(str(exc))
+    finally:
+        if log is not None and turns is not None:
+            log.write_text(json.dumps(turns, indent=1))
+    tokens = sum(t["tokens"]["total"] or 0 for t in turns)
+    typer.echo(f"wrote {out} (task {spec.name}, {len(spec.objects)} objects, {len(turns)} turn(s), "
+               f"{tokens} tokens); run it with: hgen run {out} --script PLAN.py")
+
+
+@app.command()
+def script(
+    task: str = typer.Argument(..., help="A task name (see `hgen tasks`) or a task YAML file."),
+    out: Path = typer.Option(..., "--out", "-o", help="Where to write the successful plan (`# step:` format)."),
+    attempts: int = typer.Option(3, min=1, help="Attempts; each failure is described in the next prompt."),
+    seed: int = typer.Option(None, help="Scene seed (default: the task's default layout)."),
+    log: Path = typer.Option(None, "--log", help="Attempt log: JSON, or JSONL when the name ends in .jsonl."),
+    step_timeout: float = typer.Option(120.0, min=1.0, help="Seconds one step may run before it is stopped."),
+    base_url: str = _BASE_URL, model: str = _MODEL, cache_dir: Path = _CACHE, record: Path = _RECORD,
+    replay: Path = _REPLAY, retries: int = _RETRIES,
+) -> None:
+    """Generate a demonstration script for a task, run it in a sandbox, retry with the failure explained.
+
+    Example: hgen generate script block_stack_single --attempts 3 --out plan.py --log log.json
+    (then: hgen run block_stack_single --script plan.py)
+    """
+    os.environ.setdefault("MUJOCO_GL", "egl")
+    from humanoidgen.generation.script_gen import generate_script
+
+    client = _client(base_url, model, cache_dir, record, replay, retries)
+    LLMError, NotConfigured = _llm_errors()
+    try:
+        result = generate_script(task, client, attempts=attempts, seed=seed, step_timeout_s=step_timeout,
+                                 out=out, log_path=log)
+    except NotConfigured as exc:
+        _fail(str(exc), EXIT_NOT_CONFIGURED)
+        return
+    except (LLMError, KeyError, FileNotFoundError, ValueError) as exc:
+        _fail(str(exc).strip("'\""))
+        return
+    for a in result.attempts:
+        verdict = "success" if a.success else a.failure.splitlines()[0] if a.failure else "failed"
+        typer.echo(f"attempt {a.attempt}: {len(a.steps)} step(s) run, {a.tokens.get('total')} tokens: {verdict}")
+    if not result.success:
+        _fail(f"no successful plan for {result.task} in {attempts} attempt(s)" + (f"; see {log}" if log else ""))
+    typer.echo(f"wrote {out}; replay it with: hgen run {task} --script {out}")
+
+
+@app.command("eval")
+def eval_(
+    tasks: str = typer.Option(..., "--tasks", help="Comma-separated task names or YAML paths."),
+    trials: int = typer.Option(5, min=1, help="Trials per task (trial i uses the scene of seed i)."),
+    attempts: int = typer.Option(1, min=1, help="Attempts per trial."),
+    json_out: Path = typer.Option(None, "--json", help="Write the table rows as JSON."),
+    step_timeout: float = typer.Option(120.0, min=1.0, help="Seconds one step may run."),
+    base_url: str = _BASE_URL, model: str = _MODEL, cache_dir: Path = _CACHE, record: Path = _RECORD,
+    replay: Path = _REPLAY, retries: int = _RETRIES,
+) -> None:
+    """Success rate and token cost of script generation per task.
+
+    Example: hgen generate eval --tasks block_stack_single,open_drawer --trials 5 --json eval.json
+    """
+    os.environ.setdefault("MUJOCO_GL", "egl")
+    from rich.console import Console
+    from rich.table import Table
+
+    from humanoidgen.generation.evaluate import evaluate
+
+    names = [t.strip() for t in tasks.split(",") if t.strip()]
+    client = _client(base_url, model, cache_dir, record, replay, retries)
+    LLMError, NotConfigured = _llm_errors()
+    try:
+        rows = evaluate(names, trials, client, attempts=attempts, step_timeout_s=step_timeout)
+    except NotConfigured as exc:
+        _fail(str(exc), EXIT_NOT_CONFIGURED)
+        return
+    except (LLMError, KeyError, FileNotFoundError, ValueError) as exc:
+        _fail(str(exc).strip("'\""))
+        return
+    table = Table("task", "success rate", "mean tokens", "tokens per success", "mean attempts")
+    for r in rows:
+        table.add_row(r.task, f"{r.successes}/{r.trials} ({100 * r.success_rate:.0f}%)", f"{r.mean_tokens:.0f}",
+                      "-" if r.tokens_per_success is None else f"{r.tokens_per_success:.0f}", f"{r.mean_attempts:.1f}")
+    Console().print(table)
+    if json_out is not None:
+        json_out.write_text(json.dumps([r.to_dict() for r in rows], indent=1))

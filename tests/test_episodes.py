@@ -1,0 +1,144 @@
+"""Plans, episodes, collection and datasets, end to end."""
+
+import json
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+from humanoidgen.cli.main import app
+from humanoidgen.episodes.collect import collect
+from humanoidgen.episodes.dataset import EpisodeStore, export_zarr
+from humanoidgen.episodes.plans import PlanFormatError, parse_plan
+from humanoidgen.episodes.recorder import RecorderConfig
+from humanoidgen.episodes.task_episode import EpisodeRequest, run_task_episode
+
+runner = CliRunner()
+
+PAPER_FORM = '''from humanoidgen.motion_planning.h1_2.solution.generated.solver_env import *
+def step(planner:HumanoidMotionPlanner):
+    # Step 1: pinch
+    planner.hand_pre_pinch("right")
+    x = 1
+    # Step 2: let go
+    planner.open_hand("right")
+'''
+
+
+def test_plans_in_both_forms_split_into_steps():
+    ours = parse_plan("# step: first\nplanner.hand_pre_pinch('right')\n\n# step: second\nplanner.open_hand('right')\n")
+    assert [s.title for s in ours.steps] == ["first", "second"]
+    paper = parse_plan(PAPER_FORM)
+    assert [s.title for s in paper.steps] == ["pinch", "let go"]
+    assert paper.steps[0].code.splitlines()[0] == 'planner.hand_pre_pinch("right")'  # dedented, import dropped
+    with pytest.raises(PlanFormatError, match="line 1"):
+        parse_plan("def (:\n")
+
+
+def test_reference_plan_episode_succeeds_and_reports_steps():
+    result, arrays = run_task_episode(EpisodeRequest("block_stack_single", seed=0))
+    assert result.success, result.steps
+    assert arrays is None
+    assert [s.ok for s in result.steps] == [True] * len(result.steps)
+    assert "released cube 1 and it stayed on cube 0" in result.events
+    assert set(result.objects) == {"cube[0]", "cube[1]"}
+    assert result.plan_seconds > 0 and result.sim_seconds > 5
+
+
+def test_a_failing_step_is_reported_with_its_call_and_reason(tmp_path):
+    plan = tmp_path / "bad.py"
+    plan.write_text("# step: reach too far\n"
+                    "c = [Constraint(planner.env, 'point2point', 'r_hand_base_link',\n"
+                    "     hand_key_point=get_point_in_env(planner.env, 'grasp_point_base_right_hand'),\n"
+                    "     object_key_point=[0.5, -0.2, 0.1])]\n"
+                    "_, pose = planner.generate_end_effector_pose(c, 'right')\n"
+                    "# step: never reached\nplanner.open_hand('right')\n")
+    result, _ = run_task_episode(EpisodeRequest("block_stack_single", seed=0, plan_path=str(plan)))
+    assert not result.success
+    assert len(result.steps) == 1
+    assert result.failed_step.error.startswith("generate_end_effector_pose: ")
+    assert "mm from its target" in result.failed_step.error
+
+
+def test_forbidden_code_in_a_plan_is_rejected_as_data(tmp_path):
+    plan = tmp_path / "evil.py"
+    plan.write_text("# step: look around\nimport os\nos.listdir('/')\n")
+    result, _ = run_task_episode(EpisodeRequest("block_stack_single", seed=0, plan_path=str(plan)))
+    assert not result.success and result.failed_step.error.startswith("rejected:")
+
+
+@pytest.fixture(scope="module")
+def collected(tmp_path_factory):
+    """Two episodes with one worker, and the same with two workers."""
+    rec = RecorderConfig(every=10, cameras=("head",), width=64, height=48, point_cloud=True, num_points=256)
+    one = tmp_path_factory.mktemp("one")
+    two = tmp_path_factory.mktemp("two")
+    s1 = collect("block_stack_single", 2, one, workers=1, seed=0, recorder=rec)
+    s2 = collect("block_stack_single", 2, two, workers=2, seed=0, recorder=rec)
+    return one, two, s1, s2
+
+
+def test_collection_is_the_same_with_one_or_two_workers(collected):
+    one, two, s1, s2 = collected
+    assert s1.kept == s2.kept == 2
+    a, b = EpisodeStore(one), EpisodeStore(two)
+    assert [k["seed"] for k in a.kept()] == [k["seed"] for k in b.kept()]
+    for i in range(2):
+        ea, eb = a.load(i), b.load(i)
+        assert np.array_equal(ea["action"], eb["action"])
+        assert np.allclose(ea["qpos"], eb["qpos"])
+        assert ea["point_cloud"].shape == (len(ea["action"]), 256, 3)
+
+
+def test_interrupted_collection_resumes_without_duplicates_or_loss(collected, tmp_path):
+    one, *_ = collected
+    import shutil
+
+    work = tmp_path / "ds"
+    shutil.copytree(one, work)
+    store = EpisodeStore(work)
+    # Simulate an interruption after the first episode: drop the second, leave a half-written index line.
+    lines = store.index_path.read_text().splitlines()
+    first_kept = next(i for i, ln in enumerate(lines) if json.loads(ln).get("episode") == 0)
+    store.index_path.write_text("\n".join(lines[: first_kept + 1]) + '\n{"seed": 9, "succ')
+    store.episode_path(1).unlink()
+    assert len(store.kept()) == 1
+    with pytest.raises(Exception, match="--resume"):
+        collect("block_stack_single", 2, work, recorder=RecorderConfig(every=10))
+    stats = collect("block_stack_single", 2, work, resume=True, recorder=RecorderConfig(every=10))
+    assert stats.kept == 2
+    seeds = [a["seed"] for a in EpisodeStore(work).attempts()]
+    assert len(seeds) == len(set(seeds)), "no seed is tried twice"
+    assert EpisodeStore(work).load(0)["action"].shape == EpisodeStore(one).load(0)["action"].shape
+
+
+def test_zarr_export_has_the_shapes_dp3_expects(collected, tmp_path):
+    import zarr
+
+    one, *_ = collected
+    shapes = export_zarr(EpisodeStore(one), tmp_path / "d.zarr")
+    root = zarr.open_group(str(tmp_path / "d.zarr"), mode="r")
+    n = shapes["action"][0]
+    assert root["data/action"].shape == (n, 26) and root["data/state"].shape == (n, 26)
+    assert root["data/point_cloud"].shape == (n, 256, 3)
+    assert root["data/img"].shape == (n, 48, 64, 3)
+    ends = root["meta/episode_ends"][:]
+    assert ends[-1] == n and len(ends) == 2
+
+
+def test_cli_run_tasks_and_dataset_commands(collected, tmp_path):
+    one, *_ = collected
+    res = runner.invoke(app, ["tasks"])
+    assert res.exit_code == 0 and "block_stack_single" in res.output and "open_drawer" in res.output
+    out = tmp_path / "r.json"
+    res = runner.invoke(app, ["run", "block_stack_single", "--seed", "1", "--json", str(out)])
+    assert res.exit_code == 0, res.output
+    assert json.loads(out.read_text())["success"] is True
+    res = runner.invoke(app, ["run", "block_stack_singel"])
+    assert res.exit_code == 1 and "block_stack_single" in res.output  # suggests the close match
+    res = runner.invoke(app, ["dataset", "info", str(one)])
+    assert res.exit_code == 0 and "2 episodes kept" in res.output
+    video = tmp_path / "ep.mp4"
+    res = runner.invoke(app, ["dataset", "replay", str(one), "--episode", "1", "--video", str(video)])
+    assert res.exit_code == 0, res.output
+    assert video.stat().st_size > 1000
