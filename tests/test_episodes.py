@@ -142,3 +142,14 @@ def test_cli_run_tasks_and_dataset_commands(collected, tmp_path):
     res = runner.invoke(app, ["dataset", "replay", str(one), "--episode", "1", "--video", str(video)])
     assert res.exit_code == 0, res.output
     assert video.stat().st_size > 1000
+
+
+def test_bench_reports_success_rate_and_draws_the_plot(tmp_path):
+    from humanoidgen.episodes.bench import plot, run_bench
+    from humanoidgen.tasks.registry import load_task
+
+    reports = run_bench([load_task("block_stack_single")], episodes=1, seed=3)
+    (r,) = reports
+    assert r.episodes == 1 and r.success_rate == 1.0 and r.mean_wall_s > 0
+    plot(reports, tmp_path / "bench.png")
+    assert (tmp_path / "bench.png").stat().st_size > 5000

@@ -138,3 +138,40 @@ def collect(
                f"in {stats.wall_seconds:.0f} s -> {out}")
     if stats.kept < n:
         _fail(f"stopped after {stats.tried} attempts with only {stats.kept} successes; see {out}/index.jsonl")
+
+
+def bench(
+    tasks_opt: str = typer.Option(None, "--tasks", help="Comma list of tasks (default: every task with a reference plan)."),
+    episodes: int = typer.Option(10, min=1, help="Randomized episodes per task."),
+    seed: int = typer.Option(1000, help="First seed (held-out from collection's default seeds)."),
+    workers: int = typer.Option(1, min=1, help="Worker processes."),
+    json_out: Path = typer.Option(None, "--json", help="Write the report as JSON."),
+    plot_out: Path = typer.Option(None, "--plot", help="Write a bar chart (PNG) of success per task."),
+) -> None:
+    """Run each task's reference plan on randomized seeds and report success rate and time per episode.
+
+    Example: hgen bench --tasks block_stack_single,open_drawer --episodes 20 --plot bench.png
+    """
+    os.environ.setdefault("MUJOCO_GL", "egl")
+    from humanoidgen.episodes.bench import plot, run_bench
+    from humanoidgen.tasks.registry import list_tasks, load_task
+
+    try:
+        specs = [load_task(t.strip()) for t in tasks_opt.split(",")] if tasks_opt else \
+            [s for s in list_tasks() if s.plan is not None]
+    except (KeyError, ValueError, FileNotFoundError) as exc:
+        _fail(str(exc).strip("'\""))
+        return
+    reports = run_bench(specs, episodes, seed=seed, workers=workers,
+                        progress=lambda t, k, n: console.print(f"{t}: {k}/{n}"))
+    table = Table("task", "arms", "horizon", "success", "s / successful episode", "planning s", "main failure")
+    for r in reports:
+        common = max(set(r.failures), key=r.failures.count) if r.failures else ""
+        table.add_row(r.task, r.arms, r.horizon, f"{100 * r.success_rate:.0f}%", f"{r.mean_wall_s:.1f}",
+                      f"{r.mean_plan_s:.1f}", common[:80])
+    console.print(table)
+    if json_out is not None:
+        json_out.write_text(json.dumps([r.to_dict() for r in reports], indent=2))
+    if plot_out is not None:
+        plot(reports, plot_out)
+        console.print(f"plot: {plot_out}")

@@ -22,6 +22,7 @@ app.add_typer(assets_cmd.app, name="assets")
 app.command()(episodes_cmd.tasks)
 app.command()(episodes_cmd.run)
 app.command()(episodes_cmd.collect)
+app.command()(episodes_cmd.bench)
 app.add_typer(dataset_cmd.app, name="dataset")
 
 

@@ -1,0 +1,103 @@
+"""The benchmark report: each task's reference plan on N randomized seeds; a table and a bar chart grouped
+like the paper's figure 5 (single-arm / bimanual, short / long horizon)."""
+
+from __future__ import annotations
+
+import multiprocessing as mp
+import os
+from collections.abc import Callable
+from dataclasses import asdict, dataclass
+from pathlib import Path
+
+import numpy as np
+
+from humanoidgen.episodes.task_episode import EpisodeRequest, run_task_episode
+
+
+@dataclass
+class TaskReport:
+    task: str
+    arms: str
+    horizon: str
+    episodes: int
+    successes: int
+    mean_wall_s: float  # per successful episode: planning + simulation, no cameras
+    mean_plan_s: float  # motion planning per episode
+    mean_sim_s: float
+    failures: list[str]
+
+    @property
+    def success_rate(self) -> float:
+        return self.successes / self.episodes if self.episodes else 0.0
+
+    def to_dict(self) -> dict:
+        return {**asdict(self), "success_rate": self.success_rate}
+
+
+def _one(req: EpisodeRequest) -> dict:
+    os.environ.setdefault("MUJOCO_GL", "egl")
+    try:
+        r, _ = run_task_episode(req)
+    except Exception as exc:  # a crash is a failure of that episode, reported
+        return {"success": False, "error": f"{type(exc).__name__}: {exc}", "wall": 0.0, "plan": 0.0, "sim": 0.0}
+    failed = r.failed_step
+    error = (f"step {failed.index} ({failed.title}): {failed.error}" if failed else
+             "; ".join(c["detail"] for c in r.checks if not c["ok"]))
+    return {"success": r.success, "error": error, "wall": r.wall_seconds, "plan": r.plan_seconds, "sim": r.sim_seconds}
+
+
+def run_bench(tasks: list, episodes: int, seed: int = 0, workers: int = 1,
+              progress: Callable[[str, int, int], None] | None = None) -> list[TaskReport]:
+    pool = mp.get_context("spawn").Pool(workers) if workers > 1 else None
+    reports = []
+    try:
+        for spec in tasks:
+            reqs = [EpisodeRequest(spec.name, seed + i) for i in range(episodes)]
+            outs = pool.map(_one, reqs) if pool is not None else [_one(r) for r in reqs]
+            ok = [o for o in outs if o["success"]]
+            reports.append(TaskReport(
+                spec.name, spec.arms, spec.horizon, episodes, len(ok),
+                float(np.mean([o["wall"] for o in ok])) if ok else float("nan"),
+                float(np.mean([o["plan"] for o in outs])), float(np.mean([o["sim"] for o in ok])) if ok else float("nan"),
+                [o["error"][:200] for o in outs if not o["success"]],
+            ))
+            if progress is not None:
+                progress(spec.name, len(ok), episodes)
+    finally:
+        if pool is not None:
+            pool.terminate()
+            pool.join()
+    return reports
+
+
+def plot(reports: list[TaskReport], path: Path) -> None:
+    """Success rate per task, grouped into single-arm/bimanual x short/long horizon."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    groups = [("single", "short"), ("single", "long"), ("bimanual", "short"), ("bimanual", "long")]
+    colors = {"single": "#4C72B0", "bimanual": "#DD8452"}
+    ordered = [r for g in groups for r in reports if (r.arms, r.horizon) == g]
+    fig, ax = plt.subplots(figsize=(max(6, 0.5 * len(ordered) + 2), 4))
+    x = np.arange(len(ordered))
+    ax.bar(x, [100 * r.success_rate for r in ordered], color=[colors[r.arms] for r in ordered],
+           hatch=None, edgecolor="black", linewidth=0.5)
+    for i, r in enumerate(ordered):
+        if r.horizon == "long":
+            ax.patches[i].set_hatch("//")
+    ax.set_xticks(x, [r.task for r in ordered], rotation=60, ha="right", fontsize=8)
+    ax.set_ylabel("success rate (%)")
+    ax.set_ylim(0, 105)
+    ax.set_title("HGen-Bench reference plans: success over randomized seeds")
+    from matplotlib.patches import Patch
+
+    ax.legend(handles=[Patch(color=colors["single"], label="single arm"),
+                       Patch(color=colors["bimanual"], label="bimanual"),
+                       Patch(facecolor="white", edgecolor="black", hatch="//", label="long horizon")],
+              loc="lower right", fontsize=8)
+    fig.tight_layout()
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=120)
+    plt.close(fig)
