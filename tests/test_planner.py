@@ -199,3 +199,27 @@ def test_path_constraints_hold_along_the_motion(empty_scene):
     planner.move_to_pose_with_screw(to([-0.32, -0.10, 0.10]), "right", path_constraints=[palm_down()])
     assert len(palm_angles) > 10
     assert max(palm_angles) < 4.0  # planned within 0.5 deg; the simulated arm lags a little
+
+
+def test_snapshot_restores_the_episode_exactly(two_cubes):
+    from humanoidgen.planning.snapshot import Snapshot, restore_snapshot, take_snapshot
+
+    env = HumanoidEnv(two_cubes)
+    planner = HumanoidMotionPlanner(env)
+    planner.hand_pre_pinch("right")
+    _, pose = planner.generate_end_effector_pose(planner.generate_constraints("cube", 0, "pinch", "right"), "right")
+    planner.move_to_pose_with_screw(pose, "right")
+    planner.hand_pinch("right", "cube", 0)
+    snap = Snapshot.from_dict(take_snapshot(planner).to_dict())  # through JSON-ready data, as the tree log stores it
+    q_at_snap, cube_at_snap = env.data.qpos.copy(), env.object_pose("cube_0")[0]
+    # Carry on: lift the cube, then go back to the snapshot.
+    _, pose = planner.generate_end_effector_pose(planner.generate_constraints("cube", 0, "target", "right"), "right")
+    planner.move_to_pose_with_screw(pose, "right", attach_obj=True, object_name="cube", object_id=0)
+    assert np.linalg.norm(env.object_pose("cube_0")[0] - cube_at_snap) > 0.05
+    restore_snapshot(planner, snap)
+    assert np.allclose(env.data.qpos, q_at_snap, atol=1e-6)
+    assert planner.holding["right"].body == "cube_0"
+    # And the restored episode continues like the original did.
+    _, pose = planner.generate_end_effector_pose(planner.generate_constraints("cube", 0, "target", "right"), "right")
+    planner.move_to_pose_with_screw(pose, "right", attach_obj=True, object_name="cube", object_id=0)
+    assert env.object_pose("cube_0")[0][2] > 0.1

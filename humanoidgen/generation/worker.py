@@ -1,0 +1,77 @@
+"""The sandbox worker's side of script generation: one long-lived worker process serves many attempts (and
+tasks), because starting one costs seconds. `setup` (module level, so it pickles for "spawn") returns the step
+namespace around a *handle* to the planner; `__hgen_reset__` builds a fresh scene and planner behind the handle.
+
+The control functions have dunder names: the runner hides such names from step code and the checker rejects
+them, so LLM code cannot reset the scene or call the judge; only the parent can, through `SandboxWorker.call`.
+"""
+
+from __future__ import annotations
+
+import os
+from typing import Any
+
+import numpy as np
+
+RESET, JUDGE = "__hgen_reset__", "__hgen_judge__"
+
+
+class PlannerHandle:
+    """Stands in for the current HumanoidMotionPlanner; forwards every attribute to it."""
+
+    def __init__(self) -> None:
+        object.__setattr__(self, "_target", None)
+
+    def _bind(self, planner: Any) -> None:
+        object.__setattr__(self, "_target", planner)
+
+    def __getattr__(self, name: str) -> Any:
+        target = object.__getattribute__(self, "_target")
+        if target is None:
+            raise RuntimeError("no scene is loaded (the worker restarted); this attempt cannot continue")
+        return getattr(target, name)
+
+    def __setattr__(self, name: str, value: Any) -> None:
+        setattr(object.__getattribute__(self, "_target"), name, value)
+
+    def __repr__(self) -> str:
+        return "<HumanoidMotionPlanner>"
+
+
+def _round(x: Any, nd: int = 3) -> list[float]:
+    return [round(float(v), nd) for v in np.asarray(x).ravel()]
+
+
+def setup() -> dict[str, Any]:
+    os.environ.setdefault("MUJOCO_GL", "egl")
+    from humanoidgen.episodes.runner import step_namespace
+    from humanoidgen.episodes.task_episode import judge
+    from humanoidgen.objects.describe import describe_scene
+    from humanoidgen.planning.planner import HumanoidMotionPlanner
+    from humanoidgen.tasks.registry import parse_task
+    from humanoidgen.tasks.scene import build_scene
+
+    handle = PlannerHandle()
+    state: dict[str, Any] = {}
+
+    def reset(spec_data: dict, seed: int | None) -> dict:
+        """Build the task's scene for `seed` and a fresh planner; return the scene as the prompt shows it."""
+        spec = parse_task(spec_data, "<generated>")
+        _, env = build_scene(spec, seed)
+        planner = HumanoidMotionPlanner(env, seed=seed or 0)
+        handle._bind(planner)
+        state.update(spec=spec, env=env, planner=planner)
+        hands = {s: {"p": _round(p.p), "q": _round(p.q)}
+                 for s, p in (("left", planner.left_hand_init_pose), ("right", planner.right_hand_init_pose))}
+        return {"scene": describe_scene(env, as_json=False), "hands": hands}
+
+    def judge_now() -> dict:
+        """The task's predicates on the current state, plus the planner's event log."""
+        if "env" not in state:
+            raise RuntimeError("no scene is loaded")
+        checks = judge(state["spec"], state["env"])
+        return {"checks": checks, "events": list(state["planner"].events)}
+
+    ns = step_namespace(handle)  # type: ignore[arg-type]
+    ns[RESET], ns[JUDGE] = reset, judge_now
+    return ns
