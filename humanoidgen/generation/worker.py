@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 
 RESET, JUDGE = "__hgen_reset__", "__hgen_judge__"
+SNAPSHOT, RESTORE = "__hgen_snapshot__", "__hgen_restore__"
 
 
 class PlannerHandle:
@@ -72,6 +73,17 @@ def setup() -> dict[str, Any]:
         checks = judge(state["spec"], state["env"])
         return {"checks": checks, "events": list(state["planner"].events)}
 
+    def snapshot() -> dict:
+        """The episode's full state (physics and planner bookkeeping), JSON-ready, for a tree search node."""
+        from humanoidgen.planning.snapshot import take_snapshot
+
+        return take_snapshot(state["planner"]).to_dict()
+
+    def restore(snap: dict) -> None:
+        from humanoidgen.planning.snapshot import Snapshot, restore_snapshot
+
+        restore_snapshot(state["planner"], Snapshot.from_dict(snap))
+
     ns = step_namespace(handle)  # type: ignore[arg-type]
-    ns[RESET], ns[JUDGE] = reset, judge_now
+    ns[RESET], ns[JUDGE], ns[SNAPSHOT], ns[RESTORE] = reset, judge_now, snapshot, restore
     return ns
