@@ -24,7 +24,7 @@ from humanoidgen.sandbox import SandboxWorker, check_code, strip_api_imports  # 
 from humanoidgen.tasks.registry import SPECS_DIR, load_task  # noqa: E402
 from humanoidgen.tasks.scene import build_scene  # noqa: E402
 
-PAPER = Path("/work/shared/seed/000_e9c4b55f5fa1a6bf.txt")
+PAPER = Path(__file__).resolve().parents[2] / "shared" / "seed" / "000_e9c4b55f5fa1a6bf.txt"
 
 STACK_YAML = """name: two_cube_stack
 description: With the right hand, put cube 1 on top of cube 0.
