@@ -33,6 +33,9 @@ _CACHE = typer.Option(None, "--cache-dir", help="Cache responses here; identical
 _RECORD = typer.Option(None, "--record", help="Append every request and response to this JSONL file.")
 _REPLAY = typer.Option(None, "--replay", help="Answer from a --record file instead of the endpoint.")
 _RETRIES = typer.Option(4, "--retries", min=0, help="Retries of a failed request (429, 5xx, unreachable).")
+_MCTS = typer.Option(None, "--mcts", min=1, help="Search with MCTS, at most N LLM expansions (instead of "
+                     "--attempts); the tree log (.tree.json) and picture (.tree.png) go next to the plan.")
+_WORKERS = typer.Option(1, "--workers", min=1, help="With --mcts: expansions run at once (one sandbox each).")
 
 
 def _fail(message: str, code: int = 1) -> None:
@@ -106,18 +109,23 @@ def script(
     log: Path = typer.Option(None, "--log", help="Attempt log: JSON, or JSONL when the name ends in .jsonl."),
     step_timeout: float = typer.Option(120.0, min=1.0, help="Seconds one step may run before it is stopped."),
     base_url: str = _BASE_URL, model: str = _MODEL, cache_dir: Path = _CACHE, record: Path = _RECORD,
-    replay: Path = _REPLAY, retries: int = _RETRIES,
+    replay: Path = _REPLAY, retries: int = _RETRIES, mcts: int = _MCTS, workers: int = _WORKERS,
 ) -> None:
     """Generate a demonstration script for a task, run it in a sandbox, retry with the failure explained.
 
     Example: hgen generate script block_stack_single --attempts 3 --out plan.py --log log.json
     (then: hgen run block_stack_single --script plan.py)
+
+    With --mcts N: tree search over LLM continuations, e.g. --mcts 20 --workers 4 (--log: the tree log).
     """
     os.environ.setdefault("MUJOCO_GL", "egl")
     from humanoidgen.generation.script_gen import generate_script
 
     client = _client(base_url, model, cache_dir, record, replay, retries)
     LLMError, NotConfigured = _llm_errors()
+    if mcts is not None:
+        _script_mcts(task, client, mcts, workers, seed, step_timeout, out, log)
+        return
     try:
         result = generate_script(task, client, attempts=attempts, seed=seed, step_timeout_s=step_timeout,
                                  out=out, log_path=log)
@@ -135,6 +143,32 @@ def script(
     typer.echo(f"wrote {out}; replay it with: hgen run {task} --script {out}")
 
 
+def _script_mcts(task: str, client, expansions: int, workers: int, seed: int | None, step_timeout: float,
+                 out: Path, log: Path | None) -> None:
+    from humanoidgen.mcts import search_plan
+
+    LLMError, NotConfigured = _llm_errors()
+    try:
+        result = search_plan(task, client, expansions=expansions, workers=workers, seed=seed, out=out,
+                             log_path=log, step_timeout_s=step_timeout)
+    except NotConfigured as exc:
+        _fail(str(exc), EXIT_NOT_CONFIGURED)
+        return
+    except (LLMError, KeyError, FileNotFoundError, ValueError) as exc:
+        _fail(str(exc).strip("'\""))
+        return
+    for e in result.log:
+        verdict = "success" if e.get("success") else (e.get("failure") or {}).get("error", "no success yet")
+        typer.echo(f"expansion {e['id'] + 1} at node {e['node']}: {len(e['new_nodes'])} new node(s), reward "
+                   f"{e['reward']:g}, {e['tokens']} tokens: {verdict.splitlines()[0] if verdict else ''}")
+    tree_log = log or out.with_suffix(".tree.json")
+    if not result.success:
+        _fail(f"no successful plan for {result.task} in {expansions} expansion(s); tree log: {tree_log}")
+    typer.echo(f"replayed from a fresh reset: {'success' if result.verified else 'FAILED'}")
+    typer.echo(f"wrote {out} (tree log {tree_log}, picture {out.with_suffix('.tree.png')}); "
+               f"replay it with: hgen run {task} --script {out}")
+
+
 @app.command("eval")
 def eval_(
     tasks: str = typer.Option(..., "--tasks", help="Comma-separated task names or YAML paths."),
@@ -143,7 +177,7 @@ def eval_(
     json_out: Path = typer.Option(None, "--json", help="Write the table rows as JSON."),
     step_timeout: float = typer.Option(120.0, min=1.0, help="Seconds one step may run."),
     base_url: str = _BASE_URL, model: str = _MODEL, cache_dir: Path = _CACHE, record: Path = _RECORD,
-    replay: Path = _REPLAY, retries: int = _RETRIES,
+    replay: Path = _REPLAY, retries: int = _RETRIES, mcts: int = _MCTS, workers: int = _WORKERS,
 ) -> None:
     """Success rate and token cost of script generation per task.
 
@@ -158,6 +192,9 @@ def eval_(
     names = [t.strip() for t in tasks.split(",") if t.strip()]
     client = _client(base_url, model, cache_dir, record, replay, retries)
     LLMError, NotConfigured = _llm_errors()
+    if mcts is not None:
+        _eval_mcts(names, trials, client, mcts, workers, step_timeout, json_out)
+        return
     try:
         rows = evaluate(names, trials, client, attempts=attempts, step_timeout_s=step_timeout)
     except NotConfigured as exc:
@@ -170,6 +207,33 @@ def eval_(
     for r in rows:
         table.add_row(r.task, f"{r.successes}/{r.trials} ({100 * r.success_rate:.0f}%)", f"{r.mean_tokens:.0f}",
                       "-" if r.tokens_per_success is None else f"{r.tokens_per_success:.0f}", f"{r.mean_attempts:.1f}")
+    Console().print(table)
+    if json_out is not None:
+        json_out.write_text(json.dumps([r.to_dict() for r in rows], indent=1))
+
+
+def _eval_mcts(names: list[str], trials: int, client, expansions: int, workers: int, step_timeout: float,
+               json_out: Path | None) -> None:
+    from rich.console import Console
+    from rich.table import Table
+
+    from humanoidgen.mcts import evaluate_mcts
+
+    LLMError, NotConfigured = _llm_errors()
+    try:
+        rows = evaluate_mcts(names, trials, client, expansions=expansions, workers=workers,
+                             step_timeout_s=step_timeout)
+    except NotConfigured as exc:
+        _fail(str(exc), EXIT_NOT_CONFIGURED)
+        return
+    except (LLMError, KeyError, FileNotFoundError, ValueError) as exc:
+        _fail(str(exc).strip("'\""))
+        return
+    table = Table("task", "success rate", "tokens per run", "tokens per success", "distinct plans", "verified")
+    for r in rows:
+        table.add_row(r.task, f"{r.successes}/{r.trials} ({100 * r.success_rate:.0f}%)", f"{r.tokens_per_run:.0f}",
+                      "-" if r.tokens_per_success is None else f"{r.tokens_per_success:.0f}", str(r.distinct_plans),
+                      str(r.verified))
     Console().print(table)
     if json_out is not None:
         json_out.write_text(json.dumps([r.to_dict() for r in rows], indent=1))

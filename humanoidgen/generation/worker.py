@@ -71,7 +71,8 @@ def setup() -> dict[str, Any]:
         if "env" not in state:
             raise RuntimeError("no scene is loaded")
         checks = judge(state["spec"], state["env"])
-        return {"checks": checks, "events": list(state["planner"].events)}
+        return {"checks": checks, "events": list(state["planner"].events),
+                "status": describe_scene(state["env"], as_json=False)["status"]}
 
     def snapshot() -> dict:
         """The episode's full state (physics and planner bookkeeping), JSON-ready, for a tree search node."""
