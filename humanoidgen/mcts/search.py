@@ -134,13 +134,16 @@ class MCTS:
         with self._lock:
             node = tree.nodes[path[-1]]
             prompt = expansion_prompt(tree, node, self.names, cfg.minimal_guidance, cfg.short_description)
+        t_restore = time.perf_counter()
         ex.restore(node.snapshot)
+        restore_seconds = time.perf_counter() - t_restore
         t0 = time.perf_counter()
         reply = self.client.chat([{"role": "user", "content": prompt}])
         tokens = int(reply.usage.total or 0)
         entry: dict[str, Any] = {"id": k, "node": node.id, "path": path, "prompt": prompt, "response": reply.text,
                                  "tokens": tokens, "llm_seconds": round(time.perf_counter() - t0, 3),
                                  "cached": reply.cached, "new_nodes": []}
+        t_run = time.perf_counter()
         steps = segment(reply.text)
         cur, pending, failure, snap = node, [], None, node.snapshot
         for title, code in steps:
@@ -170,7 +173,9 @@ class MCTS:
             reward = 1.0 if success else intrinsic_reward(cur.events[len(node.events):], node.checks, cur.checks)
             tree.backprop(path, reward)
             cur.success = success
-            entry.update(end_node=cur.id, failure=failure, reward=reward, success=success)
+            # Expansion time without the LLM: restoring the node, running and judging the new steps.
+            entry.update(end_node=cur.id, failure=failure, reward=reward, success=success,
+                         run_seconds=round(restore_seconds + time.perf_counter() - t_run, 3))
             tree.meta["expansions"].append(entry)
 
     def _attach(self, cur: Node, steps: list[tuple[str, str]], snap: dict, ex: Executor, k: int, tokens: int,

@@ -158,14 +158,15 @@ def _bottle_geometry(p: dict) -> Geometry:
         Prim("neck", "cylinder", (rn, hn / 2), (0, 0, hb + shoulder + hn / 2), rgba=rgba),
         Prim("cap", "cylinder", (rn * 1.1, 0.006), (0, 0, hb + shoulder + hn - 0.006), rgba=p["cap_rgba"]),
     ]
-    return _finish(prims, {"side": (-r, 0, hb / 2), "neck": (-rn, 0, hb + shoulder + hn / 2),
-                           "top": (0, 0, hb + shoulder + hn)})
+    return _finish(prims, {"side": (-r, 0, hb / 2), "side_left": (0, r, hb / 2), "side_right": (0, -r, hb / 2),
+                           "neck": (-rn, 0, hb + shoulder + hn / 2), "top": (0, 0, hb + shoulder + hn)})
 
 
 def _can_geometry(p: dict) -> Geometry:
     r, h = p["radius"], p["height"]
     prims = [Prim("body", "cylinder", (r, h / 2), (0, 0, h / 2), rgba=p["rgba"])]
-    return _finish(prims, {"side": (-r, 0, h / 2), "top": (0, 0, h)})
+    return _finish(prims, {"side": (-r, 0, h / 2), "side_left": (0, r, h / 2), "side_right": (0, -r, h / 2),
+                           "top": (0, 0, h)})
 
 
 def _plate_geometry(p: dict) -> Geometry:
@@ -338,7 +339,8 @@ class BottleFamily(RigidFamily):
     _geometry = staticmethod(_bottle_geometry)
 
     def _semantics(self, geo):
-        return ([("grasp", "side", "x", "y", "z"), ("pinch", "neck", "x", "y", "z")],
+        return ([("grasp", "side", "x", "y", "z"), ("grasp", "side_left", "-y", "x", "z"),
+                 ("grasp", "side_right", "y", "x", "z"), ("pinch", "neck", "x", "y", "z")],
                 [("support", "top", "z")])
 
 
@@ -353,7 +355,9 @@ class CanFamily(RigidFamily):
     _geometry = staticmethod(_can_geometry)
 
     def _semantics(self, geo):
-        return ([("grasp", "side", "x", "y", "z")], [("support", "top", "z")])
+        # Grasps from the robot's side or from either flank (a hand wraps a can best from the side).
+        return ([("grasp", "side", "x", "y", "z"), ("grasp", "side_left", "-y", "x", "z"),
+                 ("grasp", "side_right", "y", "x", "z")], [("support", "top", "z")])
 
 
 class PlateFamily(RigidFamily):

@@ -16,14 +16,14 @@ from humanoidgen.planning.motion import (
     time_dense_path,
     track_poses,
 )
-from humanoidgen.planning.paths import is_valid, time_parametrize
+from humanoidgen.planning.paths import time_parametrize
 from humanoidgen.planning.poses import Pose, screw_interpolate
 from humanoidgen.sim.layout import SIDES, Side
 from humanoidgen.sim.scene import SceneObject
 
 # Grasps and pinches come in straight along the approach axis over the first of these that fits (metres).
 APPROACH_DISTANCES = (0.08, 0.05, 0.03)
-RETREAT_DISTANCE = 0.06  # after letting go, the hand backs out along its approach axis this far
+RETREAT_DISTANCE = 0.10  # after letting go, the hand backs out along its approach axis this far
 
 
 class PlanningError(RuntimeError):
@@ -48,8 +48,9 @@ class ArmMoves:
             return
         self.kin.sync(self.env.data.qpos)
         p, R = self.kin.ee_pose(side)
+        arm = self.kin.arms[side]
         try:
-            path = plan_arm_motion(self.kin, self.collisions, side, self.kin.arm_q(side),
+            path = plan_arm_motion(self.kin, self.collisions, side, np.clip(self.kin.arm_q(side), arm.lo, arm.hi),
                                    (p - RETREAT_DISTANCE * axis, R), allow_sampling=False)
         except MotionError:
             if open_fingers:
@@ -79,10 +80,13 @@ class ArmMoves:
             self._attach_held(side)
 
         def clear(left: np.ndarray, right: np.ndarray) -> bool:
+            # Each arm's own path was checked against the scene when it was planned; here only arm vs arm.
             n = max(len(left), len(right))
             for k in range(0, n, 2):
-                q = np.concatenate([left[min(k, len(left) - 1)], right[min(k, len(right) - 1)]])
-                if not is_valid(self.kin, self.collisions, "all", q, clearance=-0.003):
+                self.kin.set_arm("left", left[min(k, len(left) - 1)])
+                self.kin.set_arm("right", right[min(k, len(right) - 1)])
+                self.kin.forward()
+                if self.collisions.arm_arm_distance() < 0.003:
                     return False
             return True
 
@@ -120,7 +124,9 @@ class ArmMoves:
         self._attach_held(side)
         if held is not None and held.annotations is not None and held.annotations.articulation is not None:
             self.collisions.ignored_bodies.add(self.env.model.body(held.body).id)  # the hand is on the part
-        q0 = self.kin.arm_q(side)
+        # Contact can push a joint a hair past its limit (e.g. the wrist after a pinch); plan from inside them.
+        arm = self.kin.arms[side]
+        q0 = np.clip(self.kin.arm_q(side), arm.lo, arm.hi)
         dt = 1.0 / self.env.control_hz
         try:
             if target.follow is not None:

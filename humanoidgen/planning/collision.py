@@ -119,6 +119,15 @@ class CollisionWorld:
                     best, pair = dd, (movers[i], obstacles[j])
         return best, pair
 
+    def arm_arm_distance(self) -> float:
+        """Smallest distance between anything moving with the left arm and anything moving with the right."""
+        m, d = self.kin.model, self.kin.data
+        left, right = self.movers("left"), self.movers("right")
+        best = FAR
+        for i, j in self._near_pairs(left, right):
+            best = min(best, mujoco.mj_geomDistance(m, d, left[i], right[j], self.influence, self._fromto))
+        return best
+
     def penetrations(self, sides: tuple[Side, ...], clearance: float = 0.0) -> list[tuple[str, float]]:
         """Every (moving body, obstacle body) closer than `clearance`, deepest first: "a and b", distance."""
         m, d = self.kin.model, self.kin.data

@@ -219,7 +219,7 @@ class HumanoidMotionPlanner(ArmMoves):
             self._settle(0.3)
             for side, _ in rigid:
                 self._retreat(side)
-            self._move_fingers(tuple(s for s, _ in rigid), "open", seconds=0.3)
+            self._move_fingers(tuple(s for s, _ in rigid), "open", seconds=0.5)
         if released:
             self._settle(0.2)
             for side, obj in released:
