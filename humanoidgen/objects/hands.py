@@ -39,7 +39,9 @@ def hand_axes(side: Side) -> dict[str, np.ndarray]:
     s = PALM_SIGN[side]
     return {
         f"{side}_grasp_axis": np.array([0.0, s, 0.0]),  # back of the palm -> out of the palm
-        f"{side}_pinch_axis": np.array([0.0, -s, 0.0]),  # thumb tip -> index tip
+        # As in the paper's prompts: pinch axis parallel to [0, 0, -1] means pinching with the palm facing down.
+        f"{side}_pinch_axis": np.array([0.0, s, 0.0]),
+        f"{side}_thumb_2_index": np.array([0.0, -s, 0.0]),  # thumb tip -> index tip when pinching
         f"{side}_ring_2_index": np.array([0.0, 0.0, 1.0]),
         f"{side}_grasp_wrist_2_palm_axis": np.array([1.0, 0.0, 0.0]),
         f"{side}_pinch_wrist_2_palm_axis": np.array([1.0, 0.0, 0.0]),

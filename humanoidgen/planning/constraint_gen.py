@@ -30,7 +30,7 @@ class ConstraintGenerationError(ValueError):
 def hand_axes_local(side: Side) -> dict[str, np.ndarray]:
     """The hand axes in the wrist frame, by role."""
     ax = hand_axes(side)
-    return {"palm": ax[f"{side}_grasp_axis"], "pinch": ax[f"{side}_pinch_axis"],
+    return {"palm": ax[f"{side}_grasp_axis"], "pinch": ax[f"{side}_thumb_2_index"],
             "ring_2_index": ax[f"{side}_ring_2_index"], "fingers": ax[f"{side}_grasp_wrist_2_palm_axis"]}
 
 
@@ -149,7 +149,7 @@ def grasp_or_pinch(env, side: Side, obj_name: str, obj_id: int, operation: str,
         ] for along in options]
     else:
         # Thumb and index squeeze along the attach (or parallel) axis; the index edge leads the approach.
-        pinch = get_axis_in_env(env, f"{side}_pinch_axis")
+        pinch = get_axis_in_env(env, f"{side}_thumb_2_index")
         r2i = get_axis_in_env(env, f"{side}_ring_2_index")
         loc = hand_axes_local(side)
         options = _natural_choices(side, loc["ring_2_index"], approach, loc["pinch"], [attach, parallel], fingers_now)

@@ -1,7 +1,5 @@
 # Reference plan for open_drawer, in the paper's form (its sample plan, unchanged apart from the import line).
 from humanoidgen.motion_planning.h1_2.solution.generated.solver_env import *
-
-
 def step(planner:HumanoidMotionPlanner):
     # Step 1: Left hand grasps the drawer
     planner.hand_pre_grasp("left")
