@@ -18,9 +18,5 @@ _, pose = planner.generate_end_effector_pose(c, hand_name="right")
 planner.move_to_pose_with_screw(pose, "right", attach_obj=True, object_name="cube", object_id=1)
 planner.open_hand("right")
 
-# step: lift the hand clear of the stack, then take it back
-c = planner.generate_constraints(obj_name="cube", obj_id=1, action="move", hand_name="right",
-                                 relative_obj_name="cube", relative_obj_id=1, relative_p=np.array([0, 0, 0.12]))
-_, pose = planner.generate_end_effector_pose(c, hand_name="right")
-planner.move_to_pose_with_screw(pose, "right")
+# step: take the hand back (open_hand has already backed it up and away from the stack)
 planner.move_to_pose_with_screw(planner.right_hand_init_pose, "right")
