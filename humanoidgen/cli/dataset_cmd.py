@@ -53,24 +53,42 @@ def info(path: Path = typer.Argument(..., help="A dataset folder.")) -> None:
 @app.command()
 def export(
     path: Path = typer.Argument(..., help="A dataset folder."),
-    zarr_out: Path = typer.Option(..., "--zarr", help="Write the Diffusion Policy / DP3 zarr layout here."),
-    camera: str = typer.Option("head", help="Camera whose images go to data/img and data/depth."),
+    zarr_out: Path | None = typer.Option(None, "--zarr", help="Write the Diffusion Policy / DP3 zarr layout here."),
+    lerobot_out: Path | None = typer.Option(None, "--lerobot",
+                                            help="Write a LeRobot dataset (format v3.0, parquet + mp4) here."),
+    camera: str = typer.Option("head", help="Camera whose images go to data/img and data/depth (zarr)."),
+    lerobot_cameras: str | None = typer.Option(None, "--lerobot-cameras",
+                                               help="Comma-separated cameras to export as LeRobot videos "
+                                                    "(default: all recorded)."),
 ) -> None:
-    """Export to the zarr layout DP and DP3 train from: data/{state, action, point_cloud, img, depth},
-    meta/episode_ends.
+    """Export to the zarr layout DP and DP3 train from (data/{state, action, point_cloud, img, depth},
+    meta/episode_ends) and/or to a LeRobot dataset that `lerobot`'s LeRobotDataset loads.
 
-    Example: hgen dataset export data/stack --zarr data/stack.zarr
+    Example: hgen dataset export data/stack --zarr data/stack.zarr --lerobot data/stack_lerobot
     """
     from humanoidgen.episodes.dataset import DatasetError, export_zarr
 
+    if zarr_out is None and lerobot_out is None:
+        typer.secho("give --zarr DIR, --lerobot DIR or both", fg=typer.colors.RED, err=True)
+        raise typer.Exit(2)
+    store = _store(path)
     try:
-        shapes = export_zarr(_store(path), zarr_out, image_camera=camera)
+        if zarr_out is not None:
+            shapes = export_zarr(store, zarr_out, image_camera=camera)
+            for name, shape in shapes.items():
+                console.print(f"{name}: {shape}")
+            console.print(f"wrote {zarr_out}")
+        if lerobot_out is not None:
+            from humanoidgen.episodes.lerobot_export import export_lerobot
+
+            cams = [c.strip() for c in lerobot_cameras.split(",") if c.strip()] if lerobot_cameras else None
+            info = export_lerobot(store, lerobot_out, cameras=cams)
+            console.print(f"wrote {lerobot_out} (LeRobot {info['codebase_version']}: {info['total_episodes']} "
+                          f"episodes, {info['total_frames']} frames at {info['fps']} fps; features "
+                          f"{', '.join(k for k in info['features'] if '.' in k or k == 'action')})")
     except DatasetError as exc:
         typer.secho(str(exc), fg=typer.colors.RED, err=True)
         raise typer.Exit(1) from None
-    for name, shape in shapes.items():
-        console.print(f"{name}: {shape}")
-    console.print(f"wrote {zarr_out}")
 
 
 @app.command()
