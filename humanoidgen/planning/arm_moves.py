@@ -178,10 +178,10 @@ class ArmMoves:
         adr = m.jnt_qposadr[jid]
         part_body = m.jnt_bodyid[jid]
         q_now = float(self.env.data.qpos[adr])
-        # Aim a little past the target along the joint: the arm lags a loaded part by about that much.
-        lo, hi = m.jnt_range[jid]
+        # Aim a little past the target along the joint, even past its end stop: the arm lags a loaded part by
+        # about that much, and the stop itself holds the part (forward kinematics ignores joint limits).
         overshoot = 0.01 if m.jnt_type[jid] == mujoco.mjtJoint.mjJNT_SLIDE else 0.05
-        q_end = float(np.clip(f["q_target"] + np.sign(f["q_target"] - q_now) * overshoot, lo, hi))
+        q_end = float(f["q_target"] + np.sign(f["q_target"] - q_now) * overshoot)
         p_hand, R_hand = self.kin.ee_pose(side)
         part_p, part_R = d.xpos[part_body].copy(), d.xmat[part_body].reshape(3, 3).copy()
         rel_p, rel_R = part_R.T @ (p_hand - part_p), part_R.T @ R_hand

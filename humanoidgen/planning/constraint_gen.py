@@ -42,8 +42,8 @@ class Generated:
     approach_axis: np.ndarray | None = None
     approach_object: str | None = None
     follow: dict | None = None
-    # Other ways to take the same grip (the object's symmetric axes, the other sign), most natural first;
-    # the goal solver tries them in turn when the first cannot be reached.
+    # Other ways to take the grip (other annotated points, the object's symmetric axes, the other sign), most
+    # natural first: Generated objects the goal solver tries in turn when the first cannot be reached.
     alternatives: list = field(default_factory=list)
 
 
@@ -98,12 +98,18 @@ def _posture_score(side: Side, palm_world: np.ndarray, fingers_world: np.ndarray
     return float(fingers_world @ np.array([1.0, 0.0, 0.0]) + 0.5 * palm_world @ INWARD[side])
 
 
-def _choose_operation(env, side: Side, obj_name: str, obj_id: int, operation: str,
-                      openness: float | None) -> OperationAnnotation:
-    """Among the object's annotations for this operation, the one the hand can take most naturally."""
+def _rank_operations(env, side: Side, obj_name: str, obj_id: int, operation: str,
+                     openness: float | None, point: str | None = None) -> list[OperationAnnotation]:
+    """The object's annotations for this operation, the ones the hand can take most naturally first."""
     ops = _operations(env, obj_name, obj_id, operation)
+    if point is not None:
+        chosen = [o for o in ops if o.point == point]
+        if not chosen:
+            raise ConstraintGenerationError(f"{obj_name} has no '{operation}' annotation at point {point!r}; "
+                                            f"points: {', '.join(sorted({o.point for o in ops}))}")
+        ops = chosen
     if len(ops) == 1:
-        return ops[0]
+        return ops
     loc = hand_axes_local(side)
     first_local = loc["palm"] if operation == "grasp" else loc["ring_2_index"]
     second_local = loc["ring_2_index"] if operation == "grasp" else loc["pinch"]
@@ -119,13 +125,22 @@ def _choose_operation(env, side: Side, obj_name: str, obj_id: int, operation: st
                     best = max(best, _posture_score(side, R @ loc["palm"], R @ loc["fingers"]))
         return best
 
-    return max(ops, key=score)
+    return sorted(ops, key=score, reverse=True)
 
 
 def grasp_or_pinch(env, side: Side, obj_name: str, obj_id: int, operation: str,
-                   openness: float | None) -> Generated:
+                   openness: float | None, point: str | None = None) -> Generated:
+    """Every way to take the grip, most natural first: the first, with the others as its alternatives."""
+    ways = [g for op in _rank_operations(env, side, obj_name, obj_id, operation, openness, point)
+            for g in _grip_variants(env, side, obj_name, obj_id, operation, op, openness)]
+    first = ways[0]
+    first.alternatives = ways[1:]
+    return first
+
+
+def _grip_variants(env, side: Side, obj_name: str, obj_id: int, operation: str, op: OperationAnnotation,
+                   openness: float | None) -> list[Generated]:
     frame = HAND_BASE_FRAME[side]
-    op = _choose_operation(env, side, obj_name, obj_id, operation, openness)
     kind = "grasp" if operation == "grasp" else "pinch"
     hand_point = get_point_in_env(env, f"{kind}_point_base_{side}_hand")
     target = get_point_in_env(env, op.point, obj_name, obj_id, openness=openness)
@@ -161,14 +176,18 @@ def grasp_or_pinch(env, side: Side, obj_name: str, obj_id: int, operation: str,
             fingers_forward,
         ] for squeeze in options]
     body = env.scene.object(obj_name, obj_id).body
-    gen = Generated(variants[0], approach_axis=approach, approach_object=body, alternatives=variants[1:])
     ann = env.scene.object(obj_name, obj_id).annotations
-    if openness is not None and ann.articulation is not None:
-        art = ann.articulation
-        gen.follow = {"body": body, "joint": f"{body}_{art.joint}", "q_target": art.closed + openness * (art.open - art.closed),
-                      "part_point": op.point, "obj": (obj_name, obj_id)}
-        gen.approach_axis = None  # the hand is already on the part: no approach
-    return gen
+    out = []
+    for cons in variants:
+        gen = Generated(cons, approach_axis=approach, approach_object=body)
+        if openness is not None and ann.articulation is not None:
+            art = ann.articulation
+            gen.follow = {"body": body, "joint": f"{body}_{art.joint}",
+                          "q_target": art.closed + openness * (art.open - art.closed),
+                          "part_point": op.point, "obj": (obj_name, obj_id)}
+            gen.approach_axis = None  # the hand is already on the part: no approach
+        out.append(gen)
+    return out
 
 
 def keep_orientation(env, side: Side, held: tuple[str, int] | None = None) -> list[Constraint]:
@@ -189,13 +208,13 @@ def keep_orientation(env, side: Side, held: tuple[str, int] | None = None) -> li
 
 def generate(env, holding: dict, obj_name: str, obj_id: int, action: str, side: Side, openness: float | None = None,
              relative_obj_name: str | None = None, relative_obj_id: int | None = None,
-             relative_p: np.ndarray | None = None) -> Generated:
+             relative_p: np.ndarray | None = None, point: str | None = None) -> Generated:
     if action not in ACTIONS:
         raise ConstraintGenerationError(f"unknown action {action!r}; use one of {', '.join(ACTIONS)}")
     frame = HAND_BASE_FRAME[side]
     env.scene.object(obj_name, obj_id)  # a clear error for an unknown object
     if action in ("grasp", "pinch"):
-        return grasp_or_pinch(env, side, obj_name, obj_id, action, openness)
+        return grasp_or_pinch(env, side, obj_name, obj_id, action, openness, point)
     held = holding.get(side)
     held_here = held is not None and (held.type_name, held.obj_id) == (obj_name, obj_id)
     if action == "target":

@@ -29,7 +29,7 @@ V_MAX = 1.5
 A_MAX = 4.0
 # Largest joint step between collision-checked states along a segment (rad): ~1 cm at the fingertips.
 DEFAULT_RESOLUTION = 0.02
-LIMIT_TOL = 1e-9  # joint values this far outside the limits still count as inside (float round-off)
+LIMIT_TOL = 5e-3  # joint values this far outside the limits still count as inside (a loaded arm settles a hair past them)
 
 
 # -- joint space --------------------------------------------------------------------------------------------

@@ -250,14 +250,18 @@ class HumanoidMotionPlanner(ArmMoves):
     @_logged
     def generate_constraints(self, obj_name: str, obj_id: int, action: str, hand_name: str,
                              openness: float | None = None, relative_obj_name: str | None = None,
-                             relative_obj_id: int | None = None, relative_p: np.ndarray | None = None) -> list:
-        """Constraints for an action on an object, from its annotations (see `constraint_gen`)."""
+                             relative_obj_id: int | None = None, relative_p: np.ndarray | None = None,
+                             point: str | None = None) -> list:
+        """Constraints for an action on an object, from its annotations (see `constraint_gen`).
+
+        `point` picks one annotated point of a grasp/pinch (e.g. "rim"); by default the hand takes the most
+        natural of the object's annotations and falls back to the others when that one cannot be reached."""
         (side,) = _sides(hand_name) if hand_name != "all" else (None,)
         if side is None:
             raise PlanningError("generate_constraints", "hand_name must be 'left' or 'right'")
         self.kin.sync(self.env.data.qpos)
         gen = constraint_gen.generate(self.env, self.holding, obj_name, obj_id, action, side, openness,
-                                      relative_obj_name, relative_obj_id, relative_p)
+                                      relative_obj_name, relative_obj_id, relative_p, point)
         cons = list(gen.constraints)
         for c in cons:
             c.meta = gen  # the move needs the approach axis and the part to follow
@@ -282,9 +286,12 @@ class HumanoidMotionPlanner(ArmMoves):
         try:
             result = self.solver.solve(side, list(constraints), self.kin.arm_q(side), self.nominal[side])
             for alternative in (gen.alternatives if gen is not None and not result.success else []):
-                retry = self.solver.solve(side, list(alternative), self.kin.arm_q(side), self.nominal[side])
+                self.collisions.ignored_bodies = set(ignored_before) | ({self.env.model.body(
+                    alternative.approach_object).id} if alternative.approach_object else set())
+                retry = self.solver.solve(side, list(alternative.constraints), self.kin.arm_q(side),
+                                          self.nominal[side])
                 if retry.success:
-                    result = retry
+                    result, gen = retry, alternative
                     break
         finally:
             self.collisions.ignored_bodies = ignored_before

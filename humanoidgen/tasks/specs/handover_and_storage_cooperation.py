@@ -1,0 +1,63 @@
+# Reference plan for handover_and_storage_cooperation (for now the same sequence as handover_and_storage;
+# the two hands do not yet move at once): the left hand opens the drawer; the right hand picks the block and stands it
+# on the table in the middle (the hand-over); the left hand takes it, drops it in the drawer and pushes the drawer shut with its fingertip.
+# step: left hand grasps the drawer handle and pulls the drawer fully open, then lets go
+planner.hand_pre_grasp("left")
+c = planner.generate_constraints(obj_name="drawer", obj_id=0, action="grasp", hand_name="left")
+_, pose = planner.generate_end_effector_pose(c, hand_name="left")
+planner.move_to_pose_with_screw(pose, "left", attach_obj=False)
+planner.hand_grasp("left", grasp_object="drawer", obj_id=0)
+c = planner.generate_constraints(obj_name="drawer", obj_id=0, action="grasp", hand_name="left", openness=1)
+_, pose = planner.generate_end_effector_pose(c, hand_name="left")
+planner.move_to_pose_with_screw(pose, "left", attach_obj=True, object_name="drawer", object_id=0)
+planner.open_hand("left")  # the open drawer now stands where the hand rests, so it stays out here
+
+# step: right hand pinches the block and lifts it
+planner.hand_pre_pinch("right")
+c = planner.generate_constraints(obj_name="cube", obj_id=0, action="pinch", hand_name="right")
+_, pose = planner.generate_end_effector_pose(c, hand_name="right")
+planner.move_to_pose_with_screw(pose, "right", attach_obj=False)
+planner.hand_pinch("right", pinch_object="cube", obj_id=0)
+c = planner.generate_constraints(obj_name="cube", obj_id=0, action="target", hand_name="right")
+_, pose = planner.generate_end_effector_pose(c, hand_name="right")
+planner.move_to_pose_with_screw(pose, "right", attach_obj=True, object_name="cube", object_id=0)
+
+# step: right hand hands the block over by standing it on the table in the middle, in the left hand's reach
+handover = np.array([-0.36, 0.0, 0.045]) - get_point_in_env(planner.env, "center", "cube", 0)
+c = planner.generate_constraints(obj_name="cube", obj_id=0, action="move", hand_name="right",
+                                 relative_obj_name="cube", relative_obj_id=0, relative_p=handover)
+_, pose = planner.generate_end_effector_pose(c, hand_name="right")
+planner.move_to_pose_with_screw(pose, "right", attach_obj=True, object_name="cube", object_id=0)
+planner.open_hand("right")
+planner.move_to_pose_with_screw(planner.right_hand_init_pose, "right")
+
+# step: left hand pinches the block and lifts it
+planner.hand_pre_pinch("left")
+c = planner.generate_constraints(obj_name="cube", obj_id=0, action="pinch", hand_name="left")
+_, pose = planner.generate_end_effector_pose(c, hand_name="left")
+planner.move_to_pose_with_screw(pose, "left", attach_obj=False)
+planner.hand_pinch("left", pinch_object="cube", obj_id=0)
+c = planner.generate_constraints(obj_name="cube", obj_id=0, action="target", hand_name="left")
+_, pose = planner.generate_end_effector_pose(c, hand_name="left")
+planner.move_to_pose_with_screw(pose, "left", attach_obj=True, object_name="cube", object_id=0)
+
+# step: left hand carries the block above the open drawer and drops it in
+above = get_point_in_env(planner.env, "storage", "drawer", 0) - get_point_in_env(planner.env, "center", "drawer", 0) + np.array([0, 0, 0.10])
+c = planner.generate_constraints(obj_name="cube", obj_id=0, action="move", hand_name="left",
+                                 relative_obj_name="drawer", relative_obj_id=0, relative_p=above)
+_, pose = planner.generate_end_effector_pose(c, hand_name="left")
+planner.move_to_pose_with_screw(pose, "left", attach_obj=True, object_name="cube", object_id=0)
+planner.open_hand("left")
+
+# step: left fingertip pushes the drawer shut by its front, then the hand goes back
+planner.hand_pre_grasp("left")
+planner.ignore_collision("drawer", 0)
+c = planner.generate_constraints(obj_name="drawer", obj_id=0, action="target1", hand_name="left")
+_, pose = planner.generate_end_effector_pose(c, hand_name="left")
+planner.move_to_pose_with_screw(pose, "left")
+planner.hand_press("left")
+c = planner.generate_constraints(obj_name="drawer", obj_id=0, action="target1", hand_name="left", openness=0)
+_, pose = planner.generate_end_effector_pose(c, hand_name="left")
+planner.move_to_pose_with_screw(pose, "left")
+planner.restore_collision("drawer", 0)
+planner.move_to_pose_with_screw(planner.left_hand_init_pose, "left")
