@@ -126,6 +126,11 @@ def _need(name: str, known: set[str], what: str) -> None:
         raise ValueError(f"{what} {name!r} is not defined (known: {sorted(known)})")
 
 
+def validation_details(exc: ValidationError) -> str:
+    """pydantic's errors as one line: `field.path: message; ...` (shared by every file loader)."""
+    return "; ".join(f"{'.'.join(str(x) for x in err['loc']) or '<root>'}: {err['msg']}" for err in exc.errors())
+
+
 def load_annotations(path: Path) -> ObjectAnnotations:
     """Read and validate an annotation file (YAML or JSON); errors name the file and the offending field."""
     path = Path(path)
@@ -136,10 +141,7 @@ def load_annotations(path: Path) -> ObjectAnnotations:
     try:
         return ObjectAnnotations.model_validate(raw)
     except ValidationError as exc:
-        details = "; ".join(
-            f"{'.'.join(str(x) for x in err['loc']) or '<root>'}: {err['msg']}" for err in exc.errors()
-        )
-        raise AnnotationError(f"{path}: {details}") from None
+        raise AnnotationError(f"{path}: {validation_details(exc)}") from None
 
 
 def save_annotations(ann: ObjectAnnotations, path: Path) -> None:

@@ -8,6 +8,8 @@ from pathlib import Path
 import yaml
 from pydantic import ValidationError
 
+from humanoidgen.objects.schema import validation_details
+
 from humanoidgen.tasks.spec import TaskSpec
 
 SPECS_DIR = Path(__file__).parent / "specs"
@@ -26,10 +28,7 @@ def parse_task(raw: object, source: str = "<task>") -> TaskSpec:
     try:
         return TaskSpec.model_validate(raw)
     except ValidationError as exc:
-        details = "; ".join(
-            f"{'.'.join(str(x) for x in err['loc']) or '<root>'}: {err['msg']}" for err in exc.errors()
-        )
-        raise TaskSpecError(f"{source}: {details}") from None
+        raise TaskSpecError(f"{source}: {validation_details(exc)}") from None
 
 
 def load_task_file(path: Path) -> TaskSpec:
