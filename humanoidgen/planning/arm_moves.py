@@ -8,6 +8,7 @@ import time
 import mujoco
 import numpy as np
 
+from humanoidgen.objects.hands import HAND_POSTURES
 from humanoidgen.planning.motion import (
     JointPath,
     MotionError,
@@ -18,6 +19,7 @@ from humanoidgen.planning.motion import (
 )
 from humanoidgen.planning.paths import time_parametrize
 from humanoidgen.planning.poses import Pose, screw_interpolate
+from humanoidgen.sim.action import ARM_SLICE, HAND_SLICE
 from humanoidgen.sim.layout import SIDES, Side
 from humanoidgen.sim.scene import SceneObject
 
@@ -60,9 +62,6 @@ class ArmMoves:
             self.kin.sync(self.env.data.qpos)
         samples = time_dense_path(path.waypoints, 1.0 / self.env.control_hz, v_max=0.3)
         if open_fingers:
-            from humanoidgen.objects.hands import HAND_POSTURES
-            from humanoidgen.sim.action import ARM_SLICE, HAND_SLICE
-
             start, goal = self.action[HAND_SLICE[side]].copy(), np.array(HAND_POSTURES["open"])
             for k, q in enumerate(samples, 1):
                 self.action[ARM_SLICE[side]] = q
