@@ -6,6 +6,7 @@ saying so and exits with code 3 (1 for other errors: unreachable endpoint, rejec
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 from pathlib import Path
@@ -62,6 +63,18 @@ def _llm_errors():
     from humanoidgen.llm import LLMError, LLMNotConfigured
 
     return LLMError, LLMNotConfigured
+
+
+@contextlib.contextmanager
+def _reported_errors():
+    """The user's errors as one red line and an exit code: 3 when no endpoint is configured, else 1."""
+    LLMError, NotConfigured = _llm_errors()
+    try:
+        yield
+    except NotConfigured as exc:
+        _fail(str(exc), EXIT_NOT_CONFIGURED)
+    except (LLMError, KeyError, FileNotFoundError, ValueError) as exc:
+        _fail(str(exc).strip("'\""))
 
 
 @app.command()
@@ -122,19 +135,12 @@ def script(
     from humanoidgen.generation.script_gen import generate_script
 
     client = _client(base_url, model, cache_dir, record, replay, retries)
-    LLMError, NotConfigured = _llm_errors()
     if mcts is not None:
         _script_mcts(task, client, mcts, workers, seed, step_timeout, out, log)
         return
-    try:
+    with _reported_errors():
         result = generate_script(task, client, attempts=attempts, seed=seed, step_timeout_s=step_timeout,
                                  out=out, log_path=log)
-    except NotConfigured as exc:
-        _fail(str(exc), EXIT_NOT_CONFIGURED)
-        return
-    except (LLMError, KeyError, FileNotFoundError, ValueError) as exc:
-        _fail(str(exc).strip("'\""))
-        return
     for a in result.attempts:
         verdict = "success" if a.success else a.failure.splitlines()[0] if a.failure else "failed"
         typer.echo(f"attempt {a.attempt}: {len(a.steps)} step(s) run, {a.tokens.get('total')} tokens: {verdict}")
@@ -147,16 +153,9 @@ def _script_mcts(task: str, client, expansions: int, workers: int, seed: int | N
                  out: Path, log: Path | None) -> None:
     from humanoidgen.mcts import search_plan
 
-    LLMError, NotConfigured = _llm_errors()
-    try:
+    with _reported_errors():
         result = search_plan(task, client, expansions=expansions, workers=workers, seed=seed, out=out,
                              log_path=log, step_timeout_s=step_timeout)
-    except NotConfigured as exc:
-        _fail(str(exc), EXIT_NOT_CONFIGURED)
-        return
-    except (LLMError, KeyError, FileNotFoundError, ValueError) as exc:
-        _fail(str(exc).strip("'\""))
-        return
     for e in result.log:
         verdict = "success" if e.get("success") else (e.get("failure") or {}).get("error", "no success yet")
         typer.echo(f"expansion {e['id'] + 1} at node {e['node']}: {len(e['new_nodes'])} new node(s), reward "
@@ -191,18 +190,11 @@ def eval_(
 
     names = [t.strip() for t in tasks.split(",") if t.strip()]
     client = _client(base_url, model, cache_dir, record, replay, retries)
-    LLMError, NotConfigured = _llm_errors()
     if mcts is not None:
         _eval_mcts(names, trials, client, mcts, workers, step_timeout, json_out)
         return
-    try:
+    with _reported_errors():
         rows = evaluate(names, trials, client, attempts=attempts, step_timeout_s=step_timeout)
-    except NotConfigured as exc:
-        _fail(str(exc), EXIT_NOT_CONFIGURED)
-        return
-    except (LLMError, KeyError, FileNotFoundError, ValueError) as exc:
-        _fail(str(exc).strip("'\""))
-        return
     table = Table("task", "success rate", "mean tokens", "tokens per success", "mean attempts")
     for r in rows:
         table.add_row(r.task, f"{r.successes}/{r.trials} ({100 * r.success_rate:.0f}%)", f"{r.mean_tokens:.0f}",
@@ -219,16 +211,9 @@ def _eval_mcts(names: list[str], trials: int, client, expansions: int, workers: 
 
     from humanoidgen.mcts import evaluate_mcts
 
-    LLMError, NotConfigured = _llm_errors()
-    try:
+    with _reported_errors():
         rows = evaluate_mcts(names, trials, client, expansions=expansions, workers=workers,
                              step_timeout_s=step_timeout)
-    except NotConfigured as exc:
-        _fail(str(exc), EXIT_NOT_CONFIGURED)
-        return
-    except (LLMError, KeyError, FileNotFoundError, ValueError) as exc:
-        _fail(str(exc).strip("'\""))
-        return
     table = Table("task", "success rate", "tokens per run", "tokens per success", "distinct plans", "verified")
     for r in rows:
         table.add_row(r.task, f"{r.successes}/{r.trials} ({100 * r.success_rate:.0f}%)", f"{r.tokens_per_run:.0f}",
