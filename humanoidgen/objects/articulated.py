@@ -463,9 +463,7 @@ def set_openness(model: mujoco.MjModel, data: mujoco.MjData, body_name: str, ann
                  openness: float) -> None:
     """Put the articulation joint at `openness` (clipped to [0, 1]) with zero velocity, then mj_forward."""
     j = openness_joint(model, body_name, ann)
-    a = ann.articulation
-    o = float(np.clip(openness, 0.0, 1.0))
-    data.qpos[model.jnt_qposadr[j]] = a.closed + o * (a.open - a.closed)
+    data.qpos[model.jnt_qposadr[j]] = ann.articulation.joint_position(float(np.clip(openness, 0.0, 1.0)))
     data.qvel[model.jnt_dofadr[j]] = 0.0
     mujoco.mj_forward(model, data)
 
@@ -473,6 +471,4 @@ def set_openness(model: mujoco.MjModel, data: mujoco.MjData, body_name: str, ann
 def get_openness(model: mujoco.MjModel, data: mujoco.MjData, body_name: str, ann: ObjectAnnotations) -> float:
     """The articulation joint's position as openness (0 closed, 1 open), clipped to [0, 1]."""
     j = openness_joint(model, body_name, ann)
-    a = ann.articulation
-    q = float(data.qpos[model.jnt_qposadr[j]])
-    return float(np.clip((q - a.closed) / (a.open - a.closed), 0.0, 1.0))
+    return ann.articulation.openness_of(float(data.qpos[model.jnt_qposadr[j]]))

@@ -8,6 +8,7 @@ import json
 import mujoco
 import numpy as np
 
+from humanoidgen.objects.articulated import get_openness
 from humanoidgen.sim.scene import SceneObject
 
 
@@ -16,9 +17,7 @@ def openness(model: mujoco.MjModel, data: mujoco.MjData, obj: SceneObject) -> fl
     ann = obj.annotations
     if ann is None or ann.articulation is None:
         return None
-    art = ann.articulation
-    q = data.qpos[model.jnt_qposadr[model.joint(f"{obj.body}_{art.joint}").id]]
-    return float(np.clip((q - art.closed) / (art.open - art.closed), 0.0, 1.0))
+    return get_openness(model, data, obj.body, ann)
 
 
 def _r(x: np.ndarray, nd: int = 3) -> list[float]:

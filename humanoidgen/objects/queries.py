@@ -35,7 +35,7 @@ def _data_at_openness(env, obj: SceneObject, openness: float | None) -> mujoco.M
     d.qpos[:], d.qvel[:] = env.data.qpos, 0.0
     art = ann.articulation
     joint = env.model.joint(f"{obj.body}_{art.joint}")
-    d.qpos[env.model.jnt_qposadr[joint.id]] = art.closed + openness * (art.open - art.closed)
+    d.qpos[env.model.jnt_qposadr[joint.id]] = art.joint_position(openness)
     mujoco.mj_kinematics(env.model, d)
     return d
 

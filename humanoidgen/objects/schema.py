@@ -73,6 +73,14 @@ class Articulation(_Strict):
     closed: float
     open: float
 
+    def joint_position(self, openness: float) -> float:
+        """Joint position for an openness (0 closed, 1 open; values outside extrapolate)."""
+        return self.closed + openness * (self.open - self.closed)
+
+    def openness_of(self, q: float) -> float:
+        """Openness of a joint position, clipped to [0, 1]."""
+        return float(min(max((q - self.closed) / (self.open - self.closed), 0.0), 1.0))
+
 
 class ObjectAnnotations(_Strict):
     family: str

@@ -4,10 +4,10 @@ openness values; hands show their grasp, pinch and press annotations."""
 
 from __future__ import annotations
 
-import mujoco
 import numpy as np
 from PIL import Image, ImageDraw
 
+from humanoidgen.objects.articulated import set_openness
 from humanoidgen.objects.hands import hand_axes, hand_points
 from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env
 from humanoidgen.sim.cameras import CameraRig
@@ -93,7 +93,7 @@ def show_object(type_name: str, type_id: int = 0, width: int = 640, height: int 
     with rig:
         for o in openings:
             if o is not None:
-                _set_openness(env, obj, o)
+                set_openness(env.model, env.data, obj.body, obj.annotations, o)
             frame = rig.render(env.data, INSPECT_CAM, depth=False, segmentation=False)
             img = _draw(Image.fromarray(frame.rgb), _object_items(env, type_name, o), frame, width, height,
                         axis_len=0.4 * max(size, 0.08))
@@ -104,13 +104,6 @@ def show_object(type_name: str, type_id: int = 0, width: int = 640, height: int 
     for i, p in enumerate(panels):
         out.paste(p, (i * width, 0))
     return out
-
-
-def _set_openness(env: HumanoidEnv, obj, openness: float) -> None:
-    art = obj.annotations.articulation
-    jid = env.model.joint(f"{obj.body}_{art.joint}").id
-    env.data.qpos[env.model.jnt_qposadr[jid]] = art.closed + openness * (art.open - art.closed)
-    mujoco.mj_forward(env.model, env.data)
 
 
 def show_hand(side: Side, width: int = 640, height: int = 480) -> Image.Image:

@@ -183,7 +183,7 @@ def _grip_variants(env, side: Side, obj_name: str, obj_id: int, operation: str, 
         if openness is not None and ann.articulation is not None:
             art = ann.articulation
             gen.follow = {"body": body, "joint": f"{body}_{art.joint}",
-                          "q_target": art.closed + openness * (art.open - art.closed),
+                          "q_target": art.joint_position(openness),
                           "part_point": op.point, "obj": (obj_name, obj_id)}
             gen.approach_axis = None  # the hand is already on the part: no approach
         out.append(gen)
