@@ -17,6 +17,7 @@ from dataclasses import dataclass, replace
 import mujoco
 import numpy as np
 
+from humanoidgen.sim.geometry import quat_to_mat
 from humanoidgen.objects.family import ObjectFamily, ObjectModel
 from humanoidgen.objects.schema import (
     FunctionAnnotation,
@@ -78,12 +79,6 @@ class Prim:
 
     def shifted(self, d: np.ndarray) -> "Prim":
         return replace(self, pos=tuple(float(v) for v in np.asarray(self.pos) + d))
-
-
-def quat_to_mat(q) -> np.ndarray:
-    m = np.zeros(9)
-    mujoco.mju_quat2Mat(m, np.asarray(q, float))
-    return m.reshape(3, 3)
 
 
 def _quat_zy(theta: float, tilt: float = 0.0) -> tuple[float, float, float, float]:
