@@ -159,6 +159,4 @@ class CollisionWorld:
 
     def describe_pair(self, pair: tuple[int, int]) -> str:
         m = self.kin.model
-        names = [m.body(int(m.body_rootid[m.geom_bodyid[g]])).name if m.body_rootid[m.geom_bodyid[g]] != m.body("pelvis").id
-                 else m.body(m.geom_bodyid[g]).name for g in pair]
-        return f"{names[0]} and {names[1]}"
+        return " and ".join(m.body(self._owner(g)).name for g in pair)
