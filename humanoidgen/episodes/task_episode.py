@@ -11,9 +11,6 @@ from humanoidgen.episodes.runner import EpisodeResult, run_plan
 from humanoidgen.planning.planner import HumanoidMotionPlanner
 from humanoidgen.sim.env import HumanoidEnv
 
-SPECS_DIR = Path(__file__).resolve().parents[1] / "tasks" / "specs"
-
-
 @dataclass
 class EpisodeRequest:
     """Everything a worker process needs to run one attempt (picklable)."""
@@ -36,8 +33,11 @@ def plan_for(task: str, spec, plan_path: str | None) -> Plan:
         return load_plan(Path(plan_path))
     if spec.plan is None:
         raise FileNotFoundError(f"task {spec.name} has no reference plan; give one with --script")
-    base = Path(task).parent if Path(task).suffix in (".yaml", ".yml") else SPECS_DIR
-    return load_plan(base / spec.plan)
+    if Path(task).suffix in (".yaml", ".yml"):  # a user's task file: its plan sits beside it
+        return load_plan(Path(task).parent / spec.plan)
+    from humanoidgen.tasks.registry import plan_path as builtin_plan
+
+    return load_plan(builtin_plan(spec))
 
 
 def judge(spec, env: HumanoidEnv) -> list[dict]:
