@@ -223,3 +223,15 @@ def test_snapshot_restores_the_episode_exactly(two_cubes):
     _, pose = planner.generate_end_effector_pose(planner.generate_constraints("cube", 0, "target", "right"), "right")
     planner.move_to_pose_with_screw(pose, "right", attach_obj=True, object_name="cube", object_id=0)
     assert env.object_pose("cube_0")[0][2] > 0.1
+
+
+def test_grip_alternatives_and_choosing_an_annotated_point(two_cubes):
+    env = HumanoidEnv(two_cubes)
+    planner = HumanoidMotionPlanner(env)
+    c = planner.generate_constraints("cube", 0, "grasp", "right")
+    # The most natural grip comes first; the other ways to take it wait as alternatives.
+    assert c[0].meta.alternatives and all(alt.constraints for alt in c[0].meta.alternatives)
+    c = planner.generate_constraints("cube", 0, "pinch", "right", point="pinch")
+    assert "pinch" in c[0].name
+    with pytest.raises(PlanningError, match="no 'pinch' annotation at point 'rim'; points: pinch"):
+        planner.generate_constraints("cube", 0, "pinch", "right", point="rim")
