@@ -18,6 +18,9 @@ HAND_POSTURES: dict[str, tuple[float, ...]] = {
     "grasp": (1.3, 0.35, 1.3, 1.3, 1.3, 1.3),
     "pre_pinch": (1.3, 0.0, 0.0, 1.4, 1.4, 1.4),  # thumb and index opposed, other fingers tucked away
     "pinch": (1.3, 0.5, 0.9, 1.4, 1.4, 1.4),  # closes until the tips meet the object (tests/test_pinch_hold.py)
+    # Around a round body: thumb, index and middle squeeze; ring and pinky only rest on it. With all four fingers
+    # pushing, the squeeze sits below the thumb and tips a standing bottle over by about 30 degrees.
+    "wrap": (1.3, 0.35, 1.3, 1.3, 0.6, 0.6),
     "press": (0.6, 0.5, 0.0, 1.6, 1.6, 1.6),  # index extended, the rest curled
 }
 
@@ -33,6 +36,18 @@ def hand_points(side: Side) -> dict[str, np.ndarray]:
         f"press_point_base_{side}_hand": np.array([0.265, 0.0, 0.032]),
         f"palm_center_{side}_hand": np.array([0.125, s * 0.03, 0.0]),
     }
+
+
+# A wrapped round body lies against the finger pads just beyond the opposed thumb, whose tip reaches about
+# x = 0.17 in the wrist frame and 10 cm out of the palm in the pre-grasp posture (measured in simulation).
+WRAP_NEAR_EDGE_X = 0.178
+WRAP_PAD_OFFSET = 0.014  # the body's surface this far out of the palm plane
+WRAP_HEIGHT = 0.005  # towards the index: between the thumb and the middle of the fingers
+
+
+def wrap_point(side: Side, width: float) -> np.ndarray:
+    """Where on the hand (wrist frame) the near surface point of a wrapped round body of this diameter goes."""
+    return np.array([WRAP_NEAR_EDGE_X + width / 2, PALM_SIGN[side] * WRAP_PAD_OFFSET, WRAP_HEIGHT])
 
 
 def hand_axes(side: Side) -> dict[str, np.ndarray]:

@@ -45,6 +45,12 @@ def _object(env, type_name: str, obj_id: int) -> tuple[SceneObject, ObjectAnnota
     return obj, obj.annotations
 
 
+def wrist_point_in_env(env, side: str, local: np.ndarray) -> np.ndarray:
+    """World position of a point given in a hand's wrist frame, at the hand's pose now."""
+    pos, R = _frame(env.model, env.data, WRIST_BODY[side])
+    return pos + R @ np.asarray(local, float)
+
+
 def get_point_in_env(env, point_name: str = "center", type_name: str | None = None, obj_id: int = 0,
                      related_point: np.ndarray | None = None, openness: float | None = None) -> np.ndarray:
     """World position of a key point.

@@ -278,7 +278,7 @@ class RigidFamily:
             bbox_min=tuple(float(v) for v in geo.bmin), bbox_max=tuple(float(v) for v in geo.bmax),
             points=points, axes=axes,
             operations=[OperationAnnotation(operation=o[0], point=o[1], approach_axis=o[2], attach_axis=o[3],
-                                            parallel_axis=o[4]) for o in ops],
+                                            parallel_axis=o[4], width=o[5] if len(o) > 5 else None) for o in ops],
             functions=[FunctionAnnotation(function=f[0], point=f[1], axis=f[2]) for f in fns],
         )
 
@@ -295,11 +295,16 @@ class RigidFamily:
         raise NotImplementedError
 
     def _semantics(self, geo: Geometry) -> tuple[list[tuple], list[tuple]]:
-        """(operations as (op, point, approach, attach, parallel), functions as (function, point, axis))."""
+        """(operations as (op, point, approach, attach, parallel[, width]), functions as (function, point, axis))."""
         raise NotImplementedError
 
     def _extra_axes(self, geo: Geometry) -> dict[str, Vec3]:
         return {}
+
+
+def _diameter(geo: Geometry) -> float:
+    """A round body's diameter at its side grasp point (the point sits on the surface, on the body's -x)."""
+    return round(-2.0 * float(geo.points["side"][0]), 4)
 
 
 class CubeFamily(RigidFamily):
@@ -334,8 +339,9 @@ class BottleFamily(RigidFamily):
     _geometry = staticmethod(_bottle_geometry)
 
     def _semantics(self, geo):
-        return ([("grasp", "side", "x", "y", "z"), ("grasp", "side_left", "-y", "x", "z"),
-                 ("grasp", "side_right", "y", "x", "z"), ("pinch", "neck", "x", "y", "z")],
+        w = _diameter(geo)
+        return ([("grasp", "side", "x", "y", "z", w), ("grasp", "side_left", "-y", "x", "z", w),
+                 ("grasp", "side_right", "y", "x", "z", w), ("pinch", "neck", "x", "y", "z")],
                 [("support", "top", "z")])
 
 
@@ -351,8 +357,9 @@ class CanFamily(RigidFamily):
 
     def _semantics(self, geo):
         # Grasps from the robot's side or from either flank (a hand wraps a can best from the side).
-        return ([("grasp", "side", "x", "y", "z"), ("grasp", "side_left", "-y", "x", "z"),
-                 ("grasp", "side_right", "y", "x", "z")], [("support", "top", "z")])
+        w = _diameter(geo)
+        return ([("grasp", "side", "x", "y", "z", w), ("grasp", "side_left", "-y", "x", "z", w),
+                 ("grasp", "side_right", "y", "x", "z", w)], [("support", "top", "z")])
 
 
 class PlateFamily(RigidFamily):
@@ -391,7 +398,7 @@ class CupFamily(RigidFamily):
         return _cup_like(p, ("left",))
 
     def _semantics(self, geo):
-        return ([("grasp", "side", "x", "y", "z"), ("pinch", "handle_left", "x", "y", "z"),
+        return ([("grasp", "side", "x", "y", "z", _diameter(geo)), ("pinch", "handle_left", "x", "y", "z"),
                  ("pinch", "rim", "down", "x", "y")],
                 [("pour", "lip", "pour_axis"), ("storage", "storage", "opening")])
 

@@ -56,6 +56,9 @@ class OperationAnnotation(_Strict):
     approach_axis: str  # the direction the hand approaches from (pointing from the hand toward the object)
     attach_axis: str  # the direction the fingers close along
     parallel_axis: str  # perpendicular to both, in the palm plane: the part's rotation axis, if any
+    # For a grasp around a round body (bottle, can, cup): its diameter at the point (m). The hand then wraps it
+    # against the finger pads, clear of the opposed thumb, instead of closing on it at the palm's grasp point.
+    width: float | None = Field(default=None, gt=0.0, le=0.12)
 
 
 class FunctionAnnotation(_Strict):

@@ -13,8 +13,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from humanoidgen.objects.hands import hand_axes
-from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env
+from humanoidgen.objects.hands import hand_axes, wrap_point
+from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env, wrist_point_in_env
 from humanoidgen.objects.schema import OperationAnnotation
 from humanoidgen.planning.constraints import Const, Constraint
 from humanoidgen.sim.layout import HAND_BASE_FRAME, Side
@@ -42,6 +42,7 @@ class Generated:
     approach_axis: np.ndarray | None = None
     approach_object: str | None = None
     follow: dict | None = None
+    posture: str | None = None  # the finger posture the grip closes with (None: the operation's default)
     # Other ways to take the grip (other annotated points, the object's symmetric axes, the other sign), most
     # natural first: Generated objects the goal solver tries in turn when the first cannot be reached.
     alternatives: list = field(default_factory=list)
@@ -143,6 +144,9 @@ def _grip_variants(env, side: Side, obj_name: str, obj_id: int, operation: str, 
     frame = HAND_BASE_FRAME[side]
     kind = "grasp" if operation == "grasp" else "pinch"
     hand_point = get_point_in_env(env, f"{kind}_point_base_{side}_hand")
+    wrap = kind == "grasp" and op.width is not None
+    if wrap:  # a round body goes against the finger pads, past the thumb (hands.wrap_point)
+        hand_point = wrist_point_in_env(env, side, wrap_point(side, op.width))
     target = get_point_in_env(env, op.point, obj_name, obj_id, openness=openness)
 
     def axis(name: str) -> np.ndarray:
@@ -179,7 +183,7 @@ def _grip_variants(env, side: Side, obj_name: str, obj_id: int, operation: str, 
     ann = env.scene.object(obj_name, obj_id).annotations
     out = []
     for cons in variants:
-        gen = Generated(cons, approach_axis=approach, approach_object=body)
+        gen = Generated(cons, approach_axis=approach, approach_object=body, posture="wrap" if wrap else None)
         if openness is not None and ann.articulation is not None:
             art = ann.articulation
             gen.follow = {"body": body, "joint": f"{body}_{art.joint}",

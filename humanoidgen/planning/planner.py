@@ -102,6 +102,7 @@ class HumanoidMotionPlanner(ArmMoves):
     plan_seconds: list[float] = field(default_factory=list)  # motion-planning time of each arm move
     last_approach: dict = field(default_factory=dict)  # side -> approach axis of the hand's last grasp/pinch
     grip: dict = field(default_factory=dict)  # side -> "grasp" or "pinch": how the held object is held
+    closing: dict = field(default_factory=dict)  # side -> finger posture the next hand_grasp closes with
 
     def __post_init__(self) -> None:
         self.kin = Kinematics(self.env.model)
@@ -187,7 +188,8 @@ class HumanoidMotionPlanner(ArmMoves):
     def hand_grasp(self, hand_name: str, grasp_object: str, obj_id: int = 0) -> None:
         """Close the whole hand on an object; succeeds only if the object is held between thumb and fingers."""
         for side in _sides(hand_name):
-            self._close_on(side, grasp_object, obj_id, "grasp", "grasp")
+            # Round bodies are wrapped (hands.HAND_POSTURES["wrap"]) when the hand was moved to a wrap grasp.
+            self._close_on(side, grasp_object, obj_id, self.closing.get(side) or "grasp", "grasp")
 
     @_logged
     def hand_pinch(self, hand_name: str, pinch_object: str, obj_id: int = 0) -> None:
@@ -304,6 +306,7 @@ class HumanoidMotionPlanner(ArmMoves):
             pose.approach_axis = gen.approach_axis
             pose.approach_object = gen.approach_object
             pose.follow = gen.follow
+            pose.posture = gen.posture
         return result, pose
 
     def _attach_held(self, side: Side) -> None:
@@ -331,6 +334,7 @@ class HumanoidMotionPlanner(ArmMoves):
             mine = [c for c in (path_constraints or []) if c.side == side]
             samples[side] = self._plan_side(side, target, mine)
             self.last_approach[side] = target.approach_axis if target.approach_axis is not None else self.last_approach.get(side)
+            self.closing[side] = target.posture
             targets[side] = target
         if len(sides) == 2:
             samples = self._coordinate_arms(samples)

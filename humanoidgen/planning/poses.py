@@ -24,6 +24,7 @@ class Pose:
     approach_axis: np.ndarray | None = None  # world direction the hand approaches along (grasp, pinch)
     approach_object: str | None = None  # body the hand may touch at the end of the approach
     follow: dict | None = field(default=None, repr=False)  # articulated part path: body, joint, q0, q1
+    posture: str | None = None  # finger posture for closing on the object there (e.g. "wrap")
 
     def __post_init__(self) -> None:
         self.p = np.asarray(self.p, float).reshape(3)

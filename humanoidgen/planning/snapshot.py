@@ -21,20 +21,21 @@ class Snapshot:
     last_approach: dict  # side -> list or None
     ignored_bodies: list[int]
     events: list[str]
+    closing: dict | None = None  # side -> finger posture the next grasp closes with
 
     def to_dict(self) -> dict:
         return {
             "physics": self.physics.tolist(), "action": self.action.tolist(),
             "holding": {k: list(v) if v else None for k, v in self.holding.items()}, "grip": dict(self.grip),
             "last_approach": self.last_approach, "ignored_bodies": list(self.ignored_bodies),
-            "events": list(self.events),
+            "events": list(self.events), "closing": dict(self.closing or {}),
         }
 
     @classmethod
     def from_dict(cls, d: dict) -> "Snapshot":
         return cls(np.asarray(d["physics"], float), np.asarray(d["action"], float),
                    {k: tuple(v) if v else None for k, v in d["holding"].items()}, dict(d["grip"]),
-                   dict(d["last_approach"]), list(d["ignored_bodies"]), list(d["events"]))
+                   dict(d["last_approach"]), list(d["ignored_bodies"]), list(d["events"]), dict(d.get("closing") or {}))
 
 
 def take_snapshot(planner) -> Snapshot:
@@ -50,6 +51,7 @@ def take_snapshot(planner) -> Snapshot:
         last_approach={s: (np.asarray(a).tolist() if a is not None else None) for s, a in planner.last_approach.items()},
         ignored_bodies=sorted(planner.collisions.ignored_bodies),
         events=list(planner.events),
+        closing=dict(planner.closing),
     )
 
 
@@ -63,6 +65,7 @@ def restore_snapshot(planner, snap: Snapshot) -> None:
     planner.last_approach = {s: (np.asarray(a) if a is not None else None) for s, a in snap.last_approach.items()}
     planner.collisions.ignored_bodies = set(snap.ignored_bodies)
     planner.events = list(snap.events)
+    planner.closing = dict(snap.closing or {})
     planner.kin.sync(env.data.qpos)
     for side in planner.holding:
         planner.kin.detach(side)

@@ -11,11 +11,12 @@ from humanoidgen.sim.action import ACTION_DIM, ACTION_JOINTS, ARM_SLICE, HAND_SL
 from humanoidgen.sim.layout import ARM_JOINTS, HAND_BASE_FRAME, HAND_JOINTS, Side
 from humanoidgen.sim.scene import Scene
 
-# Initial arm posture (radians, action order): palms 18 cm above the table at x = -0.45, y = +-0.20, fingers
+# Initial arm posture (radians, action order): palms 26 cm above the table at x = -0.45, y = +-0.20, fingers
 # forward and slightly down, palms turned down and inward (found with `sim.ik`; the right arm mirrors the left).
+# High enough that the fingertips (about 25 cm up) clear standing bottles, open lids and laptop screens.
 INIT_ARM_QPOS: dict[Side, tuple[float, ...]] = {
-    "left": (-0.259, 0.032, -0.021, -0.341, 1.258, 0.47, -0.688),
-    "right": (-0.259, -0.032, 0.021, -0.341, -1.258, 0.47, 0.688),
+    "left": (-0.436, -0.0105, 0.0815, -0.5255, 1.463, 0.47, -1.0925),
+    "right": (-0.436, 0.0105, -0.0815, -0.5255, -1.463, 0.47, 1.0925),
 }
 OPEN_HAND = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
 DEFAULT_CONTROL_HZ = 50.0
