@@ -180,12 +180,15 @@ def _cup_like(p: dict, handles: tuple[str, ...]) -> Geometry:
     prims = [Prim("bottom", "cylinder", (R - t / 2, tb / 2), (0, 0, tb / 2), rgba=rgba)]
     # walls start 1 mm above the table so the object stands on its (flat) bottom disc
     prims += _ring("wall", n, R, t, 0.001, H, rgba)
+    # Side grasps a little above half height, so that the wrapping hand's little finger clears the table.
     points: dict[str, Vec3] = {
-        "side": (-R, 0, H / 2),
+        "side": (-R, 0, 0.6 * H),
         "rim": (-(R - t / 2), 0, H),
         "lip": (0, -(R - t / 2), H) if "left" in handles and "right" not in handles else (R - t / 2, 0, H),
         "storage": (0, 0, tb + 0.01),
     }
+    if "right" not in handles:  # the flank without a handle
+        points["side_right"] = (0, -R, 0.6 * H)
     ext, bar_t = p["handle_reach"], p["handle_thick"]
     for side in handles:
         s = 1.0 if side == "left" else -1.0
@@ -398,7 +401,9 @@ class CupFamily(RigidFamily):
         return _cup_like(p, ("left",))
 
     def _semantics(self, geo):
-        return ([("grasp", "side", "x", "y", "z", _diameter(geo)), ("pinch", "handle_left", "x", "y", "z"),
+        w = _diameter(geo)
+        return ([("grasp", "side", "x", "y", "z", w), ("grasp", "side_right", "y", "x", "z", w),
+                 ("pinch", "handle_left", "x", "y", "z"),
                  ("pinch", "rim", "down", "x", "y")],
                 [("pour", "lip", "pour_axis"), ("storage", "storage", "opening")])
 

@@ -135,21 +135,11 @@ class ArmMoves:
             if target.approach_axis is not None and target.joint_q is not None:
                 # Come in straight along the approach axis: back out from the goal to find the pre-pose (same
                 # arm posture family), get there any collision-free way, then move in along the line.
-                self.collisions.ignored_bodies.add(self.env.model.body(target.approach_object).id)
-                reasons = []
-                for distance in APPROACH_DISTANCES:  # a shorter straight approach where the long one won't fit
-                    pre = (target.p - distance * target.approach_axis, target.R)
-                    back, reason = track_poses(self.kin, side, target.joint_q,
-                                               screw_interpolate(target.p, target.R, *pre))
-                    if not reason:
-                        approach = np.vstack([back[::-1], target.joint_q])
-                        if first_collision(self.kin, self.collisions, side, approach) is None:
-                            break
-                        reason = "the straight approach along the operation's axis collides"
-                    reasons.append(f"{distance * 100:.0f} cm: {reason}")
-                else:
+                approach, pre, reasons = self._straight_approach(side, target.joint_q, target.p, target.R,
+                                                                 target.approach_axis, target.approach_object)
+                if approach is None:
                     raise MotionError("no straight approach to the target (" + "; ".join(reasons) + ")")
-                self.collisions.ignored_bodies = set(ignored_before)
+                back = approach[::-1]
                 legs.append(plan_arm_motion(self.kin, self.collisions, side, q0, pre, q_goal=back[-1], seed=self.seed))
                 legs.append(JointPath(approach, "screw"))
             else:
@@ -170,6 +160,40 @@ class ArmMoves:
                 v, a = (0.6, 1.5) if self._carries(side) else (1.0, 3.0)
                 out.append(time_dense_path(leg.waypoints, dt, v_max=v, a_max=a))
         return np.vstack(out)
+
+    def _straight_approach(self, side: Side, q_goal: np.ndarray, p: np.ndarray, R: np.ndarray, axis: np.ndarray,
+                           approach_object: str | None, distances: tuple[float, ...] = APPROACH_DISTANCES):
+        """The straight approach into a goal along `axis`, over the first distance that fits: (joint path from the
+        pre-pose to the goal, the pre-pose, reasons) or (None, None, reasons). The object being approached may be
+        touched; everything else is avoided."""
+        ignored_before = set(self.collisions.ignored_bodies)
+        if approach_object is not None:
+            self.collisions.ignored_bodies.add(self.env.model.body(approach_object).id)
+        reasons = []
+        try:
+            for distance in distances:  # a shorter straight approach where the long one won't fit
+                pre = (p - distance * axis, R)
+                back, reason = track_poses(self.kin, side, q_goal, screw_interpolate(p, R, *pre))
+                if not reason:
+                    approach = np.vstack([back[::-1], q_goal])
+                    if first_collision(self.kin, self.collisions, side, approach) is None:
+                        return approach, pre, reasons
+                    reason = "the straight approach along the operation's axis collides"
+                reasons.append(f"{distance * 100:.0f} cm: {reason}")
+            return None, None, reasons
+        finally:
+            self.collisions.ignored_bodies = ignored_before
+
+    def _approach_fits(self, side: Side, result, gen) -> bool:
+        """Whether a solved grip can be approached straight along its axis (the shortest approach)."""
+        if gen is None or gen.approach_axis is None or gen.follow is not None:
+            return True
+        self.kin.sync(self.env.data.qpos)
+        self._attach_held(side)
+        approach, _, _ = self._straight_approach(side, result.q, result.ee_pos, result.ee_mat, gen.approach_axis,
+                                                 gen.approach_object, distances=APPROACH_DISTANCES[-1:])
+        self.kin.sync(self.env.data.qpos)
+        return approach is not None
 
     def _follow_part(self, side: Side, q0: np.ndarray, target: Pose) -> np.ndarray:
         """Track the hand along an articulated part's joint path (a drawer slides, a lid turns)."""

@@ -17,9 +17,13 @@ from humanoidgen.objects.hands import hand_axes, wrap_point
 from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env, wrist_point_in_env
 from humanoidgen.objects.schema import OperationAnnotation
 from humanoidgen.planning.constraints import Const, Constraint
+from humanoidgen.sim.geometry import axis_angle_mat
 from humanoidgen.sim.layout import HAND_BASE_FRAME, Side
 
 ACTIONS = ("grasp", "pinch", "target", "target1", "target2", "move")
+# A round body can be wrapped from a range of directions around its axis, not only the annotated one: these
+# turns (degrees), nearest first, are tried where the annotated direction is out of reach.
+WRAP_TURNS_DEG = (0, 20, -20, 40, -40)
 LIFT = np.array([0.0, 0.0, 0.10])
 
 
@@ -132,15 +136,17 @@ def _rank_operations(env, side: Side, obj_name: str, obj_id: int, operation: str
 def grasp_or_pinch(env, side: Side, obj_name: str, obj_id: int, operation: str,
                    openness: float | None, point: str | None = None) -> Generated:
     """Every way to take the grip, most natural first: the first, with the others as its alternatives."""
-    ways = [g for op in _rank_operations(env, side, obj_name, obj_id, operation, openness, point)
-            for g in _grip_variants(env, side, obj_name, obj_id, operation, op, openness)]
+    ops = _rank_operations(env, side, obj_name, obj_id, operation, openness, point)
+    turns = WRAP_TURNS_DEG if operation == "grasp" and all(op.width is not None for op in ops) else (0,)
+    ways = [g for turn in turns for op in ops
+            for g in _grip_variants(env, side, obj_name, obj_id, operation, op, openness, turn)]
     first = ways[0]
     first.alternatives = ways[1:]
     return first
 
 
 def _grip_variants(env, side: Side, obj_name: str, obj_id: int, operation: str, op: OperationAnnotation,
-                   openness: float | None) -> list[Generated]:
+                   openness: float | None, turn_deg: float = 0.0) -> list[Generated]:
     frame = HAND_BASE_FRAME[side]
     kind = "grasp" if operation == "grasp" else "pinch"
     hand_point = get_point_in_env(env, f"{kind}_point_base_{side}_hand")
@@ -153,9 +159,15 @@ def _grip_variants(env, side: Side, obj_name: str, obj_id: int, operation: str, 
         return get_axis_in_env(env, name, obj_type=obj_name, obj_id=obj_id, openness=openness)
 
     approach, attach, parallel = axis(op.approach_axis), axis(op.attach_axis), axis(op.parallel_axis)
+    if turn_deg:  # the same wrap from another direction: turn about the round body's own axis
+        centre_line = target + op.width / 2 * approach
+        R = axis_angle_mat(parallel, np.radians(turn_deg))
+        approach, attach = R @ approach, R @ attach
+        target = centre_line - op.width / 2 * approach
     fingers_now = get_axis_in_env(env, f"{side}_grasp_wrist_2_palm_axis")
+    turned = f" turned {turn_deg:+.0f} deg" if turn_deg else ""
     cons = [Constraint(env, "point2point", frame, hand_key_point=hand_point, object_key_point=target,
-                       name=f"{kind} point on {obj_name} {obj_id} {op.point}")]
+                       name=f"{kind} point on {obj_name} {obj_id} {op.point}{turned}")]
     if kind == "grasp":
         # The palm faces the object along the approach; the fingers line up with the part's parallel axis.
         palm = get_axis_in_env(env, f"{side}_grasp_axis")

@@ -151,11 +151,15 @@ class GoalSolver:
             qs = np.clip(solver.Solve(free_prog, s, options).GetSolution(free_q), arm.lo, arm.hi)
             viol, clear = check(qs)
             if movers and (viol >= VIOLATION_SLACK or clear < self.clearance - 1e-3):
-                start = qs if viol < VIOLATION_SLACK else s
-                qc = np.clip(solver.Solve(prog, start, options).GetSolution(q), arm.lo, arm.hi)
-                viol_c, clear_c = check(qc)
-                if viol_c < VIOLATION_SLACK or viol_c <= viol:
-                    qs, viol, clear = qc, viol_c, clear_c
+                # From the free solution (near, but in contact), else from the seed itself (SNOPT can stall
+                # pushing a link out of a deep contact it starts in).
+                for start in ([qs, s] if viol < VIOLATION_SLACK else [s]):
+                    qc = np.clip(solver.Solve(prog, start, options).GetSolution(q), arm.lo, arm.hi)
+                    viol_c, clear_c = check(qc)
+                    if viol_c < VIOLATION_SLACK or viol_c <= viol:
+                        qs, viol, clear = qc, viol_c, clear_c
+                    if viol < VIOLATION_SLACK and clear >= self.clearance - 1e-3:
+                        break
             at(qs)
             ok = viol < VIOLATION_SLACK and (clear is None or clear >= self.clearance - 1e-3)
             cost = float(self.w_reg * np.sum((qs - q_nominal) ** 2) + sum(c.cost(self.kin)[0] for c in soft))

@@ -287,14 +287,18 @@ class HumanoidMotionPlanner(ArmMoves):
         self._attach_held(side)
         try:
             result = self.solver.solve(side, list(constraints), self.kin.arm_q(side), self.nominal[side])
-            for alternative in (gen.alternatives if gen is not None and not result.success else []):
+            usable = result.success and self._approach_fits(side, result, gen)
+            for alternative in (gen.alternatives if gen is not None and not usable else []):
                 self.collisions.ignored_bodies = set(ignored_before) | ({self.env.model.body(
                     alternative.approach_object).id} if alternative.approach_object else set())
                 retry = self.solver.solve(side, list(alternative.constraints), self.kin.arm_q(side),
                                           self.nominal[side])
-                if retry.success:
+                # A grip whose goal solves but whose straight approach does not fit is kept only as a last resort.
+                if retry.success and self._approach_fits(side, retry, alternative):
                     result, gen = retry, alternative
                     break
+                if retry.success and not result.success:
+                    result, gen = retry, alternative
         finally:
             self.collisions.ignored_bodies = ignored_before
             self.kin.sync(self.env.data.qpos)

@@ -78,3 +78,10 @@ def rotation_error(R_current: np.ndarray, R_target: np.ndarray) -> np.ndarray:
         axis = v[:, np.argmax(w)]
         return axis * angle
     return axis / s * angle
+
+
+def axis_angle_mat(axis: np.ndarray, angle: float) -> np.ndarray:
+    """Rotation matrix of `angle` radians about the unit vector `axis` (Rodrigues)."""
+    k = normalize(np.asarray(axis, float))
+    K = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
+    return np.eye(3) + np.sin(angle) * K + (1 - np.cos(angle)) * K @ K
