@@ -9,6 +9,7 @@ import mujoco
 import numpy as np
 
 from humanoidgen.objects.hands import HAND_POSTURES
+from humanoidgen.planning.hand_ops import contents
 from humanoidgen.planning.motion import (
     JointPath,
     MotionError,
@@ -105,6 +106,13 @@ class ArmMoves:
         held = self.holding[side]
         return held is not None and (held.annotations is None or held.annotations.articulation is None)
 
+    def _ignore_contents(self, side: Side) -> None:
+        """What rests in a carried object travels with it: the planner does not avoid it (the caller restores
+        the ignore list)."""
+        if self._carries(side):
+            for o in contents(self.env.scene, self.env.model, self.env.data, self.holding[side]):
+                self.collisions.ignored_bodies.add(self.env.model.body(o.body).id)
+
     def _relative_to_hand(self, side: Side, obj: SceneObject) -> np.ndarray:
         p_hand, R_hand = self.env.hand_pose(side)
         return R_hand.T @ (self.env.object_pose(obj.body)[0] - p_hand)
@@ -123,6 +131,7 @@ class ArmMoves:
         self._attach_held(side)
         if held is not None and held.annotations is not None and held.annotations.articulation is not None:
             self.collisions.ignored_bodies.add(self.env.model.body(held.body).id)  # the hand is on the part
+        self._ignore_contents(side)
         # Contact can push a joint a hair past its limit (e.g. the wrist after a pinch); plan from inside them.
         arm = self.kin.arms[side]
         q0 = np.clip(self.kin.arm_q(side), arm.lo, arm.hi)

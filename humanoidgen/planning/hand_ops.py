@@ -59,6 +59,23 @@ def resting_on(scene: Scene, model: mujoco.MjModel, data: mujoco.MjData, obj: Sc
     return out
 
 
+def contents(scene: Scene, model: mujoco.MjModel, data: mujoco.MjData, obj: SceneObject) -> list[SceneObject]:
+    """The objects resting in or on `obj`, directly or on one another (cubes in a cup): they travel with it."""
+    inside: list[SceneObject] = []
+    labels = {f"{obj.type_name} {obj.obj_id}"}
+    grew = True
+    while grew:
+        grew = False
+        for o in scene.objects:
+            if o is obj or o in inside:
+                continue
+            if labels & set(resting_on(scene, model, data, o)):
+                inside.append(o)
+                labels.add(f"{o.type_name} {o.obj_id}")
+                grew = True
+    return inside
+
+
 def body_speed(model: mujoco.MjModel, data: mujoco.MjData, body: str) -> float:
     vel = np.zeros(6)
     mujoco.mj_objectVelocity(model, data, mujoco.mjtObj.mjOBJ_BODY, model.body(body).id, vel, 0)
