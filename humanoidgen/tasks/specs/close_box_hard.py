@@ -9,7 +9,7 @@ for o, lift in [(None, 0.05), (None, 0.0)]:
     lid_in = get_axis_in_env(planner.env, "lid_in", obj_type="box", obj_id=0, openness=o)
     c = [Constraint(planner.env, "point2point", "r_hand_base_link",
                     hand_key_point=get_point_in_env(planner.env, "press_point_base_right_hand"),
-                    object_key_point=edge + (0.03 - lift) * edge_in - (0.012 + lift) * lid_in, name="fingertip on the lid"),
+                    object_key_point=edge + 0.03 * edge_in - (0.012 + lift) * lid_in, name="fingertip on the lid"),
          Constraint(planner.env, "angle", "r_hand_base_link", hand_axis=get_axis_in_env(planner.env, "right_press_axis"),
                     object_axis=np.array([0.5, 0.0, -0.866]), lower=0.0, upper=np.radians(35), name="fingertip down")]
     _, pose = planner.generate_end_effector_pose(c, hand_name="right")
