@@ -24,6 +24,7 @@ ACTIONS = ("grasp", "pinch", "target", "target1", "target2", "move")
 # A round body can be wrapped from a range of directions around its axis, not only the annotated one: these
 # turns (degrees), nearest first, are tried where the annotated direction is out of reach.
 WRAP_TURNS_DEG = (0, 20, -20, 40, -40)
+PUSH_CONE_DEG = 30
 LIFT = np.array([0.0, 0.0, 0.10])
 
 
@@ -248,11 +249,16 @@ def generate(env, holding: dict, obj_name: str, obj_id: int, action: str, side: 
         op = ops[k]
         target = get_point_in_env(env, op.point, obj_name, obj_id, openness=openness)
         approach = get_axis_in_env(env, op.approach_axis, obj_type=obj_name, obj_id=obj_id, openness=openness)
+        press_axis = get_axis_in_env(env, f"{side}_press_axis")
+        # A fingertip pushes as well up to PUSH_CONE off the push direction; that freedom keeps far or turned
+        # parts (a drawer front at the table's edge) within reach. Along the direction is preferred.
         return Generated([
             Constraint(env, "point2point", frame, hand_key_point=get_point_in_env(env, f"press_point_base_{side}_hand"),
                        object_key_point=target, name=f"fingertip on {obj_name} {op.point}"),
-            Constraint(env, "parallel", frame, hand_axis=get_axis_in_env(env, f"{side}_press_axis"),
-                       object_axis=approach, name="fingertip along the push direction"),
+            Constraint(env, "angle", frame, hand_axis=press_axis, object_axis=approach, lower=0.0,
+                       upper=np.radians(PUSH_CONE_DEG), name=f"fingertip within {PUSH_CONE_DEG} deg of the push direction"),
+            Const(env, "parallel", frame, hand_axis=press_axis, object_axis=approach, weight=0.5,
+                  name="fingertip along the push direction (preferred)"),
         ], approach_axis=approach, approach_object=env.scene.object(obj_name, obj_id).body)
     # move
     if relative_obj_name is None:
