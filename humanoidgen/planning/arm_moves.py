@@ -222,7 +222,8 @@ class ArmMoves:
         poses = []
         base = d.qpos.copy()
         n = max(2, int(np.ceil(abs(f["q_target"] - q_now) / (0.01 if m.jnt_type[jid] == mujoco.mjtJoint.mjJNT_SLIDE else 0.03))))
-        for qj in np.linspace(q_now, q_end, n + 1)[1:]:
+        q_steps = np.linspace(q_now, q_end, n + 1)[1:]
+        for qj in q_steps:
             d.qpos[adr] = qj
             mujoco.mj_kinematics(m, d)
             pp, pR = d.xpos[part_body], d.xmat[part_body].reshape(3, 3)
@@ -231,6 +232,12 @@ class ArmMoves:
         self.kin.forward()
         path, reason = track_poses(self.kin, side, q0, poses)
         if not reason:
+            return np.vstack([q0, path])
+        # Where the arm's reach ends within the last tenth of the way, go that far and say so: whether that is
+        # enough is for the task to judge.
+        if len(path) and abs(q_steps[len(path) - 1] - q_now) >= 0.9 * abs(f["q_target"] - q_now):
+            if abs(q_steps[len(path) - 1] - q_now) < abs(f["q_target"] - q_now):
+                self.events.append(f"followed {f['obj'][0]} {f['obj'][1]} {100 * abs(q_steps[len(path) - 1] - q_now) / abs(f['q_target'] - q_now):.0f}% of the way: the {side} arm's reach ends there")
             return np.vstack([q0, path])
         if target.joint_q is not None:
             # The solver's goal may sit in another arm posture family: track backward from it to the start and

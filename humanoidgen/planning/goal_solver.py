@@ -68,11 +68,13 @@ class GoalSolver:
     held_clearance: float = 0.002
     w_reg: float = 0.02
     n_random_seeds: int = 6
+    n_extra_seeds: int = 18  # a second round of random seeds, only when the first round found nothing
     seed: int = 0
     major_iterations: int = 200
 
     def solve(self, side: Side, constraints: list[Constraint], q_current: np.ndarray,
-              q_nominal: np.ndarray, avoid_collisions: bool = True) -> GoalResult:
+              q_nominal: np.ndarray, avoid_collisions: bool = True, thorough: bool = False) -> GoalResult:
+        """`thorough`: if the usual seeds find nothing, try `n_extra_seeds` more random ones (slow; for a last try)."""
         t0 = time.perf_counter()
         hard = [c for c in constraints if not c.soft]
         soft = [c for c in constraints if c.soft]
@@ -144,7 +146,14 @@ class GoalSolver:
             dists = self.collisions.mover_distances(side, movers, obstacles)[0]
             return viol, float(np.min(dists - lower)) + self.clearance  # the tightest margin, as a clearance
 
-        for s in seeds:
+        def rounds():
+            yield from seeds
+            if thorough and best is None:  # near the edge of reach a solution may lie in a basin few seeds find
+                extra = [rng.uniform(arm.lo, arm.hi) for _ in range(self.n_extra_seeds)]
+                seeds.extend(extra)
+                yield from extra
+
+        for s in rounds():
             tried += 1
             # Solve without collisions first (cheap and smooth); only if that lands in contact, solve again
             # with the distance constraints, starting from there.

@@ -277,7 +277,7 @@ class HumanoidMotionPlanner(ArmMoves):
         if not constraints:
             raise PlanningError("generate_end_effector_pose", "no constraints given")
         self.kin.sync(self.env.data.qpos)
-        gen = getattr(constraints[0], "meta", None)
+        gen = first_gen = getattr(constraints[0], "meta", None)
         ignored_before = set(self.collisions.ignored_bodies)
         if gen is not None and gen.approach_object is not None:
             # The hand is meant to touch the object it grasps, pinches or pushes.
@@ -301,6 +301,13 @@ class HumanoidMotionPlanner(ArmMoves):
                     break
                 if retry.success and not result.success:
                     result, gen = retry, alternative
+            if not result.success:  # a last, slower try of the first way with many more seeds
+                self.collisions.ignored_bodies = set(ignored_before) | ({self.env.model.body(
+                    first_gen.approach_object).id} if first_gen is not None and first_gen.approach_object else set())
+                retry = self.solver.solve(side, list(constraints), self.kin.arm_q(side), self.nominal[side],
+                                          thorough=True)
+                if retry.success:
+                    result, gen = retry, first_gen
         finally:
             self.collisions.ignored_bodies = ignored_before
             self.kin.sync(self.env.data.qpos)
