@@ -1,16 +1,23 @@
 # Reference plan for handover_and_storage_cooperation (for now the same sequence as handover_and_storage;
-# the two hands do not yet move at once): the left hand opens the drawer; the right hand picks the block and stands it
-# on the table in the middle (the hand-over); the left hand takes it, drops it in the drawer and pushes the drawer shut with its fingertip.
-# step: left hand grasps the drawer handle and pulls the drawer fully open, then lets go
+# the two hands do not yet move at once): the left hand opens the drawer and lifts clear of it; the right hand picks the
+# block and stands it on the table in the middle (the hand-over); the left hand takes it, raises it above the drawer's
+# walls, drops it into the open part of the drawer and pushes the drawer shut with its fingertip.
+# step: left hand grasps the drawer handle and pulls the drawer open (most of its travel: 9/10 is well within the arm's reach), then lets go
 planner.hand_pre_grasp("left")
 c = planner.generate_constraints(obj_name="drawer", obj_id=0, action="grasp", hand_name="left")
 _, pose = planner.generate_end_effector_pose(c, hand_name="left")
 planner.move_to_pose_with_screw(pose, "left", attach_obj=False)
 planner.hand_grasp("left", grasp_object="drawer", obj_id=0)
-c = planner.generate_constraints(obj_name="drawer", obj_id=0, action="grasp", hand_name="left", openness=1)
+c = planner.generate_constraints(obj_name="drawer", obj_id=0, action="grasp", hand_name="left", openness=0.9)
 _, pose = planner.generate_end_effector_pose(c, hand_name="left")
 planner.move_to_pose_with_screw(pose, "left", attach_obj=True, object_name="drawer", object_id=0)
-planner.open_hand("left")  # the open drawer now stands where the hand rests, so it stays out here
+planner.open_hand("left")
+# lift the hand (and back it off a little) well clear of the open drawer, so that it does not drag it on the next moves
+up = get_point_in_env(planner.env, "grasp_point_base_left_hand") + np.array([-0.03, 0, 0.10])
+c = planner.generate_constraints(obj_name="drawer", obj_id=0, action="move", hand_name="left", relative_obj_name="drawer",
+                                 relative_obj_id=0, relative_p=up - get_point_in_env(planner.env, "center", "drawer", 0))
+_, pose = planner.generate_end_effector_pose(c, hand_name="left")
+planner.move_to_pose_with_screw(pose, "left")
 
 # step: right hand pinches the block and lifts it
 planner.hand_pre_pinch("right")
@@ -41,10 +48,17 @@ c = planner.generate_constraints(obj_name="cube", obj_id=0, action="target", han
 _, pose = planner.generate_end_effector_pose(c, hand_name="left")
 planner.move_to_pose_with_screw(pose, "left", attach_obj=True, object_name="cube", object_id=0)
 
-# step: left hand carries the block above the open drawer and drops it in
-above = get_point_in_env(planner.env, "storage", "drawer", 0) - get_point_in_env(planner.env, "center", "drawer", 0) + np.array([0, 0, 0.10])
+# step: left hand raises the block above the drawer's walls, carries it over the open drawer and drops it in
+lift = get_point_in_env(planner.env, "center", "cube", 0) * np.array([1, 1, 0]) + np.array([0, 0, 0.31])
 c = planner.generate_constraints(obj_name="cube", obj_id=0, action="move", hand_name="left",
-                                 relative_obj_name="drawer", relative_obj_id=0, relative_p=above)
+                                 relative_obj_name="cube", relative_obj_id=0,
+                                 relative_p=lift - get_point_in_env(planner.env, "center", "cube", 0))
+_, pose = planner.generate_end_effector_pose(c, hand_name="left")
+planner.move_to_pose_with_screw(pose, "left", attach_obj=True, object_name="cube", object_id=0)
+drop = get_point_in_env(planner.env, "storage", "drawer", 0) * np.array([1, 1, 0]) + np.array([-0.025, 0, 0.31])
+c = planner.generate_constraints(obj_name="cube", obj_id=0, action="move", hand_name="left",
+                                 relative_obj_name="drawer", relative_obj_id=0,
+                                 relative_p=drop - get_point_in_env(planner.env, "center", "drawer", 0))
 _, pose = planner.generate_end_effector_pose(c, hand_name="left")
 planner.move_to_pose_with_screw(pose, "left", attach_obj=True, object_name="cube", object_id=0)
 planner.open_hand("left")
