@@ -235,3 +235,29 @@ def test_grip_alternatives_and_choosing_an_annotated_point(two_cubes):
     assert "pinch" in c[0].name
     with pytest.raises(PlanningError, match="no 'pinch' annotation at point 'rim'; points: pinch"):
         planner.generate_constraints("cube", 0, "pinch", "right", point="rim")
+
+
+def test_finger_offset_moves_the_grip_point_along_the_fingers(two_cubes):
+    env = HumanoidEnv(two_cubes)
+    planner = HumanoidMotionPlanner(env)
+    fingers = get_axis_in_env(env, "right_grasp_wrist_2_palm_axis")
+    base = planner.generate_constraints("cube", 0, "pinch", "right")[0]
+    out = planner.generate_constraints("cube", 0, "pinch", "right", finger_offset=0.02)[0]
+    # The same object point; the hand point sits 2 cm further out along the fingers.
+    assert np.allclose(base.object_key_point, out.object_key_point)
+    shift = out.hand_key_point - base.hand_key_point
+    assert np.allclose(shift, 0.02 * fingers, atol=1e-9)
+
+
+def test_pushing_a_part_to_an_openness_rides_with_the_part():
+    b = SceneBuilder()
+    b.add_object("drawer", 0, pos=(-0.08, 0.17))
+    env = HumanoidEnv(b.build())
+    planner = HumanoidMotionPlanner(env)
+    reach = planner.generate_constraints("drawer", 0, "target1", "left")[0].meta
+    push = planner.generate_constraints("drawer", 0, "target1", "left", openness=0)[0].meta
+    assert reach.follow is None and reach.approach_axis is not None  # come in straight to the front
+    assert push.follow is not None and push.follow["q_target"] == 0.0 and push.approach_axis is None
+    # The fingertip may lean off the push direction (a cone), preferring to be along it.
+    kinds = [(type(c).__name__, c.type) for c in push.constraints]
+    assert ("Constraint", "angle") in kinds and ("Const", "parallel") in kinds

@@ -137,10 +137,16 @@ class ArmMoves:
         q0 = np.clip(self.kin.arm_q(side), arm.lo, arm.hi)
         dt = 1.0 / self.env.control_hz
         try:
-            if target.follow is not None:
-                path = self._follow_part(side, q0, target)
-                return time_dense_path(path, dt, v_max=0.6, a_max=2.0)
             legs = []
+            if target.follow is not None:
+                try:
+                    path = self._follow_part(side, q0, target)
+                    return time_dense_path(path, dt, v_max=0.6, a_max=2.0)
+                except MotionError:
+                    # A fingertip pushing a part (nothing held) may instead go straight to the solved goal.
+                    if self.holding[side] is not None or target.joint_q is None:
+                        raise
+                    target = Pose(target.p, target.q, joint_q=target.joint_q, side=side)
             if target.approach_axis is not None and target.joint_q is not None:
                 # Come in straight along the approach axis: back out from the goal to find the pre-pose (same
                 # arm posture family), get there any collision-free way, then move in along the line.

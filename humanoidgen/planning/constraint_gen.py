@@ -135,25 +135,27 @@ def _rank_operations(env, side: Side, obj_name: str, obj_id: int, operation: str
 
 
 def grasp_or_pinch(env, side: Side, obj_name: str, obj_id: int, operation: str,
-                   openness: float | None, point: str | None = None) -> Generated:
+                   openness: float | None, point: str | None = None, finger_offset: float = 0.0) -> Generated:
     """Every way to take the grip, most natural first: the first, with the others as its alternatives."""
     ops = _rank_operations(env, side, obj_name, obj_id, operation, openness, point)
     turns = WRAP_TURNS_DEG if operation == "grasp" and all(op.width is not None for op in ops) else (0,)
     ways = [g for turn in turns for op in ops
-            for g in _grip_variants(env, side, obj_name, obj_id, operation, op, openness, turn)]
+            for g in _grip_variants(env, side, obj_name, obj_id, operation, op, openness, turn, finger_offset)]
     first = ways[0]
     first.alternatives = ways[1:]
     return first
 
 
 def _grip_variants(env, side: Side, obj_name: str, obj_id: int, operation: str, op: OperationAnnotation,
-                   openness: float | None, turn_deg: float = 0.0) -> list[Generated]:
+                   openness: float | None, turn_deg: float = 0.0, finger_offset: float = 0.0) -> list[Generated]:
     frame = HAND_BASE_FRAME[side]
     kind = "grasp" if operation == "grasp" else "pinch"
     hand_point = get_point_in_env(env, f"{kind}_point_base_{side}_hand")
     wrap = kind == "grasp" and op.width is not None
     if wrap:  # a round body goes against the finger pads, past the thumb (hands.wrap_point)
         hand_point = wrist_point_in_env(env, side, wrap_point(side, op.width))
+    if finger_offset:
+        hand_point = hand_point + finger_offset * get_axis_in_env(env, f"{side}_grasp_wrist_2_palm_axis")
     target = get_point_in_env(env, op.point, obj_name, obj_id, openness=openness)
 
     def axis(name: str) -> np.ndarray:
@@ -225,13 +227,13 @@ def keep_orientation(env, side: Side, held: tuple[str, int] | None = None) -> li
 
 def generate(env, holding: dict, obj_name: str, obj_id: int, action: str, side: Side, openness: float | None = None,
              relative_obj_name: str | None = None, relative_obj_id: int | None = None,
-             relative_p: np.ndarray | None = None, point: str | None = None) -> Generated:
+             relative_p: np.ndarray | None = None, point: str | None = None, finger_offset: float = 0.0) -> Generated:
     if action not in ACTIONS:
         raise ConstraintGenerationError(f"unknown action {action!r}; use one of {', '.join(ACTIONS)}")
     frame = HAND_BASE_FRAME[side]
     env.scene.object(obj_name, obj_id)  # a clear error for an unknown object
     if action in ("grasp", "pinch"):
-        return grasp_or_pinch(env, side, obj_name, obj_id, action, openness, point)
+        return grasp_or_pinch(env, side, obj_name, obj_id, action, openness, point, finger_offset)
     held = holding.get(side)
     held_here = held is not None and (held.type_name, held.obj_id) == (obj_name, obj_id)
     if action == "target":
@@ -252,7 +254,7 @@ def generate(env, holding: dict, obj_name: str, obj_id: int, action: str, side: 
         press_axis = get_axis_in_env(env, f"{side}_press_axis")
         # A fingertip pushes as well up to PUSH_CONE off the push direction; that freedom keeps far or turned
         # parts (a drawer front at the table's edge) within reach. Along the direction is preferred.
-        return Generated([
+        gen = Generated([
             Constraint(env, "point2point", frame, hand_key_point=get_point_in_env(env, f"press_point_base_{side}_hand"),
                        object_key_point=target, name=f"fingertip on {obj_name} {op.point}"),
             Constraint(env, "angle", frame, hand_axis=press_axis, object_axis=approach, lower=0.0,
@@ -260,6 +262,15 @@ def generate(env, holding: dict, obj_name: str, obj_id: int, action: str, side: 
             Const(env, "parallel", frame, hand_axis=press_axis, object_axis=approach, weight=0.5,
                   name="fingertip along the push direction (preferred)"),
         ], approach_axis=approach, approach_object=env.scene.object(obj_name, obj_id).body)
+        art = ann.articulation
+        if openness is not None and art is not None:
+            # Pushing the part to an openness: the hand rides with the part from where it touches it now (the
+            # solved goal pose is only a fallback), so it does not swing about on the way.
+            body = env.scene.object(obj_name, obj_id).body
+            gen.follow = {"body": body, "joint": f"{body}_{art.joint}", "q_target": art.joint_position(openness),
+                          "part_point": op.point, "obj": (obj_name, obj_id)}
+            gen.approach_axis = None
+        return gen
     # move
     if relative_obj_name is None:
         raise ConstraintGenerationError("'move' needs relative_obj_name (and relative_obj_id, relative_p)")

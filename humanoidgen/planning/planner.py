@@ -254,17 +254,19 @@ class HumanoidMotionPlanner(ArmMoves):
     def generate_constraints(self, obj_name: str, obj_id: int, action: str, hand_name: str,
                              openness: float | None = None, relative_obj_name: str | None = None,
                              relative_obj_id: int | None = None, relative_p: np.ndarray | None = None,
-                             point: str | None = None) -> list:
+                             point: str | None = None, finger_offset: float = 0.0) -> list:
         """Constraints for an action on an object, from its annotations (see `constraint_gen`).
 
         `point` picks one annotated point of a grasp/pinch (e.g. "rim"); by default the hand takes the most
-        natural of the object's annotations and falls back to the others when that one cannot be reached."""
+        natural of the object's annotations and falls back to the others when that one cannot be reached.
+        `finger_offset` (m) holds a grasp/pinch that much further out along the fingers (negative: deeper in the
+        hand), e.g. 0.02 to pinch a 3 cm block with the index pad rather than around its corner."""
         (side,) = _sides(hand_name) if hand_name != "all" else (None,)
         if side is None:
             raise PlanningError("generate_constraints", "hand_name must be 'left' or 'right'")
         self.kin.sync(self.env.data.qpos)
         gen = constraint_gen.generate(self.env, self.holding, obj_name, obj_id, action, side, openness,
-                                      relative_obj_name, relative_obj_id, relative_p, point)
+                                      relative_obj_name, relative_obj_id, relative_p, point, finger_offset)
         cons = list(gen.constraints)
         for c in cons:
             c.meta = gen  # the move needs the approach axis and the part to follow
