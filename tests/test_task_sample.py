@@ -35,7 +35,8 @@ def test_round_bodies_declare_their_width_and_are_wrapped_past_the_thumb():
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("task, seed", [("dual_bottles_pick_hard", 0), ("block_handover", 0), ("open_drawer", 0)])
+@pytest.mark.parametrize("task, seed", [("dual_bottles_pick_hard", 0), ("block_handover", 0), ("open_drawer", 0),
+                                        ("cup_pour_easy", 1), ("handover_and_storage", 0)])
 def test_more_reference_plans_succeed(task, seed):
     result, _ = run_task_episode(EpisodeRequest(task, seed=seed))
     assert result.success, (result.failed_step.error if result.failed_step else None, result.checks)
