@@ -155,6 +155,17 @@ def test_bench_reports_success_rate_and_draws_the_plot(tmp_path):
     assert (tmp_path / "bench.png").stat().st_size > 5000
 
 
+def test_bench_failures_name_their_seed():
+    from types import SimpleNamespace
+
+    from humanoidgen.episodes.bench import run_bench
+
+    missing = SimpleNamespace(name="no_such_task", arms="single", horizon="short")
+    (r,) = run_bench([missing], episodes=2, seed=7)
+    assert r.successes == 0 and [f.split(":")[0] for f in r.failures] == ["seed 7", "seed 8"]
+    assert "no_such_task" in r.failures[0]
+
+
 def test_the_papers_sample_plans_run_in_simulation(tmp_path):
     """The two plans printed in the paper's appendix run unchanged apart from their import line: the open-drawer
     plan is our reference plan; the blocks-stack-hard one runs, and where our H1-2 model cannot follow it the

@@ -166,9 +166,12 @@ def bench(
                         progress=lambda t, k, n: console.print(f"{t}: {k}/{n}"))
     table = Table("task", "arms", "horizon", "success", "s / successful episode", "planning s", "main failure")
     for r in reports:
-        common = max(set(r.failures), key=r.failures.count) if r.failures else ""
+        reasons = [f.split(": ", 1)[-1] for f in r.failures]  # without the "seed N: " prefix
+        common = max(set(reasons), key=reasons.count) if reasons else ""
+        seeds = ", ".join(f.split(":", 1)[0].removeprefix("seed ") for f in r.failures[:5])
         table.add_row(r.task, r.arms, r.horizon, f"{100 * r.success_rate:.0f}%", f"{r.mean_wall_s:.1f}",
-                      f"{r.mean_plan_s:.1f}", common[:80])
+                      f"{r.mean_plan_s:.1f}", f"{common[:80]} (seeds {seeds}{', ...' if len(r.failures) > 5 else ''})"
+                      if r.failures else "")
     console.print(table)
     if json_out is not None:
         json_out.write_text(json.dumps([r.to_dict() for r in reports], indent=2))

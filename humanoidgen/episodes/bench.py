@@ -59,7 +59,8 @@ def run_bench(tasks: list, episodes: int, seed: int = 0, workers: int = 1,
                 spec.name, spec.arms, spec.horizon, episodes, len(ok),
                 float(np.mean([o["wall"] for o in ok])) if ok else float("nan"),
                 float(np.mean([o["plan"] for o in outs])), float(np.mean([o["sim"] for o in ok])) if ok else float("nan"),
-                [o["error"][:200] for o in outs if not o["success"]],
+                # each failure names its seed, so that `hgen run TASK --seed S --video x.mp4` shows it
+                [f"seed {r.seed}: {o['error'][:400]}" for r, o in zip(reqs, outs) if not o["success"]],
             ))
             if progress is not None:
                 progress(spec.name, len(ok), episodes)
@@ -90,13 +91,15 @@ def plot(reports: list[TaskReport], path: Path) -> None:
     ax.set_xticks(x, [r.task for r in ordered], rotation=60, ha="right", fontsize=8)
     ax.set_ylabel("success rate (%)")
     ax.set_ylim(0, 105)
-    ax.set_title("HGen-Bench reference plans: success over randomized seeds")
+    episodes = sorted({r.episodes for r in ordered})
+    ax.set_title("HGen-Bench reference plans: success over randomized seeds "
+                 f"({'/'.join(map(str, episodes))} per task)", pad=28)
     from matplotlib.patches import Patch
 
     ax.legend(handles=[Patch(color=colors["single"], label="single arm"),
                        Patch(color=colors["bimanual"], label="bimanual"),
                        Patch(facecolor="white", edgecolor="black", hatch="//", label="long horizon")],
-              loc="lower right", fontsize=8)
+              loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=3, frameon=False, fontsize=8)
     fig.tight_layout()
     Path(path).parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(path, dpi=120)
