@@ -2,7 +2,7 @@
 # middle, the right hand sets cube 1 down just right of it (side by side), then the right hand pinches cube 2
 # and lays it across the two.
 GAP = 0.043  # centre distance the bases are set at (touching: 0.04, allowed up to 0.055); cube 1 drifts ~1 cm when dropped
-BASE = np.array([-0.33, 0.045])  # the pyramid's middle on the table, kept 10+ cm from cube 2
+BASE = np.array([-0.33, 0.07])  # the pyramid's middle on the table, kept 10+ cm from cube 2
 DROP = 0.03  # cube 1 is let go 3 cm above the table: its fingers must clear cube 0 beside it
 
 # step: both hands pinch their base cubes at the same time (left: cube 0, right: cube 1)
