@@ -261,3 +261,20 @@ def test_pushing_a_part_to_an_openness_rides_with_the_part():
     # The fingertip may lean off the push direction (a cone), preferring to be along it.
     kinds = [(type(c).__name__, c.type) for c in push.constraints]
     assert ("Constraint", "angle") in kinds and ("Const", "parallel") in kinds
+
+
+def test_a_wrap_approach_that_would_push_the_body_over_is_refused():
+    b = SceneBuilder()
+    b.add_object("bottle", 1, pos=(-0.34, -0.20))
+    env = HumanoidEnv(b.build())
+    planner = HumanoidMotionPlanner(env)
+    planner.hand_pre_grasp("right")
+    for offset, fits in [(0.0, True), (-0.035, False)]:  # 3.5 cm deeper: the opposed thumb goes through the bottle
+        c = planner.generate_constraints("bottle", 0, "grasp", "right", point="side_right", finger_offset=offset)
+        gen = c[0].meta
+        bottle = env.model.body("bottle_0").id
+        planner.collisions.ignored_bodies.add(bottle)  # the hand is meant to touch what it grasps
+        result = planner.solver.solve("right", list(gen.constraints), planner.kin.arm_q("right"), planner.nominal["right"])
+        planner.collisions.ignored_bodies.discard(bottle)
+        assert result.success and gen.posture == "wrap"
+        assert planner._approach_fits("right", result, gen) is fits

@@ -26,6 +26,7 @@ from humanoidgen.sim.scene import SceneObject
 
 # Grasps and pinches come in straight along the approach axis over the first of these that fits (metres).
 APPROACH_DISTANCES = (0.08, 0.05, 0.03)
+WRAP_TOUCH = 0.003  # how far the open hand may press into a body it comes to wrap (m)
 RETREAT_DISTANCE = 0.10  # after letting go, the hand backs out along its approach axis this far
 
 
@@ -151,7 +152,8 @@ class ArmMoves:
                 # Come in straight along the approach axis: back out from the goal to find the pre-pose (same
                 # arm posture family), get there any collision-free way, then move in along the line.
                 approach, pre, reasons = self._straight_approach(side, target.joint_q, target.p, target.R,
-                                                                 target.approach_axis, target.approach_object)
+                                                                 target.approach_axis, target.approach_object,
+                                                                 wrap=target.posture == "wrap")
                 if approach is None:
                     raise MotionError("no straight approach to the target (" + "; ".join(reasons) + ")")
                 back = approach[::-1]
@@ -177,10 +179,12 @@ class ArmMoves:
         return np.vstack(out)
 
     def _straight_approach(self, side: Side, q_goal: np.ndarray, p: np.ndarray, R: np.ndarray, axis: np.ndarray,
-                           approach_object: str | None, distances: tuple[float, ...] = APPROACH_DISTANCES):
+                           approach_object: str | None, distances: tuple[float, ...] = APPROACH_DISTANCES,
+                           wrap: bool = False):
         """The straight approach into a goal along `axis`, over the first distance that fits: (joint path from the
         pre-pose to the goal, the pre-pose, reasons) or (None, None, reasons). The object being approached may be
-        touched; everything else is avoided."""
+        touched; everything else is avoided. For a wrap the open hand must not push into the (standing, round)
+        object on the way either, beyond WRAP_TOUCH: a knocked-over bottle or cup cannot be wrapped."""
         ignored_before = set(self.collisions.ignored_bodies)
         if approach_object is not None:
             self.collisions.ignored_bodies.add(self.env.model.body(approach_object).id)
@@ -192,12 +196,23 @@ class ArmMoves:
                 if not reason:
                     approach = np.vstack([back[::-1], q_goal])
                     if first_collision(self.kin, self.collisions, side, approach) is None:
-                        return approach, pre, reasons
-                    reason = "the straight approach along the operation's axis collides"
+                        if not wrap or approach_object is None or self._wrap_clear(side, approach, approach_object):
+                            return approach, pre, reasons
+                        reason = f"the open hand would push into {approach_object} on the way in"
+                    else:
+                        reason = "the straight approach along the operation's axis collides"
                 reasons.append(f"{distance * 100:.0f} cm: {reason}")
             return None, None, reasons
         finally:
             self.collisions.ignored_bodies = ignored_before
+
+    def _wrap_clear(self, side: Side, approach: np.ndarray, body: str) -> bool:
+        ignored = set(self.collisions.ignored_bodies)
+        self.collisions.ignored_bodies.discard(self.env.model.body(body).id)
+        try:
+            return first_collision(self.kin, self.collisions, side, approach, clearance=-WRAP_TOUCH) is None
+        finally:
+            self.collisions.ignored_bodies = ignored
 
     def _approach_fits(self, side: Side, result, gen) -> bool:
         """Whether a solved grip can be approached straight along its axis (the shortest approach)."""
@@ -206,7 +221,8 @@ class ArmMoves:
         self.kin.sync(self.env.data.qpos)
         self._attach_held(side)
         approach, _, _ = self._straight_approach(side, result.q, result.ee_pos, result.ee_mat, gen.approach_axis,
-                                                 gen.approach_object, distances=APPROACH_DISTANCES[-1:])
+                                                 gen.approach_object, distances=APPROACH_DISTANCES[-1:],
+                                                 wrap=gen.posture == "wrap")
         self.kin.sync(self.env.data.qpos)
         return approach is not None
 

@@ -134,9 +134,12 @@ def start_clearance(kin: Kinematics, cw: CollisionWorld, side: Side, q: np.ndarr
     return min(MOTION_CLEARANCE, d - 1e-4)
 
 
-def first_collision(kin: Kinematics, cw: CollisionWorld, side: Side, path: np.ndarray) -> int | None:
+def first_collision(kin: Kinematics, cw: CollisionWorld, side: Side, path: np.ndarray,
+                    clearance: float | None = None) -> int | None:
+    """Index of the first waypoint whose segment comes closer than `clearance` (default: `start_clearance`)."""
     base = kin.data.qpos.copy()
-    clearance = start_clearance(kin, cw, side, path[0])
+    if clearance is None:
+        clearance = start_clearance(kin, cw, side, path[0])
     try:
         for i in range(1, len(path)):
             if not segment_valid(kin, cw, side, path[i - 1], path[i], clearance=clearance):
