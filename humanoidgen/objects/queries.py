@@ -64,8 +64,7 @@ def get_point_in_env(env, point_name: str = "center", type_name: str | None = No
     offset = np.zeros(3) if related_point is None else np.asarray(related_point, float)
     if point_name in HAND_POINT_NAMES:
         side = side_of(point_name)
-        pos, R = _frame(env.model, env.data, WRIST_BODY[side])
-        p = pos + R @ hand_points(side)[point_name] + offset
+        p = wrist_point_in_env(env, side, hand_points(side)[point_name]) + offset
     else:
         if type_name is None:
             raise KeyError(

@@ -257,9 +257,12 @@ class ArmMoves:
             return np.vstack([q0, path])
         # Where the arm's reach ends within the last tenth of the way, go that far and say so: whether that is
         # enough is for the task to judge.
-        if len(path) and abs(q_steps[len(path) - 1] - q_now) >= 0.9 * abs(f["q_target"] - q_now):
-            if abs(q_steps[len(path) - 1] - q_now) < abs(f["q_target"] - q_now):
-                self.events.append(f"followed {f['obj'][0]} {f['obj'][1]} {100 * abs(q_steps[len(path) - 1] - q_now) / abs(f['q_target'] - q_now):.0f}% of the way: the {side} arm's reach ends there")
+        way = abs(f["q_target"] - q_now)
+        reached = abs(q_steps[len(path) - 1] - q_now) if len(path) else 0.0
+        if len(path) and reached >= 0.9 * way:
+            if reached < way:
+                self.events.append(f"followed {f['obj'][0]} {f['obj'][1]} {100 * reached / way:.0f}% of the way: "
+                                   f"the {side} arm's reach ends there")
             return np.vstack([q0, path])
         if target.joint_q is not None:
             # The solver's goal may sit in another arm posture family: track backward from it to the start and

@@ -195,18 +195,24 @@ def _grip_variants(env, side: Side, obj_name: str, obj_id: int, operation: str, 
             fingers_forward,
         ] for squeeze in options]
     body = env.scene.object(obj_name, obj_id).body
-    ann = env.scene.object(obj_name, obj_id).annotations
     out = []
     for cons in variants:
         gen = Generated(cons, approach_axis=approach, approach_object=body, posture="wrap" if wrap else None)
-        if openness is not None and ann.articulation is not None:
-            art = ann.articulation
-            gen.follow = {"body": body, "joint": f"{body}_{art.joint}",
-                          "q_target": art.joint_position(openness),
-                          "part_point": op.point, "obj": (obj_name, obj_id)}
-            gen.approach_axis = None  # the hand is already on the part: no approach
+        _ride_with_part(env, gen, obj_name, obj_id, op.point, openness)  # the hand is already on the part
         out.append(gen)
     return out
+
+
+def _ride_with_part(env, gen: Generated, obj_name: str, obj_id: int, point: str, openness: float | None) -> None:
+    """Moving an articulated part to `openness` with the hand on it: the hand follows the part's joint path from
+    where it touches it now (the solved goal is a fallback) and comes in along no approach axis."""
+    obj = env.scene.object(obj_name, obj_id)
+    art = obj.annotations.articulation if obj.annotations is not None else None
+    if openness is None or art is None:
+        return
+    gen.follow = {"body": obj.body, "joint": f"{obj.body}_{art.joint}", "q_target": art.joint_position(openness),
+                  "part_point": point, "obj": (obj_name, obj_id)}
+    gen.approach_axis = None
 
 
 def keep_orientation(env, side: Side, held: tuple[str, int] | None = None) -> list[Constraint]:
@@ -262,14 +268,7 @@ def generate(env, holding: dict, obj_name: str, obj_id: int, action: str, side: 
             Const(env, "parallel", frame, hand_axis=press_axis, object_axis=approach, weight=0.5,
                   name="fingertip along the push direction (preferred)"),
         ], approach_axis=approach, approach_object=env.scene.object(obj_name, obj_id).body)
-        art = ann.articulation
-        if openness is not None and art is not None:
-            # Pushing the part to an openness: the hand rides with the part from where it touches it now (the
-            # solved goal pose is only a fallback), so it does not swing about on the way.
-            body = env.scene.object(obj_name, obj_id).body
-            gen.follow = {"body": body, "joint": f"{body}_{art.joint}", "q_target": art.joint_position(openness),
-                          "part_point": op.point, "obj": (obj_name, obj_id)}
-            gen.approach_axis = None
+        _ride_with_part(env, gen, obj_name, obj_id, op.point, openness)  # so the hand does not swing about
         return gen
     # move
     if relative_obj_name is None:

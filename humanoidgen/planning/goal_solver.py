@@ -68,7 +68,7 @@ class GoalSolver:
     held_clearance: float = 0.002
     w_reg: float = 0.02
     n_random_seeds: int = 6
-    n_extra_seeds: int = 18  # a second round of random seeds, only when the first round found nothing
+    n_extra_seeds: int = 18  # solve(thorough=True): a second round of random seeds when the first found nothing
     seed: int = 0
     major_iterations: int = 200
 
@@ -149,9 +149,7 @@ class GoalSolver:
         def rounds():
             yield from seeds
             if thorough and best is None:  # near the edge of reach a solution may lie in a basin few seeds find
-                extra = [rng.uniform(arm.lo, arm.hi) for _ in range(self.n_extra_seeds)]
-                seeds.extend(extra)
-                yield from extra
+                yield from (rng.uniform(arm.lo, arm.hi) for _ in range(self.n_extra_seeds))
 
         for s in rounds():
             tried += 1

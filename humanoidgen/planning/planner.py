@@ -281,9 +281,7 @@ class HumanoidMotionPlanner(ArmMoves):
         self.kin.sync(self.env.data.qpos)
         gen = first_gen = getattr(constraints[0], "meta", None)
         ignored_before = set(self.collisions.ignored_bodies)
-        if gen is not None and gen.approach_object is not None:
-            # The hand is meant to touch the object it grasps, pinches or pushes.
-            self.collisions.ignored_bodies.add(self.env.model.body(gen.approach_object).id)
+        self.collisions.ignored_bodies |= self._touched_by(gen)  # the hand is meant to touch what it operates on
         held = self.holding[side]
         if held is not None and held.annotations is not None and held.annotations.articulation is not None:
             self.collisions.ignored_bodies.add(self.env.model.body(held.body).id)
@@ -293,8 +291,7 @@ class HumanoidMotionPlanner(ArmMoves):
             result = self.solver.solve(side, list(constraints), self.kin.arm_q(side), self.nominal[side])
             usable = result.success and self._approach_fits(side, result, gen)
             for alternative in (gen.alternatives if gen is not None and not usable else []):
-                self.collisions.ignored_bodies = set(ignored_before) | ({self.env.model.body(
-                    alternative.approach_object).id} if alternative.approach_object else set())
+                self.collisions.ignored_bodies = ignored_before | self._touched_by(alternative)
                 retry = self.solver.solve(side, list(alternative.constraints), self.kin.arm_q(side),
                                           self.nominal[side])
                 # A grip whose goal solves but whose straight approach does not fit is kept only as a last resort.
@@ -304,8 +301,7 @@ class HumanoidMotionPlanner(ArmMoves):
                 if retry.success and not result.success:
                     result, gen = retry, alternative
             if not result.success:  # a last, slower try of the first way with many more seeds
-                self.collisions.ignored_bodies = set(ignored_before) | ({self.env.model.body(
-                    first_gen.approach_object).id} if first_gen is not None and first_gen.approach_object else set())
+                self.collisions.ignored_bodies = ignored_before | self._touched_by(first_gen)
                 retry = self.solver.solve(side, list(constraints), self.kin.arm_q(side), self.nominal[side],
                                           thorough=True)
                 if retry.success:
@@ -323,6 +319,12 @@ class HumanoidMotionPlanner(ArmMoves):
             pose.follow = gen.follow
             pose.posture = gen.posture
         return result, pose
+
+    def _touched_by(self, gen) -> set[int]:
+        """The body a grip, pinch or push is meant to touch (none for other constraints)."""
+        if gen is None or gen.approach_object is None:
+            return set()
+        return {self.env.model.body(gen.approach_object).id}
 
     def _attach_held(self, side: Side) -> None:
         held = self.holding[side]
@@ -369,11 +371,11 @@ class HumanoidMotionPlanner(ArmMoves):
         for side, before in carried.items():
             slip = np.linalg.norm(self._relative_to_hand(side, self.holding[side]) - before)
             # A wrapped body may settle in the fist when turned (pouring) and still be held; a pinched one may not.
-            if 0.01 < slip <= SLIP_LIMIT[self.grip.get(side, "pinch")]:
-                obj = self.holding[side]
-                self.events.append(f"{obj.type_name} {obj.obj_id} shifted {slip * 1000:.0f} mm in the {side} hand")
-            elif slip > 0.01:
-                obj = self.holding[side]
+            obj = self.holding[side]
+            if slip <= SLIP_LIMIT[self.grip.get(side, "pinch")]:
+                if slip > SLIP_LIMIT["pinch"]:
+                    self.events.append(f"{obj.type_name} {obj.obj_id} shifted {slip * 1000:.0f} mm in the {side} hand")
+            else:
                 self.holding[side] = None
                 raise PlanningError("move_to_pose_with_screw",
                                     f"{obj.type_name} {obj.obj_id} slipped {slip * 1000:.0f} mm in the {side} hand")

@@ -6,7 +6,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from humanoidgen.sim.geometry import mat_to_quat, quat_to_mat, rotation_error
+from humanoidgen.sim.geometry import axis_angle_mat, mat_to_quat, quat_to_mat, rotation_error
 
 
 @dataclass
@@ -49,9 +49,7 @@ def _rot_from_vec(w: np.ndarray) -> np.ndarray:
     angle = np.linalg.norm(w)
     if angle < 1e-12:
         return np.eye(3)
-    k = w / angle
-    K = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
-    return np.eye(3) + np.sin(angle) * K + (1 - np.cos(angle)) * K @ K
+    return axis_angle_mat(w / angle, angle)
 
 
 def screw_interpolate(p0: np.ndarray, R0: np.ndarray, p1: np.ndarray, R1: np.ndarray, max_step: float = 0.01,

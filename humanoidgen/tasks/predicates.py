@@ -76,6 +76,11 @@ def _bbox(env, ref: ObjRef) -> tuple[np.ndarray, np.ndarray]:
     return np.asarray(ann.bbox_min), np.asarray(ann.bbox_max)
 
 
+def _bottom_above_table(env, ref: ObjRef) -> float:
+    """Height of the object's bounding-box bottom above the table top (upright; the box is in its own frame)."""
+    return float(_pose(env, ref)[0][2] + _bbox(env, ref)[0][2] - TABLE_TOP_Z)
+
+
 def _support_height(env, ref: ObjRef) -> float:
     """Height of the surface things rest on, above the object's centre: its "support" function point, else the
     bbox top (so a plate counts its floor, not its rim)."""
@@ -126,7 +131,7 @@ class OnTable(_Strict):
 
     def evaluate(self, env) -> PredicateResult:
         p, _ = _pose(env, self.obj)
-        gap = float(p[2] + _bbox(env, self.obj)[0][2] - TABLE_TOP_Z)
+        gap = _bottom_above_table(env, self.obj)
         over = TABLE_X[0] <= p[0] <= TABLE_X[1] and TABLE_Y[0] <= p[1] <= TABLE_Y[1]
         ok = abs(gap) <= self.z_tol and over
         return PredicateResult(ok=ok, detail=f"{_name(self.obj)}'s bottom is {_cm(gap)} above the table "
@@ -250,8 +255,7 @@ class Lifted(_Strict):
         return [self.obj]
 
     def evaluate(self, env) -> PredicateResult:
-        p, _ = _pose(env, self.obj)
-        h = float(p[2] + _bbox(env, self.obj)[0][2] - TABLE_TOP_Z)
+        h = _bottom_above_table(env, self.obj)
         return PredicateResult(ok=h >= self.min_height,
                                detail=f"{_name(self.obj)} is {_cm(h)} above the table (min {_cm(self.min_height)})")
 
