@@ -1,44 +1,56 @@
-"""Static allow-list check of LLM-written plan steps before they are executed.
+"""Static check of plan code (LLM-written or user plans) before it runs: the friendly first layer.
 
-The check is the first of two layers: it rejects code that could reach the interpreter's internals (imports,
-dunder attributes, `eval`/`getattr`, frames of generators, modules hanging off numpy), and code whose shape is
-outside the paper's plan scripts (classes, `while`, `try`, ...). The second layer is `runner.SandboxWorker`:
-a separate process with restricted builtins, a memory limit and a wall-time limit, which also covers what a
-static check cannot (a long `range`, a slow planner call).
+The security boundary is the locked-down worker process that runs plan code (restricted builtins, memory and
+time limits, OS-level lockdown). This check is not that boundary and is not complete (`BLOCKED_ATTRIBUTES` lists
+known routes, not all). It turns mistakes and reaches into internals into line-numbered messages that say what to
+write instead, before simulation time is spent, and it accepts the ordinary Python that LLMs write in plans:
 
-Allowed, per node: literals, names, arithmetic/boolean/comparison ops, attribute access (no name starting
-with "_", none in `BLOCKED_ATTRIBUTES`), subscripts/slices, calls (incl. `*args`/`**kwargs`), assignments
-(plain, tuple unpacking, augmented, annotated), list/tuple/dict/set displays, comprehensions, f-strings,
-`x if c else y`, `if`/`elif`/`else`, `for` over `range(...)`, a list/tuple/set literal or a name, `break`,
-`continue`, `pass`, `assert`, `raise`, and top-level `def step(planner):` (no decorators) with `return`.
-Forbidden: everything else, notably `import`, `while`, `try`, `with`, `class`, `lambda`, `global`/`nonlocal`,
-`del`, `yield`, `await`, `match`, nested functions.
+Accepted: expressions of all kinds (calls with `*args`/`**kwargs`, comprehensions, f-strings, `lambda`, `:=`),
+assignments of all kinds, `if`/`for`/`while` (any iterable or condition: the worker's time limit bounds loops),
+`try`/`except [T as e]`/`else`/`finally`, `raise`, `assert`, `del name`/`del x[i]`, functions at top level and
+nested (defaults, `*args`, keyword-only, `**kwargs`; `return`, `global`, `nonlocal` inside), and imports of the
+modules `safe_builtins` provides: `import numpy [as np]`, `import math`, `import numpy.linalg [as la]`,
+`import numpy.random`, `from math import pi, sqrt`, `from numpy import array`. The paper's
+`from humanoidgen... import *` line is blanked by `strip_api_imports` (the planner API names are defined).
 
-Names: a name must be in `allowed_names` (the namespace the runner provides), in `SAFE_BUILTINS`, or bound
-in the checked code itself; `FORBIDDEN_NAMES` and dunder names are rejected even if allowed elsewhere.
-Annotations (`planner: HumanoidMotionPlanner`) need only be dotted names; they are removed before the code is
-compiled, so they are never evaluated.
+Refused, each with a message: other imports, `class`, decorators, `with` (plans cannot open files), `yield`,
+`async`/`await`, `match` (use `if`/`elif`), `del` of attributes, names starting with `__`, attributes starting
+with `_` or in `BLOCKED_ATTRIBUTES`, uses of `FORBIDDEN_NAMES` the plan does not bind itself (`dir = v` makes a plan
+variable, not the builtin), `.format_map`, and `.format` except on a string literal whose fields neither read
+attributes nor index with non-integer keys (`format_fields`).
+
+A name must be provided (`allowed_names`), a safe builtin, or bound in the code (scoping is flat). Annotations are
+removed before compiling, so any annotation is accepted. The tree is compiled at the end, so what Python refuses
+(`break` outside a loop, nesting too deep) comes back as a violation too; nothing raises but `CodeRejected`.
 """
 
 from __future__ import annotations
 
 import ast
+import builtins
 import contextlib
+import difflib
 import re
 import textwrap
+from collections.abc import Mapping
 from dataclasses import dataclass, field
+from types import ModuleType
+from typing import Any
+
+from humanoidgen.sandbox.format_fields import format_template_problems
 
 MAX_SOURCE_BYTES = 20_000
 MAX_AST_NODES = 5_000
+MAX_NESTING = 200  # syntax-tree depth; far beyond plan code, well below what `compile` can recurse through
 STEP_FUNCTION = "step"
 
-# Builtins a plan step may use; the runner exposes exactly these as `__builtins__`. `type`, `getattr`, `vars`,
-# `dir`, `iter`/`next` and friends are absent because they reach internals or build unbounded iteration.
+# Builtins plan code may use; `safe_builtins` installs exactly these (and a restricted `__import__`).
 SAFE_BUILTINS: frozenset[str] = frozenset({
     "range", "len", "abs", "min", "max", "sum", "round", "float", "int", "bool", "str", "list", "tuple", "dict",
     "set", "enumerate", "zip", "print", "sorted", "reversed", "any", "all", "isinstance", "divmod", "map",
     "filter", "True", "False", "None",
     "Exception", "ValueError", "RuntimeError", "TypeError", "KeyError", "IndexError", "AssertionError",
+    "ZeroDivisionError", "ArithmeticError", "AttributeError", "NotImplementedError", "LookupError", "OverflowError",
 })
 
 FORBIDDEN_NAMES: frozenset[str] = frozenset({
@@ -48,32 +60,55 @@ FORBIDDEN_NAMES: frozenset[str] = frozenset({
     "issubclass", "hash", "format", "chr", "ord", "bytes", "bytearray", "frozenset", "slice",
 })
 
-# Attribute names that lead to interpreter internals or the file system without a leading underscore:
-# generator/frame/code objects, and modules reachable from numpy (found by walking `np`'s public attributes,
-# see tests/test_sandbox.py::test_numpy_attribute_walk_reaches_no_dangerous_module).
-BLOCKED_ATTRIBUTES: frozenset[str] = frozenset({
-    # frames, code, generators, coroutines, tracebacks
+_NAME_HINTS: dict[str, str] = {
+    "open": "plans cannot read or write files",
+    **dict.fromkeys(("exec", "eval", "compile"), "plans cannot run code built from strings; write the code itself"),
+    "getattr": "write the attribute itself (`obj.name`)",
+    "setattr": "assign the attribute itself (`obj.name = value`)",
+    "delattr": "plans cannot delete attributes",
+    "hasattr": "use the attribute and catch `AttributeError` (`try: ... except AttributeError: ...`)",
+    **dict.fromkeys(("globals", "locals", "vars", "dir"), "plans cannot inspect namespaces or objects; "
+                    "use the planner API and the names you assigned"),
+    "input": "plans cannot read input",
+    **dict.fromkeys(("exit", "quit", "breakpoint", "help"), "to stop a step, raise an exception "
+                    "(`raise RuntimeError('why')`)"),
+    "type": "to test a type, use `isinstance(x, T)`",
+    **dict.fromkeys(("object", "super", "classmethod", "staticmethod", "property"),
+                    "plans cannot define classes; use functions, dicts and tuples"),
+    **dict.fromkeys(("memoryview", "bytes", "bytearray", "chr", "ord"), "work with str, lists and numpy arrays"),
+    **dict.fromkeys(("id", "hash"), "compare values with `==` (or `is None`)"),
+    **dict.fromkeys(("iter", "next", "aiter", "anext"), "loop with `for`, or index a list"),
+    **dict.fromkeys(("callable", "issubclass"), "use `isinstance(x, T)`"),
+    "format": "use an f-string (f\"{x:.3f}\")",
+    "frozenset": "use `set(...)` or `tuple(...)`",
+    "slice": "index with `a[i:j]`",
+    "__import__": "write `import numpy as np` or `import math`",
+}
+
+# Attribute names that lead to interpreter internals, other modules or files without a leading underscore.
+# Known routes (e.g. found by walking `np`'s public attributes, see tests/test_sandbox.py), not a complete list.
+_INTERNAL_ATTRIBUTES = frozenset({
     "gi_frame", "gi_code", "gi_yieldfrom", "cr_frame", "cr_code", "cr_await", "ag_frame", "ag_code",
     "f_globals", "f_locals", "f_builtins", "f_back", "f_code", "tb_frame", "tb_next", "co_code", "mro",
     "func_globals", "format_map",
-    # modules that expose the OS, code loading or raw memory
+})
+_MODULE_ATTRIBUTES = frozenset({
     "os", "sys", "subprocess", "builtins", "importlib", "ctypes", "ctypeslib", "pickle", "io", "shutil",
     "pathlib", "socket", "inspect", "types", "tempfile", "platform", "gc", "marshal", "runpy", "signal",
     "threading", "multiprocessing", "f2py", "testing", "distutils", "lib", "mmap", "glob", "urllib",
-    # numpy file I/O and pickling
+    "bltns", "enum", "re", "warnings", "operator", "functools",
+})
+_FILE_ATTRIBUTES = frozenset({
     "load", "loads", "save", "savez", "savez_compressed", "savetxt", "loadtxt", "genfromtxt", "fromfile",
     "fromregex", "tofile", "dump", "dumps", "memmap", "DataSource", "open_memmap",
 })
+BLOCKED_ATTRIBUTES: frozenset[str] = _INTERNAL_ATTRIBUTES | _MODULE_ATTRIBUTES | _FILE_ATTRIBUTES
 
-_ALLOWED_NODES: tuple[type[ast.AST], ...] = (
-    ast.Module, ast.Expr, ast.Assign, ast.AugAssign, ast.AnnAssign, ast.If, ast.For, ast.Pass, ast.Break,
-    ast.Continue, ast.Assert, ast.Raise, ast.Return, ast.FunctionDef, ast.arguments, ast.arg,
-    ast.Constant, ast.Name, ast.Load, ast.Store, ast.Attribute, ast.Subscript, ast.Slice, ast.Starred,
-    ast.Call, ast.keyword, ast.BinOp, ast.UnaryOp, ast.BoolOp, ast.Compare, ast.IfExp, ast.NamedExpr,
-    ast.List, ast.Tuple, ast.Dict, ast.Set, ast.ListComp, ast.SetComp, ast.DictComp, ast.GeneratorExp,
-    ast.comprehension, ast.JoinedStr, ast.FormattedValue,
-    ast.operator, ast.unaryop, ast.boolop, ast.cmpop, ast.expr_context,
-)
+# What `import` may bind (the runner's `safe_builtins(modules)` provides the modules themselves).
+ALLOWED_IMPORTS: frozenset[str] = frozenset({"numpy", "math", "numpy.linalg", "numpy.random"})
+_IMPORTS_HELP = ("the only imports are `import numpy as np`, `import math` and `from ... import` of their "
+                 "functions (e.g. `from math import pi, sqrt`); `numpy.linalg` and `numpy.random` may be imported too")
+_NESTED = "code nested too deeply; split long expressions and deep nesting into variables or helper functions"
 
 # The paper's scripts start with `from humanoidgen.<...>.solver_env import *`; only that exact form is stripped.
 _API_IMPORT = re.compile(r"^[ \t]*(from[ \t]+humanoidgen(\.\w+)*[ \t]+import[ \t]+\*|import[ \t]+humanoidgen(\.\w+)*)"
@@ -107,7 +142,50 @@ class CheckedCode:
     bound_names: set[str] = field(default_factory=set)
 
     def compile(self, filename: str = "<step>"):
-        return compile(self.tree, filename, "exec", dont_inherit=True)
+        """The code object; `CodeRejected` (never RecursionError/MemoryError/SyntaxError) if Python refuses."""
+        try:
+            return compile(self.tree, filename, "exec", dont_inherit=True)
+        except SyntaxError as e:
+            raise CodeRejected([_syntax_violation(e)]) from None
+        except (RecursionError, MemoryError):
+            raise CodeRejected([Violation(1, 0, _NESTED)]) from None
+
+
+def safe_builtins(modules: Mapping[str, ModuleType]) -> dict[str, Any]:
+    """The `__builtins__` dict for plan code: `SAFE_BUILTINS` plus an `__import__` that only hands out `modules`.
+
+    `modules` maps import names to modules, e.g. `{"numpy": numpy, "math": math}`; a submodule in
+    `ALLOWED_IMPORTS` (`numpy.linalg`) is found as an attribute of its provided parent unless given itself.
+    Any other import raises ImportError saying what is available.
+    """
+    out: dict[str, Any] = {name: getattr(builtins, name) for name in SAFE_BUILTINS if hasattr(builtins, name)}
+    provided = dict(modules)
+
+    def restricted_import(name: str, globals: Any = None, locals: Any = None, fromlist: Any = (),
+                          level: int = 0) -> ModuleType:
+        module = _resolve_module(provided, name) if level == 0 and isinstance(name, str) else None
+        refused = [str(n) for n in fromlist or ()
+                   if not isinstance(n, str) or n == "*" or n.startswith("_") or n in BLOCKED_ATTRIBUTES]
+        if module is None or refused:
+            available = ", ".join(sorted(set(provided) | {m for m in ALLOWED_IMPORTS if _resolve_module(provided, m)}))
+            what = f"`{', '.join(refused)}` from `{name}`" if module else f"`{'.' * level}{name}`"
+            raise ImportError(f"{what} cannot be imported in plan code; available: {available or 'none'}; "
+                              "the planner API names are already defined", name=name)
+        # Python's protocol: `from a.b import x` gets `a.b`; `import a.b [as c]` gets `a` (then takes `.b` itself).
+        return module if fromlist else _resolve_module(provided, name.partition(".")[0])
+
+    out["__import__"] = restricted_import
+    return out
+
+
+def _resolve_module(provided: dict[str, ModuleType], name: str) -> ModuleType | None:
+    if name in provided:
+        return provided[name]
+    parent, _, child = name.rpartition(".")
+    if name not in ALLOWED_IMPORTS or not parent:
+        return None
+    module = getattr(_resolve_module(provided, parent), child, None)
+    return module if isinstance(module, ModuleType) else None
 
 
 def strip_api_imports(source: str) -> str:
@@ -119,58 +197,91 @@ def split_steps(response_text: str) -> list[str]:
     """Plan steps from an LLM response.
 
     Each fenced ```python (or bare ```) block is one step, dedented (the paper's blocks are indented one level)
-    and with API import lines stripped. If there are no fences, the text is taken as a whole script; if a
-    fenced block or the script defines `def step(planner):`, that function's body is returned as the step
-    instead (so `planner` is the namespace's planner and the body runs at top level).
+    and with API import lines stripped. If there are no fences, the text is taken as a whole script. A block or
+    script that is just `def step(planner): ...` becomes that function's body (so `planner` is the namespace's
+    planner and the body runs at top level), unless the body needs its function (a `return` in it); a block with
+    more (helper functions, imports) is kept whole, without explicit `step(planner)` calls, since the runner
+    calls `step` after executing it.
     """
     blocks = _FENCE.findall(response_text) or [response_text]
     steps = []
     for block in blocks:
-        code = strip_api_imports(textwrap.dedent(block)).strip("\n")
-        body = _step_body(code)
-        code = body if body is not None else code
+        code = _as_step(strip_api_imports(textwrap.dedent(block)).strip("\n"))
         if code.strip():
             steps.append(code)
     return steps
 
 
-def _step_body(code: str) -> str | None:
+def _as_step(code: str) -> str:
     try:
         tree = ast.parse(code)
     except (SyntaxError, ValueError, RecursionError, MemoryError):
-        return None
-    for node in tree.body:
-        if isinstance(node, ast.FunctionDef) and node.name == STEP_FUNCTION and node.body:
-            lines = code.split("\n")
-            # Keep comments between the header and the first statement when the header is one line.
-            for start in (node.lineno, node.body[0].lineno - 1):
-                body = textwrap.dedent("\n".join(lines[start:node.body[-1].end_lineno])).strip("\n")
-                with contextlib.suppress(SyntaxError, ValueError, RecursionError, MemoryError):
-                    ast.parse(body)
-                    return body
-            return None
+        return code
+    defs = [n for n in tree.body if isinstance(n, ast.FunctionDef) and n.name == STEP_FUNCTION]
+    if not defs:
+        return code
+    calls = [n for n in tree.body if isinstance(n, ast.Expr) and isinstance(n.value, ast.Call)
+             and isinstance(n.value.func, ast.Name) and n.value.func.id == STEP_FUNCTION]
+    others = [n for n in tree.body if n not in defs and n not in calls]
+    if len(defs) == 1 and not others:
+        body = _function_body(code, defs[0])
+        if body is not None:
+            return body
+    lines = code.split("\n")
+    for call in calls:  # blank the call's lines unless another statement shares them (`x = 1; step(planner)`)
+        span = range(call.lineno, call.end_lineno + 1)
+        if not any(n is not call and (n.lineno in span or n.end_lineno in span) for n in tree.body):
+            lines[call.lineno - 1: call.end_lineno] = [""] * len(span)
+    return "\n".join(lines).rstrip("\n")
+
+
+def _function_body(code: str, node: ast.FunctionDef) -> str | None:
+    lines = code.split("\n")
+    # Keep comments between the header and the first statement when the header is one line.
+    for start in (node.lineno, node.body[0].lineno - 1):
+        body = textwrap.dedent("\n".join(lines[start:node.body[-1].end_lineno])).strip("\n")
+        with contextlib.suppress(SyntaxError, ValueError, RecursionError, MemoryError, OverflowError):
+            compile(body, "<step>", "exec", dont_inherit=True)  # not only parse: `return` needs its function
+            return body
     return None
 
 
 def check_code(source: str, allowed_names: set[str] | frozenset[str]) -> CheckedCode:
-    """Check `source` (API import lines already stripped) against the allow-list; raise `CodeRejected`."""
+    """Check `source` (API import lines already stripped); raise `CodeRejected` with line-numbered violations."""
     if len(source.encode("utf-8", "replace")) > MAX_SOURCE_BYTES:
-        raise CodeRejected([Violation(1, 0, f"source larger than {MAX_SOURCE_BYTES} bytes")])
+        raise CodeRejected([Violation(1, 0, f"source larger than {MAX_SOURCE_BYTES} bytes; split it into steps")])
     try:
         tree = ast.parse(source, "<step>", "exec")
-    except (SyntaxError, ValueError, RecursionError, MemoryError) as e:
-        line = getattr(e, "lineno", None) or 1
-        raise CodeRejected([Violation(line, getattr(e, "offset", None) or 0, f"syntax error: {e}")]) from None
-    nodes = list(ast.walk(tree))
-    if len(nodes) > MAX_AST_NODES:
-        raise CodeRejected([Violation(1, 0, f"code has more than {MAX_AST_NODES} syntax nodes")])
-    checker = _Checker(set(allowed_names))
-    checker.visit_tree(tree, nodes)
-    if checker.violations:
-        raise CodeRejected(sorted(checker.violations, key=lambda v: (v.line, v.col)))
-    tree = _StripAnnotations().visit(tree)
-    ast.fix_missing_locations(tree)
-    return CheckedCode(source, tree, checker.defines_step, checker.bound)
+    except SyntaxError as e:
+        raise CodeRejected([_syntax_violation(e)]) from None
+    except (RecursionError, MemoryError):  # the parser gives up on deep nesting (e.g. 15,000 unary minus)
+        raise CodeRejected([Violation(1, 0, _NESTED)]) from None
+    except ValueError as e:  # e.g. a null byte
+        raise CodeRejected([Violation(1, 0, f"syntax error: {e}")]) from None
+    try:
+        if sum(1 for _ in ast.walk(tree)) > MAX_AST_NODES:
+            raise CodeRejected([Violation(1, 0, f"code has more than {MAX_AST_NODES} syntax nodes; "
+                                                "split it into steps")])
+        checker = _Checker(set(allowed_names))
+        checker.run(tree)
+        if checker.violations:
+            raise CodeRejected(sorted(set(checker.violations), key=lambda v: (v.line, v.col, v.message)))
+        checked = CheckedCode(source, _strip_annotations(tree), checker.defines_step, checker.bound)
+        checked.compile()  # what Python itself refuses (`break` outside a loop, ...) as a violation, too
+    except (RecursionError, MemoryError):
+        raise CodeRejected([Violation(1, 0, _NESTED)]) from None
+    return checked
+
+
+def _syntax_violation(e: SyntaxError) -> Violation:
+    line, col = e.lineno or 1, max((e.offset or 1) - 1, 0)
+    msg = e.msg or str(e)
+    if "too many nested" in msg or "too many statically nested" in msg:
+        return Violation(line, col, _NESTED)
+    if "nonlocal" in msg:
+        msg += ("; `nonlocal x` needs `x` assigned in an enclosing function (for a variable of the step's top "
+                "level, write `global x`)")
+    return Violation(line, col, f"syntax error: {msg}")
 
 
 class _Checker:
@@ -179,112 +290,216 @@ class _Checker:
         self.violations: list[Violation] = []
         self.bound: set[str] = set()
         self.defines_step = False
-        self.annotations: set[int] = set()  # ids of annotation subtrees: only dotted names, never evaluated
 
     def bad(self, node: ast.AST, message: str) -> None:
         self.violations.append(Violation(getattr(node, "lineno", 1), getattr(node, "col_offset", 0), message))
 
-    def visit_tree(self, tree: ast.Module, nodes: list[ast.AST]) -> None:
-        # Pass 1: names the code binds itself (assignment targets, loop/comprehension variables, parameters).
-        for node in nodes:
-            if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Store):
-                self.bound.add(node.id)
-            elif isinstance(node, ast.arg):
-                self.bound.add(node.arg)
-                if node.annotation is not None:
-                    self.annotation(node.annotation)
-            elif isinstance(node, ast.FunctionDef):
-                self.bound.add(node.name)
-                if node.returns is not None:
-                    self.annotation(node.returns)
-            elif isinstance(node, ast.AnnAssign):
-                self.annotation(node.annotation)
-        for stmt in tree.body:  # top-level only: `def step` here is fine, nowhere else
-            if isinstance(stmt, ast.FunctionDef):
-                self.function(stmt)
-        # Pass 2: every node against the allow-list.
-        top_defs = {id(s) for s in tree.body if isinstance(s, ast.FunctionDef)}
-        for node in nodes:
-            if not isinstance(node, _ALLOWED_NODES):
-                # Helper nodes (alias, excepthandler, withitem, ...) only occur under a forbidden statement or
-                # expression, which is reported already: report them only if their line has nothing yet.
-                if isinstance(node, (ast.stmt, ast.expr)) or not any(
-                        v.line == getattr(node, "lineno", 1) for v in self.violations):
-                    self.bad(node, f"{_describe(node)} is not allowed")
-            elif isinstance(node, ast.FunctionDef) and id(node) not in top_defs:
-                self.bad(node, "functions may only be defined at top level (`def step(planner):`)")
-            elif isinstance(node, ast.Name):
-                self.name(node)
-            elif isinstance(node, ast.Attribute):
-                self.attribute(node)
-            elif isinstance(node, ast.For):
-                self.loop(node)
-            elif isinstance(node, ast.Return) and not top_defs:
-                self.bad(node, "`return` outside `def step`")
+    def run(self, tree: ast.Module) -> None:
+        entries = _collect(tree)
+        for node, _in_function, _skipped in entries:  # pass 1: the names the code binds itself
+            self.bind(node)
+        for node, in_function, skipped in entries:  # pass 2: every node
+            if not skipped:
+                self.check(node, in_function)
+        for stmt in tree.body:
+            if isinstance(stmt, ast.FunctionDef) and stmt.name == STEP_FUNCTION:
+                self.step_function(stmt)
 
-    def annotation(self, node: ast.expr) -> None:
-        for sub in ast.walk(node):
-            self.annotations.add(id(sub))
-            if not isinstance(sub, (ast.Name, ast.Attribute, ast.Load, ast.Constant)):
-                self.bad(sub, "annotations must be plain (dotted) names")
-            elif isinstance(sub, ast.Attribute) and sub.attr.startswith("_"):
-                self.bad(sub, f"attribute `{sub.attr}` is not allowed")
+    def bind(self, node: ast.AST) -> None:
+        if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Store):
+            self.bound.add(node.id)
+        elif isinstance(node, ast.arg):
+            self.bound.add(node.arg)
+        elif isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)):
+            self.bound.add(node.name)
+        elif isinstance(node, ast.Import):  # bound even when refused: one message, not one per later use
+            self.bound.update(a.asname or a.name.partition(".")[0] for a in node.names)
+        elif isinstance(node, ast.ImportFrom):
+            self.bound.update(a.asname or a.name for a in node.names if a.name != "*")
+        elif isinstance(node, ast.ExceptHandler) and node.name:
+            self.bound.add(node.name)
+        elif isinstance(node, (ast.Global, ast.Nonlocal)):
+            self.bound.update(node.names)
 
-    def function(self, node: ast.FunctionDef) -> None:
-        a = node.args
-        if node.decorator_list:
-            self.bad(node, "decorators are not allowed")
-        if node.name != STEP_FUNCTION:
-            self.bad(node, f"only `def {STEP_FUNCTION}(planner):` may be defined, not `{node.name}`")
-        if a.posonlyargs or a.kwonlyargs or a.vararg or a.kwarg or a.defaults or len(a.args) != 1:
-            self.bad(node, f"`{STEP_FUNCTION}` must take exactly one parameter, `planner`")
-        self.defines_step = node.name == STEP_FUNCTION
+    def check(self, node: ast.AST, in_function: bool) -> None:
+        if type(node) in _REFUSED:
+            self.bad(node, _REFUSED[type(node)])
+        elif not isinstance(node, _ALLOWED_NODES):
+            self.bad(node, f"`{type(node).__name__}` is not available in plan code")
+        elif isinstance(node, ast.Name):
+            self.name(node)
+        elif isinstance(node, ast.Attribute):
+            self.attribute(node)
+        elif isinstance(node, (ast.Import, ast.ImportFrom)):
+            self.import_(node)
+        elif isinstance(node, ast.FunctionDef):
+            if node.decorator_list:
+                self.bad(node.decorator_list[0], "decorators are not available in plan code; define the function "
+                         "without `@...` and call what the decorator would have called yourself")
+            self.binding(node, node.name)
+        elif isinstance(node, ast.arg):
+            self.binding(node, node.arg)
+        elif isinstance(node, ast.ExceptHandler) and node.name:
+            self.binding(node, node.name)
+        elif isinstance(node, ast.Return) and not in_function:
+            self.bad(node, "`return` outside a function: a step runs at top level; use `if`/`else` to skip the "
+                     "rest, or put the step in `def step(planner):`")
+        elif isinstance(node, (ast.Global, ast.Nonlocal)):
+            if isinstance(node, ast.Nonlocal) and not in_function:
+                self.bad(node, "`nonlocal` is only allowed inside a function (at top level, no declaration is needed)")
+            for n in node.names:
+                self.binding(node, n)
+        elif isinstance(node, ast.comprehension) and node.is_async:
+            self.bad(node.target, _REFUSED[ast.Await])
+
+    def binding(self, node: ast.AST, name: str) -> None:
+        if name.startswith("__"):
+            self.bad(node, f"the name `{name}` is not available in plan code: names starting with '__' are Python "
+                     "internals; pick another name")
 
     def name(self, node: ast.Name) -> None:
-        if id(node) in self.annotations:
-            return
         n = node.id
-        if n in FORBIDDEN_NAMES or n.startswith("__"):
-            self.bad(node, f"name `{n}` is not allowed")
-        elif isinstance(node.ctx, ast.Load) and n not in self.allowed | self.bound | SAFE_BUILTINS:
-            self.bad(node, f"unknown name `{n}`")
+        if n.startswith("__"):
+            hint = _NAME_HINTS.get(n, "names starting with '__' are Python internals")
+            self.bad(node, f"`{n}` is not available in plan code; {hint}")
+        elif isinstance(node.ctx, ast.Store) or n in self.bound:
+            return  # the plan's own variable (even `dir = ...`: then it is not the builtin)
+        elif n in FORBIDDEN_NAMES:
+            self.bad(node, f"`{n}` is not available in plan code; {_NAME_HINTS.get(n, 'it reaches internals')}")
+        elif n not in self.allowed and n not in SAFE_BUILTINS:
+            self.bad(node, f"unknown name `{n}`: {self.unknown_hint(n)}")
+
+    def unknown_hint(self, n: str) -> str:
+        if n in ("np", "numpy", "math"):
+            return f"add `{'import numpy as np' if n == 'np' else 'import ' + n}` at the top of the step"
+        known = {k for k in self.allowed | self.bound | SAFE_BUILTINS if not k.startswith("__")}
+        close = difflib.get_close_matches(n, sorted(known), n=1, cutoff=0.75)
+        if hasattr(builtins, n):
+            text = f"the Python builtin `{n}` is not available in plan code"
+        else:
+            text = "it is not assigned in this step, and it is not a planner API name or an available builtin"
+        return text + (f"; did you mean `{close[0]}`?" if close else "")
 
     def attribute(self, node: ast.Attribute) -> None:
-        if node.attr.startswith("_") and id(node) not in self.annotations:
-            self.bad(node, f"attribute `{node.attr}` is not allowed (names starting with '_' are private)")
-        elif node.attr in BLOCKED_ATTRIBUTES and id(node) not in self.annotations:
-            self.bad(node, f"attribute `{node.attr}` is not allowed")
+        a = node.attr
+        if a in ("format", "format_map"):
+            self.format_call(node)
+        elif a.startswith("_"):
+            hint = " (to test a type, use `isinstance(x, T)`)" if a == "__class__" else ""
+            self.bad(node, f"attribute `{a}` is not available in plan code: names starting with '_' are private or "
+                     f"Python internals; use the public API{hint}")
+        elif a in _FILE_ATTRIBUTES:
+            self.bad(node, f"attribute `{a}` is not available in plan code: plans cannot read or write files")
+        elif a in _MODULE_ATTRIBUTES:
+            self.bad(node, f"attribute `{a}` is not available in plan code: it leads to a module outside the math "
+                     "of numpy/math (plans cannot use the OS, files or the interpreter)")
+        elif a in _INTERNAL_ATTRIBUTES:
+            self.bad(node, f"attribute `{a}` is not available in plan code: it reaches interpreter internals")
+        elif isinstance(node.ctx, ast.Del):
+            self.bad(node, "`del` of an attribute is not available in plan code; only `del name` and `del x[i]`")
 
-    def loop(self, node: ast.For) -> None:
-        it = node.iter
-        if isinstance(it, (ast.List, ast.Tuple, ast.Set, ast.Name)):
+    def format_call(self, node: ast.Attribute) -> None:
+        if node.attr == "format_map":
+            self.bad(node, "`.format_map(...)` is not available in plan code; use an f-string, or "
+                     "`'...'.format(**mapping)` on a string literal")
+        elif not (isinstance(node.value, ast.Constant) and isinstance(node.value.value, str)):
+            self.bad(node, "`.format(...)` is only available on a string literal (`'{:.3f}'.format(x)`), not on a "
+                     "template held in a variable or built by an expression; use an f-string instead: f\"{x:.3f}\"")
+        else:
+            for problem in format_template_problems(node.value.value):
+                self.bad(node, f"in `'...'.format(...)`: {problem}")
+
+    def import_(self, node: ast.Import | ast.ImportFrom) -> None:
+        if isinstance(node, ast.ImportFrom):
+            module = "." * node.level + (node.module or "")
+            what, ok = f"from {module} import ...", node.level == 0 and module in ALLOWED_IMPORTS
+        else:
+            refused = [a.name for a in node.names if a.name not in ALLOWED_IMPORTS]
+            module = refused[0] if refused else ""
+            what, ok = f"import {module}", not refused
+        if not ok:
+            api = sorted((n for n in self.allowed if not n.startswith("_")), key=lambda n: (n != "planner", n))
+            names = ", ".join(api[:4]) + (", ..." if len(api) > 4 else "")
+            defined = f"the planner API names ({names}) are already defined" if api else "the planner API is defined"
+            if module.lstrip(".").split(".")[0] == "humanoidgen":
+                self.bad(node, f"`{what}` is not needed: {defined}; remove this line")
+            else:
+                self.bad(node, f"`{what}` is not available in plan code; {_IMPORTS_HELP}; {defined}")
             return
-        if isinstance(it, ast.Call) and isinstance(it.func, ast.Name) and it.func.id == "range" and not it.keywords:
-            return
-        self.bad(node, "`for` may only loop over range(...), a list/tuple literal or a name")
+        for a in node.names:
+            if isinstance(node, ast.ImportFrom) and a.name == "*":
+                self.bad(node, f"`from {module} import *` is not available in plan code; import the names you "
+                         f"need (`from {module} import a, b`) or use `import {module}`")
+            elif isinstance(node, ast.ImportFrom) and (a.name.startswith("_") or a.name in BLOCKED_ATTRIBUTES):
+                self.bad(node, f"`{a.name}` cannot be imported from `{module}` in plan code")
+            self.binding(node, a.asname or a.name.partition(".")[0])
+
+    def step_function(self, node: ast.FunctionDef) -> None:
+        a = node.args
+        if a.kwonlyargs or a.vararg or a.kwarg or a.defaults or len(a.posonlyargs) + len(a.args) != 1:
+            self.bad(node, f"`def {STEP_FUNCTION}` must take exactly one parameter, `planner` (the runner calls "
+                     f"`{STEP_FUNCTION}(planner)`); give helper functions another name")
+        self.defines_step = True
 
 
-class _StripAnnotations(ast.NodeTransformer):
+_ALLOWED_NODES: tuple[type[ast.AST], ...] = (
+    ast.Module, ast.Expr, ast.Assign, ast.AugAssign, ast.AnnAssign, ast.If, ast.For, ast.While, ast.Pass,
+    ast.Break, ast.Continue, ast.Assert, ast.Raise, ast.Return, ast.FunctionDef, ast.arguments, ast.arg,
+    ast.Try, ast.TryStar, ast.ExceptHandler, ast.Import, ast.ImportFrom, ast.alias, ast.Global, ast.Nonlocal,
+    ast.Delete, ast.Lambda,
+    ast.Constant, ast.Name, ast.Load, ast.Store, ast.Del, ast.Attribute, ast.Subscript, ast.Slice, ast.Starred,
+    ast.Call, ast.keyword, ast.BinOp, ast.UnaryOp, ast.BoolOp, ast.Compare, ast.IfExp, ast.NamedExpr,
+    ast.List, ast.Tuple, ast.Dict, ast.Set, ast.ListComp, ast.SetComp, ast.DictComp, ast.GeneratorExp,
+    ast.comprehension, ast.JoinedStr, ast.FormattedValue,
+    ast.operator, ast.unaryop, ast.boolop, ast.cmpop, ast.expr_context,
+)
+
+_ASYNC = "`async`/`await` is not available in plan code; planner calls are ordinary calls, call them directly"
+# Refused constructs; what is inside them is not checked further (one message per construct).
+_REFUSED: dict[type[ast.AST], str] = {
+    ast.ClassDef: "`class` definitions are not available in plan code; use functions, dicts and tuples",
+    ast.With: "`with` is not available in plan code (plans cannot open files); write the statements without it",
+    ast.Yield: "`yield` is not available in plan code (no generator functions); build and return a list",
+    ast.YieldFrom: "`yield from` is not available in plan code (no generator functions); build and return a list",
+    ast.Match: "`match` is not available in plan code; use `if`/`elif`/`else`",
+    ast.AsyncFunctionDef: _ASYNC, ast.AsyncFor: _ASYNC, ast.AsyncWith: _ASYNC, ast.Await: _ASYNC,
+}
+
+
+def _collect(tree: ast.Module) -> list[tuple[ast.AST, bool, bool]]:
+    """(node, inside a function, inside a refused construct) for every node but annotations, iteratively
+    (no recursion on hostile depth); raises CodeRejected beyond MAX_NESTING."""
+    out, stack = [], [(tree, 0, False, False)]
+    while stack:
+        node, depth, in_function, skipped = stack.pop()
+        if depth > MAX_NESTING:
+            raise CodeRejected([Violation(getattr(node, "lineno", 1), getattr(node, "col_offset", 0), _NESTED)])
+        out.append((node, in_function, skipped))
+        inner = in_function or isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda))
+        for name, value in ast.iter_fields(node):
+            if name in ("annotation", "returns"):  # never evaluated: removed before compiling
+                continue
+            for child in value if isinstance(value, list) else [value]:
+                if isinstance(child, ast.AST):
+                    stack.append((child, depth + 1, inner, skipped or type(node) in _REFUSED))
+    return out
+
+
+def _strip_annotations(tree: ast.Module) -> ast.Module:
     """Drop annotations so they are never evaluated (`planner: HumanoidMotionPlanner` needs no such name)."""
-
-    def visit_arg(self, node: ast.arg) -> ast.arg:
-        node.annotation = None
-        return node
-
-    def visit_FunctionDef(self, node: ast.FunctionDef) -> ast.FunctionDef:
-        node.returns = None
-        self.generic_visit(node)
-        return node
-
-    def visit_AnnAssign(self, node: ast.AnnAssign) -> ast.stmt:
-        if node.value is None:
-            return ast.copy_location(ast.Pass(), node)
-        return ast.copy_location(ast.Assign(targets=[node.target], value=node.value), node)
+    for node in list(ast.walk(tree)):
+        if isinstance(node, ast.arg):
+            node.annotation = None
+        elif isinstance(node, ast.FunctionDef):
+            node.returns = None
+        for name in ("body", "orelse", "finalbody"):
+            stmts = getattr(node, name, None)
+            if isinstance(stmts, list):
+                stmts[:] = [_plain_assign(s) if isinstance(s, ast.AnnAssign) else s for s in stmts]
+    return ast.fix_missing_locations(tree)
 
 
-def _describe(node: ast.AST) -> str:
-    names = {ast.Import: "`import`", ast.ImportFrom: "`from ... import`", ast.While: "`while` loop",
-             ast.Lambda: "`lambda`", ast.ClassDef: "`class`", ast.With: "`with`", ast.Try: "`try`",
-             ast.Global: "`global`", ast.Nonlocal: "`nonlocal`", ast.Delete: "`del`", ast.Yield: "`yield`",
-             ast.YieldFrom: "`yield from`", ast.Await: "`await`"}
-    return names.get(type(node), f"`{type(node).__name__}`")
+def _plain_assign(node: ast.AnnAssign) -> ast.stmt:
+    if node.value is None:
+        return ast.copy_location(ast.Pass(), node)
+    return ast.copy_location(ast.Assign(targets=[node.target], value=node.value), node)
