@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # Set up humanoidgen on a fresh Debian/Ubuntu machine: the Debian packages MuJoCo needs to render offscreen
-# through EGL (Mesa's software renderer when there is no GPU), then the Python package and its test tools.
+# through EGL (Mesa's software renderer when there is no GPU) and libseccomp (the plan worker's syscall
+# filter), then the Python package and its test tools.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-DEB_PACKAGES=(libegl1 libgl1-mesa-dri)
+DEB_PACKAGES=(libegl1 libgl1-mesa-dri libseccomp2)
 missing=()
 for p in "${DEB_PACKAGES[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")

@@ -53,18 +53,12 @@ def step(planner:HumanoidMotionPlanner):
     ("getattr(planner, '_x')", "getattr"),
     ("eval('1')", "eval"),
     ("__import__('os')", "__import__"),
-    ("while True:\n    pass", "while"),
     ("planner._private", "_private"),
     ("foo(1)", "unknown name `foo`"),
     ("np.f2py.os.system('ls')", "f2py"),
     ("g = (i for i in [1])\ng.gi_frame.f_back", "gi_frame"),
-    ("f = lambda: 1", "lambda"),
     ("class A:\n    pass", "class"),
-    ("try:\n    pass\nexcept Exception:\n    pass", "try"),
-    ("def helper(x):\n    return x", "only `def step"),
-    ("def step(planner):\n    def inner():\n        pass", "top level"),
     ("for i in iter(int, 1):\n    pass", "for"),
-    ("del planner", "del"),
     ("import humanoidgen.sandbox as h", "import"),  # only the exact paper import lines are stripped
 ])
 def test_checker_rejects(source: str, needle: str) -> None:
@@ -212,11 +206,11 @@ def test_namespace_persists_across_steps(worker: SandboxWorker) -> None:
     assert out.ok, out
     out = worker.run_step("n = len(planner.calls)\nprint('calls', n, constraint_r['obj_name'])")
     assert out.ok and out.stdout == "calls 3 can\n", out
-    assert worker.call("calls")[-1] == ("grasp", "can", 0)
+    assert worker.call("calls")[-1] == ["grasp", "can", 0]  # wire data: tuples become lists
     # The paper's whole-file form: the runner calls `step(planner)` after defining it.
     out = worker.run_step(strip_api_imports(PAPER_SCRIPT))
     assert out.ok, out
-    assert worker.call("calls")[-1] == ("grasp", "drawer", 0)
+    assert worker.call("calls")[-1] == ["grasp", "drawer", 0]
 
 
 def test_step_errors_come_back_as_data(worker: SandboxWorker) -> None:

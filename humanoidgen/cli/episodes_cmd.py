@@ -8,6 +8,7 @@ from pathlib import Path
 
 import typer
 from rich.console import Console
+from rich.markup import escape
 from rich.table import Table
 
 console = Console()
@@ -35,44 +36,72 @@ def tasks() -> None:
     console.print(table)
 
 
+def check_output_path(path: Path | None, option: str, kind: str = "file") -> None:
+    """Fail before any work when an output path cannot be what the option writes (checked up front, so a
+    long episode or collection is not lost to a typo at the end)."""
+    if path is None:
+        return
+    if kind == "file" and path.is_dir():
+        _fail(f"{option} {path} is a directory; give a file name")
+    if kind == "dir" and path.exists() and not path.is_dir():
+        _fail(f"{option} {path} is a file; give a folder (it is created if missing)")
+    parent = path.parent if kind == "file" else path
+    existing = next((p for p in (parent, *parent.parents) if p.exists()), None)
+    if existing is not None and not existing.is_dir():
+        _fail(f"{option} {path}: {existing} is a file, not a folder")
+    if existing is not None and not os.access(existing, os.W_OK):
+        _fail(f"{option} {path}: {existing} is not writable")
+
+
 def run(
     task: str = typer.Argument(..., help="A task name (see `hgen tasks`) or a task YAML file."),
     seed: int = typer.Option(None, help="Randomize the scene with this seed (default: the task's default layout)."),
-    script: Path = typer.Option(None, exists=True, dir_okay=False,
-                                help="A plan file: ours (`# step:` blocks) or the paper's `def step(planner):` form."),
+    script: Path = typer.Option(None, exists=True, help="A plan: a file, ours (`# step:` blocks) or the paper's "
+                                "`def step(planner):` form, or a folder of step files (step0.py, step1.py, ...)."),
     video: Path = typer.Option(None, help="Write an MP4 of the episode (front camera)."),
     video_camera: str = typer.Option("front", help="Camera for --video."),
     json_out: Path = typer.Option(None, "--json", help="Write the result (steps, timings, final object poses) as JSON."),
+    step_timeout: float = typer.Option(300.0, min=1.0, help="Seconds one plan step may take before it is stopped."),
 ) -> None:
     """Run one episode of a task and report success, the step log and timings.
+
+    The plan runs in a locked-down worker process (no files, processes, sockets or secrets; time and memory
+    limits); a failing step is reported with its call and reason.
 
     Example: hgen run blocks_stack_easy --seed 3 --video stack.mp4 --json stack.json
     """
     os.environ.setdefault("MUJOCO_GL", "egl")
     from humanoidgen.assets.robot_files import AssetsError
+    from humanoidgen.episodes.episode_worker import VideoSpec
     from humanoidgen.episodes.plans import PlanFormatError
     from humanoidgen.episodes.task_episode import EpisodeRequest, run_task_episode
     from humanoidgen.episodes.video import VideoWriter
+    from humanoidgen.sim.cameras import CAMERA_NAMES
 
-    writer = None
+    check_output_path(video, "--video")
+    check_output_path(json_out, "--json")
+    if video is not None and video_camera not in CAMERA_NAMES:
+        _fail(f"unknown camera {video_camera!r}; cameras: {', '.join(CAMERA_NAMES)}")
+    writer = VideoWriter(video, video_camera) if video is not None else None
+    req = EpisodeRequest(task, seed, str(script) if script else None, step_timeout_s=step_timeout,
+                         video=VideoSpec(video_camera, writer.width, writer.height, writer.fps) if writer else None)
     try:
-        if video is not None:
-            writer = VideoWriter(video, video_camera)
-        result, _ = run_task_episode(EpisodeRequest(task, seed, str(script) if script else None),
-                                     observers=(writer,) if writer else ())
-    except (KeyError, ValueError, FileNotFoundError, PlanFormatError, AssetsError) as exc:
-        _fail(str(exc).strip("'\""))
+        if writer is not None:
+            writer.open()
+        result, _ = run_task_episode(req, on_frame=writer.frame if writer is not None else None)
+    except (KeyError, ValueError, FileNotFoundError, PlanFormatError, AssetsError, RuntimeError, OSError) as exc:
+        _fail(str(exc).strip("'\"").splitlines()[0] if str(exc).strip() else type(exc).__name__)
         return
     finally:
         if writer is not None:
             writer.close()
     table = Table("#", "step", "result", "wall s", "sim s", "events")
     for s in result.steps:
-        table.add_row(str(s.index), s.title, "ok" if s.ok else f"[red]{s.error}[/red]", f"{s.seconds:.2f}",
-                      f"{s.sim_seconds:.1f}", "; ".join(s.events))
+        table.add_row(str(s.index), s.title, "ok" if s.ok else f"[red]{escape(s.error)}[/red]", f"{s.seconds:.2f}",
+                      f"{s.sim_seconds:.1f}", escape("; ".join(s.events)))
     console.print(table)
     for c in result.checks:
-        console.print(("[green]✓[/green] " if c["ok"] else "[red]✗[/red] ") + f"{c['predicate']}: {c['detail']}")
+        console.print(("[green]✓[/green] " if c["ok"] else "[red]✗[/red] ") + escape(f"{c['predicate']}: {c['detail']}"))
     verdict = "[green]SUCCESS[/green]" if result.success else "[red]FAILURE[/red]"
     console.print(f"{verdict}  {result.task} seed={seed}  wall {result.wall_seconds:.1f} s "
                   f"(planning {result.plan_seconds:.1f} s), simulated {result.sim_seconds:.1f} s")
@@ -95,9 +124,11 @@ def collect(
     height: int = typer.Option(240, help="Image height."),
     every: int = typer.Option(5, min=1, help="Record every n-th control step (50 Hz control; 5 -> 10 Hz)."),
     point_cloud: bool = typer.Option(True, help="Record the fused 1024-point cloud."),
-    script: Path = typer.Option(None, exists=True, dir_okay=False, help="A plan file instead of the reference plan."),
+    script: Path = typer.Option(None, exists=True, help="A plan file or folder instead of the reference plan."),
 ) -> None:
     """Collect N successful randomized demonstrations of a task.
+
+    Each attempt runs in its own locked-down plan worker; this process writes the dataset.
 
     Example: hgen collect blocks_stack_easy -n 50 --out data/stack --workers 2
     """
@@ -114,6 +145,14 @@ def collect(
         rec = RecorderConfig(every=every, cameras=cams, width=width, height=height, point_cloud=point_cloud)
     except ValueError as exc:
         _fail(str(exc))
+        return
+    check_output_path(out, "--out", kind="dir")
+    from humanoidgen.episodes.task_episode import load_spec
+
+    try:
+        load_spec(task)  # a bad task fails before the progress bar is drawn
+    except (KeyError, ValueError, FileNotFoundError) as exc:
+        _fail(str(exc).strip("'\""))
         return
     bar = tqdm(total=n, unit="episode", desc=f"collect {task}")
 

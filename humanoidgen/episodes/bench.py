@@ -3,8 +3,7 @@ like the paper's figure 5 (single-arm / bimanual, short / long horizon)."""
 
 from __future__ import annotations
 
-import multiprocessing as mp
-import os
+from concurrent.futures import ThreadPoolExecutor
 from collections.abc import Callable
 from dataclasses import asdict, dataclass
 from pathlib import Path
@@ -35,7 +34,6 @@ class TaskReport:
 
 
 def _one(req: EpisodeRequest) -> dict:
-    os.environ.setdefault("MUJOCO_GL", "egl")
     try:
         r, _ = run_task_episode(req)
     except Exception as exc:  # a crash is a failure of that episode, reported
@@ -48,12 +46,13 @@ def _one(req: EpisodeRequest) -> dict:
 
 def run_bench(tasks: list, episodes: int, seed: int = 0, workers: int = 1,
               progress: Callable[[str, int, int], None] | None = None) -> list[TaskReport]:
-    pool = mp.get_context("spawn").Pool(workers) if workers > 1 else None
+    # Each episode runs in its own locked-down worker process; threads here only wait on them.
+    pool = ThreadPoolExecutor(workers) if workers > 1 else None
     reports = []
     try:
         for spec in tasks:
             reqs = [EpisodeRequest(spec.name, seed + i) for i in range(episodes)]
-            outs = pool.map(_one, reqs) if pool is not None else [_one(r) for r in reqs]
+            outs = list(pool.map(_one, reqs)) if pool is not None else [_one(r) for r in reqs]
             ok = [o for o in outs if o["success"]]
             reports.append(TaskReport(
                 spec.name, spec.arms, spec.horizon, episodes, len(ok),
@@ -66,8 +65,7 @@ def run_bench(tasks: list, episodes: int, seed: int = 0, workers: int = 1,
                 progress(spec.name, len(ok), episodes)
     finally:
         if pool is not None:
-            pool.terminate()
-            pool.join()
+            pool.shutdown(wait=True, cancel_futures=True)
     return reports
 
 

@@ -1,12 +1,13 @@
-"""Collecting demonstrations: randomized attempts (seed, seed+1, ...) run in worker processes; successful
-ones are kept until N, written one by one. Kept episodes are the first N successful seeds in seed order, so
-the dataset is the same whatever the number of workers; `resume` continues after the last attempted seed."""
+"""Collecting demonstrations: randomized attempts (seed, seed+1, ...), each in its own locked-down plan
+worker; successful ones are kept until N, written one by one by this process (workers cannot write).
+`workers` attempts run at once (threads here, each waiting on its worker process). Kept episodes are the
+first N successful seeds in seed order, so the dataset is the same whatever the number of workers;
+`resume` continues after the last attempted seed."""
 
 from __future__ import annotations
 
-import multiprocessing as mp
-import os
 import time
+from concurrent.futures import ThreadPoolExecutor
 from collections.abc import Callable
 from dataclasses import asdict, dataclass
 from pathlib import Path
@@ -30,8 +31,7 @@ class CollectStats:
 
 
 def _attempt(req: EpisodeRequest) -> tuple[dict, dict | None]:
-    """Worker entry point: one attempt, as a plain record plus the arrays of a kept episode."""
-    os.environ.setdefault("MUJOCO_GL", "egl")
+    """One attempt, as a plain record plus the arrays of a kept episode."""
     try:
         result, arrays = run_task_episode(req)
     except Exception as exc:  # a broken attempt is a failed attempt, not a dead collection
@@ -66,12 +66,12 @@ def collect(task: str, n: int, out: Path, workers: int = 1, seed: int = 0, resum
     next_seed = max((a["seed"] for a in attempts), default=seed - 1) + 1
     limit = max_attempts if max_attempts is not None else max(20, 10 * n)
     t0 = time.perf_counter()
-    pool = mp.get_context("spawn").Pool(workers) if workers > 1 else None
+    pool = ThreadPoolExecutor(workers) if workers > 1 else None
     try:
         while kept < n and tried < limit:
             batch = [EpisodeRequest(task, s, plan_path, recorder) for s in range(next_seed, next_seed + max(workers, 1))]
             next_seed += len(batch)
-            results = pool.map(_attempt, batch) if pool is not None else [_attempt(r) for r in batch]
+            results = list(pool.map(_attempt, batch)) if pool is not None else [_attempt(r) for r in batch]
             for record, arrays in results:  # in seed order
                 if kept >= n:
                     break  # attempts past the n-th success are not part of the dataset
@@ -80,10 +80,14 @@ def collect(task: str, n: int, out: Path, workers: int = 1, seed: int = 0, resum
                 kept += bool(record["success"])
                 if progress is not None:
                     progress(kept, tried)
+    except BaseException:
+        from humanoidgen.sandbox.runner import kill_all
+
+        kill_all()  # Ctrl-C: the attempts in flight end now; what was written stays
+        raise
     finally:
         if pool is not None:
-            pool.terminate()
-            pool.join()
+            pool.shutdown(wait=True, cancel_futures=True)  # each attempt's worker ends with its attempt
     return CollectStats(kept, tried, time.perf_counter() - t0)
 
 

@@ -4,6 +4,10 @@ Two file forms are read:
 - ours: top-level code split into steps by `# step: <title>` comment lines;
 - the paper's: a `def step(planner):` function (its import line is dropped); its body is split at
   `# Step N: ...` comments when it has them, else it is one step.
+A plan can also be a folder of such files (upstream's layout: `step0.py ... stepN.py`), run in natural order.
+
+Parsing untrusted text can exhaust the parser (deeply nested code): in the episode path it happens inside
+the plan worker, and every parser failure becomes a PlanFormatError.
 """
 
 from __future__ import annotations
@@ -16,6 +20,7 @@ from pathlib import Path
 
 STEP_MARK = re.compile(r"^#\s*step\s*:?\s*(.*)$", re.IGNORECASE)
 PAPER_STEP_MARK = re.compile(r"^\s*#\s*Step\s+\d+\s*[:.-]?\s*(.*)$", re.IGNORECASE)
+FILE_MARK = "# hgen-plan-file: "
 API_IMPORT = re.compile(r"^\s*(from\s+humanoidgen[\w.]*\s+import\s+.*|import\s+humanoidgen[\w.]*.*)$")
 
 
@@ -59,13 +64,42 @@ def _has_code(code: str) -> bool:
 
 
 def parse_plan(text: str) -> Plan:
-    """Read a plan from text in either form (see the module docstring)."""
+    """Read a plan from text in either form, or several files' text from `folder_plan_text`."""
+    if text.startswith(FILE_MARK):
+        steps: list[PlanStep] = []
+        for chunk in text.split(FILE_MARK)[1:]:
+            name, _, body = chunk.partition("\n")
+            try:
+                plan = _parse_one(body)
+            except PlanFormatError as exc:
+                raise PlanFormatError(f"{name.strip()}: {exc}") from None
+            many = len(plan.steps) > 1
+            steps += [PlanStep(f"{Path(name.strip()).stem}: {s.title}" if many or s.title == "step"
+                               else s.title, s.code) for s in plan.steps]
+        if not steps:
+            raise PlanFormatError("the plan folder has no code")
+        return Plan(tuple(steps), text)
+    return _parse_one(text)
+
+
+def folder_plan_text(folder: Path) -> str:
+    """The step files of a plan folder (`*.py`, natural order: step2 before step10) as one text."""
+    files = sorted(Path(folder).glob("*.py"), key=lambda p: [int(t) if t.isdigit() else t
+                                                              for t in re.split(r"(\d+)", p.stem)])
+    if not files:
+        raise PlanFormatError(f"{folder}: no .py step files in the plan folder")
+    return "".join(f"{FILE_MARK}{p.name}\n{p.read_text(encoding='utf-8', errors='replace')}\n" for p in files)
+
+
+def _parse_one(text: str) -> Plan:
     lines = [ln for ln in text.splitlines() if not API_IMPORT.match(ln)]
     stripped = "\n".join(lines)
     try:
         tree = ast.parse(stripped)
     except SyntaxError as exc:
         raise PlanFormatError(f"the plan is not valid Python (line {exc.lineno}): {exc.msg}") from None
+    except (MemoryError, RecursionError, ValueError):
+        raise PlanFormatError("the plan is nested too deeply (or contains null bytes) to be parsed") from None
     funcs = [n for n in tree.body if isinstance(n, ast.FunctionDef) and n.name == "step"]
     if funcs:
         fn = funcs[0]
@@ -91,6 +125,6 @@ def load_plan(path: Path) -> Plan:
     if not path.exists():
         raise PlanFormatError(f"no plan file at {path}")
     try:
-        return parse_plan(path.read_text())
+        return parse_plan(folder_plan_text(path) if path.is_dir() else path.read_text())
     except PlanFormatError as exc:
         raise PlanFormatError(f"{path}: {exc}") from None

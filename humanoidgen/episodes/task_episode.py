@@ -1,25 +1,43 @@
-"""A task episode: the task's scene for a seed, its plan, its success predicates, optional recording/video."""
+"""A task episode: the task's scene for a seed, its plan, its success predicates, optional recording/video.
+
+The parent (this module) reads the task and the plan file, starts a locked-down plan worker
+(`sandbox.runner.SandboxWorker` with `episode_worker.EpisodeSetup`), sends it the plan's steps one by one
+with a wall-time budget each, and gets back the step outcomes, the verdict and the recorded arrays. The
+worker cannot write files, so video frames are streamed back and written here; datasets are written by the
+caller (`collect`).
+"""
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
-from humanoidgen.episodes.plans import Plan, load_plan
-from humanoidgen.episodes.recorder import EpisodeRecorder, RecorderConfig
-from humanoidgen.episodes.runner import EpisodeResult, run_plan
-from humanoidgen.planning.planner import HumanoidMotionPlanner
+import numpy as np
+
+from humanoidgen.episodes.episode_worker import FINISH, PLAN, PROGRESS, EpisodeSetup, VideoSpec
+from humanoidgen.episodes.plans import PlanFormatError
+from humanoidgen.episodes.recorder import RecorderConfig
+from humanoidgen.episodes.runner import EpisodeResult, StepResult
 from humanoidgen.sim.env import HumanoidEnv
+
+DEFAULT_STEP_TIMEOUT_S = 300.0
+CONTROL_TIMEOUT_S = 300.0  # building the scene, judging, handing back the recording
+MEMORY_LIMIT = 4 << 30
+MEMORY_LIMIT_CAMERAS = 12 << 30  # renderer buffers and the frames of a long episode
+
 
 @dataclass
 class EpisodeRequest:
-    """Everything a worker process needs to run one attempt (picklable)."""
+    """Everything needed to run one attempt (picklable)."""
 
     task: str  # a task name or a path to a task YAML
     seed: int | None
     plan_path: str | None = None  # None: the task's reference plan
     recorder: RecorderConfig | None = None
     control_hz: float = 50.0
+    step_timeout_s: float = DEFAULT_STEP_TIMEOUT_S
+    video: VideoSpec | None = None
 
 
 def load_spec(task: str):
@@ -28,16 +46,32 @@ def load_spec(task: str):
     return load_task(task)
 
 
-def plan_for(task: str, spec, plan_path: str | None) -> Plan:
+def plan_file(task: str, spec, plan_path: str | None) -> Path:
+    """The plan a request runs: the given file or folder, else the task's reference plan."""
     if plan_path is not None:
-        return load_plan(Path(plan_path))
+        return Path(plan_path)
     if spec.plan is None:
         raise FileNotFoundError(f"task {spec.name} has no reference plan; give one with --script")
     if Path(task).suffix in (".yaml", ".yml"):  # a user's task file: its plan sits beside it
-        return load_plan(Path(task).parent / spec.plan)
+        return Path(task).parent / spec.plan
     from humanoidgen.tasks.registry import plan_path as builtin_plan
 
-    return load_plan(builtin_plan(spec))
+    return builtin_plan(spec)
+
+
+def read_plan_text(path: Path) -> str:
+    """The plan's text, read here in the parent; it is parsed in the worker."""
+    path = Path(path)
+    if not path.exists():
+        raise PlanFormatError(f"no plan file at {path}")
+    if path.is_dir():
+        from humanoidgen.episodes.plans import folder_plan_text
+
+        return folder_plan_text(path)
+    try:
+        return path.read_text(encoding="utf-8", errors="replace")
+    except OSError as exc:
+        raise PlanFormatError(f"{path}: cannot read the plan ({exc.strerror})") from None
 
 
 def judge(spec, env: HumanoidEnv) -> list[dict]:
@@ -48,29 +82,78 @@ def judge(spec, env: HumanoidEnv) -> list[dict]:
     return out
 
 
-def run_task_episode(req: EpisodeRequest, observers: tuple = ()) -> tuple[EpisodeResult, dict | None]:
-    """Run one attempt; returns the result and, when recording, the episode's arrays.
+def worker_for(req: EpisodeRequest, spec, plan_text: str, on_frame: Callable[[np.ndarray], None] | None = None):
+    """A (not yet started) locked-down worker that will hold this episode."""
+    from humanoidgen.sandbox import SandboxWorker
 
-    `observers` are called after every control step with the action (e.g. a VideoWriter); each gets
-    `attach(env)` first when it has that method."""
-    from humanoidgen.tasks.scene import build_scene
+    setup = EpisodeSetup(spec.model_dump(mode="json"), plan_text, req.seed, req.recorder,
+                         req.video if on_frame is not None else None, req.control_hz)
+    cameras = req.recorder is not None and (req.recorder.cameras or req.recorder.point_cloud)
+    limit = MEMORY_LIMIT_CAMERAS if cameras or on_frame is not None else MEMORY_LIMIT
+
+    def frames(payload) -> None:
+        frame = payload.get("frame") if isinstance(payload, dict) else None
+        if on_frame is not None and isinstance(frame, np.ndarray) and frame.ndim == 3 and frame.dtype == np.uint8:
+            on_frame(frame)
+
+    return SandboxWorker(setup, memory_limit=limit, on_stream=frames)
+
+
+def run_task_episode(req: EpisodeRequest, on_frame: Callable[[np.ndarray], None] | None = None
+                     ) -> tuple[EpisodeResult, dict | None]:
+    """Run one attempt in a locked-down worker; returns the result and, when recording, the arrays.
+
+    `on_frame(rgb)` receives the frames of `req.video` (default: the front camera at 25 fps) as they are
+    rendered. Raises PlanFormatError for a plan that cannot be parsed; a step that fails, times out or kills
+    its worker is a failed step in the result."""
+    from humanoidgen.sandbox import SandboxError
 
     spec = load_spec(req.task)
-    plan = plan_for(req.task, spec, req.plan_path)
-    _, env = build_scene(spec, req.seed)
-    if req.control_hz != env.control_hz:
-        env = HumanoidEnv(env.scene, control_hz=req.control_hz)
-    recorder = EpisodeRecorder(env, req.recorder) if req.recorder is not None else None
-    for obs in observers:
-        if hasattr(obs, "attach"):
-            obs.attach(env)
-    hooks = [h for h in (recorder, *observers) if h is not None]
-    planner = HumanoidMotionPlanner(env, seed=req.seed or 0,
-                                    on_step=(lambda a: [h(a) for h in hooks]) if hooks else None)
-    try:
-        result = run_plan(env, plan, planner, lambda e: judge(spec, e), task=spec.name, seed=req.seed)
-        arrays = recorder.arrays() if recorder is not None and recorder.frames else None
-    finally:
-        if recorder is not None:
-            recorder.close()
-    return result, arrays
+    text = read_plan_text(plan_file(req.task, spec, req.plan_path))
+    if on_frame is not None and req.video is None:
+        req = EpisodeRequest(**{**req.__dict__, "video": VideoSpec()})
+    with worker_for(req, spec, text, on_frame) as worker:
+        try:
+            plan = worker.call(PLAN, timeout_s=CONTROL_TIMEOUT_S)
+        except SandboxError as exc:
+            if exc.outcome.error_type == "PlanFormatError":
+                raise PlanFormatError(exc.outcome.message) from None
+            raise RuntimeError(f"the plan worker could not start the episode: {exc}") from None
+        steps, sim, events = [], 0.0, 0
+        for i, step in enumerate(plan):
+            out = worker.run_step(step["code"], timeout_s=req.step_timeout_s)
+            if out.worker_restarted or not worker.alive:
+                steps.append(StepResult(i, step["title"], False, _error(out), out.seconds))
+                break
+            info = worker.call(PROGRESS, timeout_s=CONTROL_TIMEOUT_S)
+            steps.append(StepResult(i, step["title"], out.ok, "" if out.ok else _error(out), out.seconds,
+                                    float(info["sim_time"]) - sim, [str(e) for e in info["events"][events:]]))
+            sim, events = float(info["sim_time"]), len(info["events"])
+            if not out.ok:
+                break
+        if not worker.alive:  # killed by a timeout or died: nothing left to judge
+            return _lost(spec.name, req.seed, steps), None
+        end = worker.call(FINISH, timeout_s=CONTROL_TIMEOUT_S)
+    checks = [{"predicate": str(c["predicate"]), "ok": c["ok"] is True, "detail": str(c["detail"])}
+              for c in end["checks"]]
+    ok = bool(steps) and all(s.ok for s in steps) and len(steps) == len(plan) and all(c["ok"] for c in checks)
+    result = EpisodeResult(spec.name, req.seed, ok, checks, steps, float(end["wall_seconds"]),
+                           float(end["sim_seconds"]), float(end["plan_seconds"]), end["objects"],
+                           [str(e) for e in end["events"]])
+    arrays = end.get("arrays")
+    return result, (arrays if isinstance(arrays, dict) and arrays else None)
+
+
+def _error(out) -> str:
+    """The step's failure as one line: `call: reason`, or `Type: message (line n)`."""
+    if out.error_type in ("PlanningError",):
+        return out.message
+    if out.error_type == "CodeRejected":
+        return f"rejected: {out.message}"
+    line = f" (line {out.line})" if out.line else ""
+    return f"{out.error_type}: {out.message}{line}"
+
+
+def _lost(task: str, seed: int | None, steps: list[StepResult]) -> EpisodeResult:
+    wall = sum(s.seconds for s in steps)
+    return EpisodeResult(task, seed, False, [], steps, wall, sum(s.sim_seconds for s in steps), 0.0, {}, [])

@@ -24,12 +24,18 @@ class VideoWriter:
         self._writer = None
         self._count = 0
 
+    def open(self) -> None:
+        """Start the file, for frames that are rendered elsewhere (`frame`), e.g. streamed by a plan worker."""
+        if self._writer is None:
+            self.path.parent.mkdir(parents=True, exist_ok=True)
+            self._writer = imageio.get_writer(str(self.path), fps=self.fps, codec="libx264", quality=7,
+                                              macro_block_size=8)
+
     def attach(self, env) -> None:
+        """Render from `env` after every control step (trusted code only: dataset replay)."""
         self._env = env
         self._rig = CameraRig(env.model, self.width, self.height, shadows=True)
-        self.path.parent.mkdir(parents=True, exist_ok=True)
-        self._writer = imageio.get_writer(str(self.path), fps=self.fps, codec="libx264", quality=7,
-                                          macro_block_size=8)
+        self.open()
 
     def frame(self, rgb: np.ndarray) -> None:
         self._writer.append_data(rgb)

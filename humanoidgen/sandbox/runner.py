@@ -1,50 +1,55 @@
-"""Run checked plan steps in a separate worker process that owns the simulation.
+"""The locked-down plan worker: a separate process that owns the simulation and runs untrusted plan steps.
 
-The worker is started with the "spawn" context: a fresh interpreter inherits no state from the parent (no
-copied MuJoCo/EGL contexts, locks or threads, which fork would duplicate in an undefined state) and no
-objects the untrusted code could reach. The cost (importing numpy/mujoco again, ~1 s) is paid once per
-worker. `setup` must therefore be picklable (a module-level function); it runs in the child and returns the
-namespace the steps see, e.g. {"planner": planner, "np": numpy, "math": math}.
+Every path that runs plan code (`hgen run`, built-in plans too, `collect`, `bench`, `generate`, the tree
+search) goes through `SandboxWorker`. A worker is forked from a pre-imported server process
+(`sandbox.forkserver`, started with a scrubbed environment), so it costs milliseconds, not seconds. In the
+new process, before anything else:
 
-Per step the child re-checks the source against its *current* namespace (names bound by earlier steps are
-allowed; parsing untrusted text also happens in the child, so a parser crash cannot hit the parent), executes
-it with only `SAFE_BUILTINS`, and sends back a `StepOutcome`. A step over its wall-time budget gets the worker
-killed (state lost); the next call starts a fresh worker and says so (`worker_restarted=True`). The child's
-address space is capped with RLIMIT_AS, so a memory bomb raises MemoryError there or kills the child, never
-the parent.
+- file descriptors: everything but its two pipes is closed; stdin, stdout and stderr point at /dev/null
+  (what a step prints is captured in Python and capped; C-level writes go nowhere);
+- `lockdown.lock_down`: rlimits, Landlock, seccomp (see there). This happens before `setup` runs and
+  before any thread exists, so every thread the simulator or renderer starts later is bound too;
+- then `setup()` (trusted, picklable, module level) returns the namespace that steps see.
+
+Requests go down a pipe as pickles (the parent is trusted); everything coming back is `wire`-encoded
+(JSON + raw arrays), never unpickled, with a size cap. A step over its wall-time budget, a worker that
+dies, or one that sends a malformed message is killed; the next request starts a fresh worker and says so
+(`worker_restarted=True`). `on_stream` receives what the worker streams while it works (video frames).
 """
 
 from __future__ import annotations
 
-import builtins
 import contextlib
 import io
-import multiprocessing as mp
+import os
+import threading
 import time
 import traceback
+import weakref
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
 from typing import Any, Self
 
-from humanoidgen.sandbox.checker import (
-    SAFE_BUILTINS,
-    STEP_FUNCTION,
-    CodeRejected,
-    check_code,
-)
+from humanoidgen.sandbox import wire
+from humanoidgen.sandbox import checker
+from humanoidgen.sandbox.checker import STEP_FUNCTION, CodeRejected, check_code
+from humanoidgen.sandbox.lockdown import Limits, lock_down
 
-# Measured (spawn child, 2 CPUs): numpy+mujoco+drake imports ~0.33 GiB of address space, HumanoidEnv +
-# planner ~1.35 GiB peak. More cores add BLAS thread stacks/arenas, so 4 GiB leaves ~2.5 GiB for steps.
+# Measured (2 CPUs): numpy+mujoco+drake ~0.33 GiB of address space, HumanoidEnv + planner ~1.35 GiB peak.
+# Recording cameras needs more: the renderer maps large buffers and frames pile up (see task_episode).
 DEFAULT_MEMORY_LIMIT = 4 << 30
+DEFAULT_CPU_LIMIT_S = 3600
 DEFAULT_TIMEOUT_S = 120.0
+DEFAULT_MAX_MESSAGE_BYTES = 8 << 30
 STDOUT_LIMIT = 64_000
+MESSAGE_LIMIT = 4_000  # characters of an error message
 STEP_FILENAME = "<step>"
 
 
 @dataclass
 class StepOutcome:
     ok: bool
-    error_type: str | None  # exception class name, "CodeRejected", "Timeout" or "WorkerDied"
+    error_type: str | None  # exception class name, "CodeRejected", "Timeout", "WorkerDied", "ProtocolError"
     message: str
     line: int | None  # line within the step where it failed
     seconds: float  # wall time seen by the parent (check + execution + round trip)
@@ -62,16 +67,21 @@ class SandboxError(RuntimeError):
 
 
 class SandboxWorker:
-    """A worker process holding one namespace; `run_step` executes untrusted steps in it."""
+    """A locked-down worker process holding one namespace; `run_step` executes untrusted steps in it."""
 
     def __init__(self, setup: Callable[[], dict[str, Any]], *, memory_limit: int | None = DEFAULT_MEMORY_LIMIT,
-                 start_timeout_s: float = 300.0, start_method: str = "spawn") -> None:
+                 cpu_limit_s: int | None = DEFAULT_CPU_LIMIT_S, start_timeout_s: float = 300.0,
+                 on_stream: Callable[[Any], None] | None = None,
+                 max_message_bytes: int = DEFAULT_MAX_MESSAGE_BYTES) -> None:
         self.setup = setup
-        self.memory_limit = memory_limit
+        self.limits = Limits(memory_bytes=memory_limit, cpu_seconds=cpu_limit_s)
         self.start_timeout_s = start_timeout_s
-        self._ctx = mp.get_context(start_method)
+        self.on_stream = on_stream
+        self.max_message_bytes = max_message_bytes
+        self.lockdown: dict | None = None  # what the kernel applied in the current worker
         self._proc: Any = None
-        self._conn: Any = None
+        self._send: Any = None  # parent -> worker (pickles)
+        self._recv: Any = None  # worker -> parent (wire bytes)
         self._started_before = False
 
     # -- public -----------------------------------------------------------------------------------------
@@ -80,41 +90,50 @@ class SandboxWorker:
         return self._request(("run", code), timeout_s)
 
     def call(self, fn_name: str, *args: Any, timeout_s: float = DEFAULT_TIMEOUT_S, **kwargs: Any) -> Any:
-        """Call `fn_name` from the namespace `setup` returned (not one a step rebound); return its result."""
+        """Call `fn_name` from the namespace `setup` returned (not one a step rebound); return its result
+        (JSON-like data and numpy arrays: tuples come back as lists)."""
         out = self._request(("call", (fn_name, args, kwargs)), timeout_s)
         if not out.ok:
             raise SandboxError(out)
         return out.value
 
+    @property
+    def alive(self) -> bool:
+        return self._proc is not None and self._proc.is_alive()
+
     def start(self) -> bool:
         """Start the worker if it is not running; True if it started one now."""
-        if self._proc is not None and self._proc.is_alive():
+        if self.alive:
             return False
         self._kill()
-        parent, child = self._ctx.Pipe()
-        self._proc = self._ctx.Process(target=_worker_main, args=(child, self.setup, self.memory_limit),
-                                       daemon=True, name="humanoidgen-sandbox")
+        from humanoidgen.sandbox.forkserver import context
+
+        ctx = context()
+        down_r, down_w = ctx.Pipe(duplex=False)
+        up_r, up_w = ctx.Pipe(duplex=False)
+        self._proc = ctx.Process(target=_worker_main, args=(down_r, up_w, self.setup, self.limits),
+                                 daemon=True, name="humanoidgen-plan-worker")
         self._proc.start()
-        child.close()  # so a dead child shows up as EOF on our end
-        self._conn = parent
-        if not parent.poll(self.start_timeout_s):
-            self._kill()
-            raise RuntimeError("sandbox worker did not start in time")
+        _live.add(self)
+        down_r.close()
+        up_w.close()  # so a dead worker shows up as EOF on our end
+        self._send, self._recv = down_w, up_r
         try:
-            status, message = parent.recv()
-        except EOFError:
-            code = self._proc.exitcode
+            reply = self._receive(self.start_timeout_s)
+        except _NoReply as e:
             self._kill()
-            raise RuntimeError(f"sandbox worker died during setup (exit code {code})") from None
-        if status != "ready":
+            raise RuntimeError(f"plan worker did not start: {e}") from None
+        if not isinstance(reply, dict) or reply.get("kind") != "ready":
+            message = reply.get("message", "") if isinstance(reply, dict) else ""
             self._kill()
-            raise RuntimeError(f"sandbox setup failed: {message}")
+            raise RuntimeError(f"plan worker setup failed: {str(message)[:MESSAGE_LIMIT]}")
+        self.lockdown = reply.get("lockdown") if isinstance(reply.get("lockdown"), dict) else None
         return True
 
     def close(self) -> None:
-        if self._conn is not None and self._proc is not None and self._proc.is_alive():
+        if self.alive and self._send is not None:
             with contextlib.suppress(OSError, BrokenPipeError):
-                self._conn.send(("exit", None))
+                self._send.send(("exit", None))
             self._proc.join(2.0)
         self._kill()
 
@@ -130,28 +149,55 @@ class SandboxWorker:
         self._started_before = True
         t0 = time.perf_counter()
         try:
-            self._conn.send(message)
-            ready = self._conn.poll(timeout_s)
-            reply = self._conn.recv() if ready else None
-        except (EOFError, OSError, BrokenPipeError):
-            reply, ready = None, True
-        seconds = time.perf_counter() - t0
-        if reply is None:
-            if ready:
-                self._proc.join(2.0)  # EOF can arrive before the child is reaped
-            exitcode = self._proc.exitcode
+            self._send.send(message)
+            reply = self._receive(timeout_s)
+            out = _outcome(reply)
+        except _NoReply as e:
+            out = self._lost(e, timeout_s)
+        except BaseException:  # Ctrl-C in the parent: the worker must not outlive the request
             self._kill()
-            if not ready:
-                out = StepOutcome(False, "Timeout", f"step exceeded {timeout_s:g} s; worker killed, its state is "
-                                  "lost", None, seconds)
-            else:
-                out = StepOutcome(False, "WorkerDied", f"worker process died (exit code {exitcode}); its state "
-                                  "is lost", None, seconds)
-        else:
-            out = reply
-            out.seconds = seconds
+            raise
+        out.seconds = time.perf_counter() - t0
         out.worker_restarted = restarted
         return out
+
+    def _receive(self, timeout_s: float) -> Any:
+        """The next reply, handing stream messages to `on_stream` on the way."""
+        deadline = time.monotonic() + timeout_s
+        while True:
+            left = deadline - time.monotonic()
+            try:
+                if left <= 0 or not self._recv.poll(left):
+                    raise _NoReply("timeout")
+                data = self._recv.recv_bytes(self.max_message_bytes)
+            except (EOFError, BrokenPipeError, ConnectionError):
+                raise _NoReply("died") from None
+            except OSError as e:  # e.g. a message over the size cap: the pipe is no longer in step
+                raise _NoReply(f"protocol: {e}") from None
+            try:
+                msg = wire.decode(data)
+            except wire.WireError as e:
+                raise _NoReply(f"protocol: {e}") from None
+            if isinstance(msg, dict) and msg.get("kind") == "stream":
+                if self.on_stream is not None:
+                    self.on_stream(msg.get("payload"))
+                continue
+            return msg
+
+    def _lost(self, e: _NoReply, timeout_s: float) -> StepOutcome:
+        reason = str(e)
+        if reason == "died":
+            self._proc.join(2.0)  # EOF can arrive before the worker is reaped
+        exitcode = self._proc.exitcode
+        self._kill()
+        if reason == "timeout":
+            return StepOutcome(False, "Timeout", f"step exceeded {timeout_s:g} s; worker killed, its state is lost",
+                               None, 0.0)
+        if reason == "died":
+            return StepOutcome(False, "WorkerDied", f"worker process died ({_exit_text(exitcode)}); its state is "
+                               "lost", None, 0.0)
+        return StepOutcome(False, "ProtocolError", f"worker sent a malformed message ({reason.split(': ', 1)[-1]});"
+                           " worker killed, its state is lost", None, 0.0)
 
     def _kill(self) -> None:
         if self._proc is not None:
@@ -160,41 +206,130 @@ class SandboxWorker:
             self._proc.join(5.0)
             with contextlib.suppress(ValueError):
                 self._proc.close()
-        if self._conn is not None:
-            self._conn.close()
-        self._proc = self._conn = None
+        for conn in (self._send, self._recv):
+            if conn is not None:
+                with contextlib.suppress(OSError):
+                    conn.close()
+        self._proc = self._send = self._recv = None
 
 
-# -- child process --------------------------------------------------------------------------------------
-def _worker_main(conn: Any, setup: Callable[[], dict[str, Any]], memory_limit: int | None) -> None:
-    if memory_limit is not None:
-        import resource
+class _NoReply(Exception):
+    pass
 
-        # Soft and hard: the limit cannot be raised again from inside the worker.
-        resource.setrlimit(resource.RLIMIT_AS, (memory_limit, memory_limit))
+
+_live: weakref.WeakSet[SandboxWorker] = weakref.WeakSet()
+
+
+def kill_all() -> None:
+    """Kill every worker of this process now (an interrupted collection); their requests fail as data."""
+    for w in list(_live):
+        proc = w._proc
+        if proc is not None:
+            with contextlib.suppress(Exception):
+                proc.kill()
+
+
+def _exit_text(code: int | None) -> str:
+    if code is None:
+        return "exit code unknown"
+    if code < 0:
+        import signal
+
+        with contextlib.suppress(ValueError):
+            return f"killed by {signal.Signals(-code).name}"
+    return f"exit code {code}"
+
+
+def _outcome(reply: Any) -> StepOutcome:
+    """A StepOutcome from a decoded reply, trusting none of its types."""
+    if not isinstance(reply, dict) or reply.get("kind") != "reply" or not isinstance(reply.get("outcome"), dict):
+        raise _NoReply("protocol: not a reply")
+    o = reply["outcome"]
+
+    def text(x: Any, n: int) -> str:
+        return x[:n] if isinstance(x, str) else ""
+
+    line = o.get("line")
+    return StepOutcome(ok=o.get("ok") is True, error_type=text(o.get("error_type"), 100) or None,
+                       message=text(o.get("message"), MESSAGE_LIMIT),
+                       line=line if isinstance(line, int) and not isinstance(line, bool) else None,
+                       seconds=0.0, stdout=text(o.get("stdout"), STDOUT_LIMIT), value=o.get("value"))
+
+
+# -- worker process ---------------------------------------------------------------------------------------
+_channel: Any = None
+_channel_lock = threading.Lock()
+
+
+def stream(payload: Any) -> None:
+    """From inside a worker: send `payload` (wire data) to the parent's `on_stream` now."""
+    if _channel is None:
+        raise RuntimeError("not in a plan worker")
+    data = wire.encode({"kind": "stream", "payload": payload})
+    with _channel_lock:
+        _channel.send_bytes(data)
+
+
+def _send(msg: Any) -> None:
+    data = wire.encode(msg)
+    with _channel_lock:
+        _channel.send_bytes(data)
+
+
+def _isolate_fds(keep: tuple[int, ...]) -> None:
+    """Close every inherited descriptor but `keep`; stdin/stdout/stderr become /dev/null."""
+    null = os.open(os.devnull, os.O_RDWR)
+    for fd in (0, 1, 2):
+        os.dup2(null, fd)
+    os.close(null)
     try:
+        fds = sorted(int(x) for x in os.listdir("/proc/self/fd"))
+    except OSError:
+        fds = list(range(3, 1024))
+    for fd in fds:
+        if fd > 2 and fd not in keep:
+            with contextlib.suppress(OSError):
+                os.close(fd)
+
+
+def _worker_main(down: Any, up: Any, setup: Callable[[], dict[str, Any]], limits: Limits) -> None:
+    global _channel
+    _isolate_fds((down.fileno(), up.fileno()))
+    _channel = up
+    try:
+        report = lock_down(limits)
         provided = dict(setup())
     except BaseException as e:  # noqa: BLE001 - report any setup failure to the parent
-        conn.send(("error", f"{type(e).__name__}: {e}\n{traceback.format_exc(limit=5)}"))
+        _send({"kind": "error", "message": f"{type(e).__name__}: {e}\n{traceback.format_exc(limit=5)}"})
         return
-    safe = {name: getattr(builtins, name) for name in SAFE_BUILTINS if hasattr(builtins, name)}
-    namespace: dict[str, Any] = {**provided, "__builtins__": safe, "__name__": "__sandbox__"}
-    conn.send(("ready", sorted(provided)))
+    import math
+
+    import numpy
+
+    builtins_ = _builtins({"numpy": numpy, "math": math})
+    namespace: dict[str, Any] = {**provided, "__builtins__": builtins_, "__name__": "__sandbox__"}
+    _send({"kind": "ready", "names": sorted(provided), "lockdown": report.to_dict()})
     while True:
         try:
-            kind, payload = conn.recv()
-        except (EOFError, KeyboardInterrupt):
+            kind, payload = down.recv()
+        except (EOFError, OSError, KeyboardInterrupt):
             return
         if kind == "exit":
             return
-        if kind == "run":
-            out = _run(payload, namespace)
-        else:
-            out = _call(payload, provided)
+        out = _run(payload, namespace) if kind == "run" else _call(payload, provided)
         try:
-            conn.send(out)
-        except Exception as e:  # noqa: BLE001 - e.g. a call result that cannot be pickled
-            conn.send(StepOutcome(False, type(e).__name__, f"could not send result: {e}", None, 0.0))
+            _send({"kind": "reply", "outcome": asdict(out)})
+        except (TypeError, ValueError) as e:  # a call result that is not wire data
+            _send({"kind": "reply", "outcome": asdict(StepOutcome(False, type(e).__name__,
+                                                                  f"could not send result: {e}", None, 0.0))})
+
+
+def _builtins(modules: dict[str, Any]) -> dict[str, Any]:
+    if hasattr(checker, "safe_builtins"):
+        return checker.safe_builtins(modules)
+    import builtins
+
+    return {n: getattr(builtins, n) for n in checker.SAFE_BUILTINS if hasattr(builtins, n)}
 
 
 class _CappedIO(io.StringIO):
@@ -203,7 +338,7 @@ class _CappedIO(io.StringIO):
     def write(self, s: str) -> int:
         room = STDOUT_LIMIT - self.tell()
         if room > 0:
-            super().write(s[:room])
+            super().write(str(s)[:room])
         return len(s)
 
 
@@ -215,14 +350,14 @@ def _run(source: str, namespace: dict[str, Any]) -> StepOutcome:
         code = checked.compile(STEP_FILENAME)
     except CodeRejected as e:
         first = e.violations[0]
-        return StepOutcome(False, "CodeRejected", str(e), first.line, 0.0)
+        return StepOutcome(False, "CodeRejected", str(e)[:MESSAGE_LIMIT], first.line, 0.0)
     try:
         with contextlib.redirect_stdout(buf), contextlib.redirect_stderr(buf):
-            exec(code, namespace)  # noqa: S102 - checked code, restricted builtins, separate process
+            exec(code, namespace)  # noqa: S102 - checked code, restricted builtins, locked-down process
             if checked.defines_step:
                 namespace[STEP_FUNCTION](namespace.get("planner"))
     except BaseException as e:  # noqa: BLE001 - every failure of the step is reported as data
-        return StepOutcome(False, type(e).__name__, str(e) or repr(e), _step_line(e), 0.0, buf.getvalue())
+        return StepOutcome(False, _type_name(e), _message(e), _step_line(e), 0.0, buf.getvalue())
     return StepOutcome(True, None, "", None, 0.0, buf.getvalue())
 
 
@@ -234,14 +369,35 @@ def _call(payload: tuple[str, tuple, dict], provided: dict[str, Any]) -> StepOut
     try:
         value = fn(*args, **kwargs)
     except BaseException as e:  # noqa: BLE001
-        return StepOutcome(False, type(e).__name__, str(e) or repr(e), None, 0.0)
+        return StepOutcome(False, _type_name(e), _message(e), None, 0.0)
     return StepOutcome(True, None, "", None, 0.0, value=value)
+
+
+def _type_name(e: BaseException) -> str:
+    try:
+        return str(type(e).__name__)[:100]
+    except BaseException:  # noqa: BLE001 - a hostile exception class
+        return "Exception"
+
+
+def _message(e: BaseException) -> str:
+    """`call: reason` for planner failures (the LLM's feedback), else the exception's text; never raises."""
+    try:
+        call, reason = getattr(e, "call", None), getattr(e, "reason", None)
+        if isinstance(call, str) and isinstance(reason, str):
+            return f"{call}: {reason}"[:MESSAGE_LIMIT]
+        return (str(e) or repr(e))[:MESSAGE_LIMIT]
+    except BaseException:  # noqa: BLE001 - __str__ of a hostile exception
+        return "(the exception could not be printed)"
 
 
 def _step_line(e: BaseException) -> int | None:
     """Line of the innermost traceback frame inside the step's code."""
     line = None
-    for frame in traceback.extract_tb(e.__traceback__):
-        if frame.filename == STEP_FILENAME:
-            line = frame.lineno
+    try:
+        for frame in traceback.extract_tb(e.__traceback__):
+            if frame.filename == STEP_FILENAME:
+                line = frame.lineno
+    except BaseException:  # noqa: BLE001
+        return None
     return line

@@ -48,8 +48,11 @@ def visual_mesh(path: Path, max_faces: int = DEFAULT_MAX_FACES, cache: Path | No
         with np.load(cached) as z:
             return z["verts"], z["faces"]
     verts, faces = simplify(*read_binary_stl(path), max_faces)
-    cache.mkdir(parents=True, exist_ok=True)
-    tmp = cached.with_name(cached.name + ".tmp.npz")
-    np.savez(tmp, verts=verts, faces=faces)
-    tmp.replace(cached)  # atomic: a concurrent builder never reads a half-written file
+    try:
+        cache.mkdir(parents=True, exist_ok=True)
+        tmp = cached.with_name(cached.name + ".tmp.npz")
+        np.savez(tmp, verts=verts, faces=faces)
+        tmp.replace(cached)  # atomic: a concurrent builder never reads a half-written file
+    except OSError:
+        pass  # a read-only world (the locked plan worker): the mesh is simply not cached
     return verts, faces

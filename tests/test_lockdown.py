@@ -1,0 +1,167 @@
+"""The operating system is the boundary: a worker whose namespace hands plan code the real `os`, `socket`,
+`subprocess` and full builtins (as if the checker had been bypassed) still cannot write files, start
+processes, open sockets, signal its parent, read secrets or reach the parent's memory."""
+
+from __future__ import annotations
+
+import builtins
+import os
+import socket
+import threading
+import time
+from pathlib import Path
+
+import pytest
+
+from humanoidgen.sandbox import SandboxWorker, wire
+from humanoidgen.sandbox.lockdown import scrubbed_environ
+
+CANARY = "sk-canary-lockdown-5b1e0c"
+
+
+def escape_setup() -> dict:
+    """The worst case: plan code gets the real modules and builtins (no checker would let this through)."""
+    import ctypes
+    import subprocess
+
+    def run(code: str) -> str:
+        ns = {"os": os, "socket": socket, "subprocess": subprocess, "ctypes": ctypes, "__builtins__": builtins}
+        try:
+            exec(code, ns)  # noqa: S102 - deliberately unchecked: the kernel must stop it
+        except BaseException as e:  # noqa: BLE001
+            return f"blocked: {type(e).__name__}: {e}"
+        return "ALLOWED " + repr(ns.get("result"))[:200]
+
+    return {"run": run}
+
+
+@pytest.fixture(scope="module")
+def worker():
+    os.environ["OPENAI_API_KEY"] = CANARY  # the parent holds a secret...
+    try:
+        with SandboxWorker(escape_setup, memory_limit=2 << 30) as w:
+            w.start()
+            yield w
+    finally:
+        os.environ.pop("OPENAI_API_KEY", None)
+
+
+@pytest.fixture()
+def listener():
+    srv = socket.socket()
+    srv.bind(("127.0.0.1", 0))
+    srv.listen(4)
+    srv.settimeout(0.2)
+    accepted: list = []
+    stop = threading.Event()
+
+    def serve() -> None:
+        while not stop.is_set():
+            try:
+                conn, _ = srv.accept()
+            except OSError:
+                continue
+            accepted.append(conn)
+
+    t = threading.Thread(target=serve, daemon=True)
+    t.start()
+    yield srv.getsockname()[1], accepted
+    stop.set()
+    t.join(2)
+    srv.close()
+
+
+def test_every_layer_is_applied(worker: SandboxWorker) -> None:
+    assert worker.lockdown is not None
+    assert worker.lockdown["seccomp"] and worker.lockdown["landlock_abi"] >= 1, worker.lockdown
+    assert worker.lockdown["warnings"] == [] and worker.lockdown["threads_at_lockdown"] == 1
+
+
+@pytest.mark.parametrize("name, code", [
+    ("open_write", "open('{m}/open', 'w').write('x')"),
+    ("os_open", "os.open('{m}/os_open', os.O_CREAT | os.O_WRONLY)"),
+    ("append", "open('{m}/../canary.txt', 'a').write('x')"),
+    ("mkdir", "os.mkdir('{m}/dir')"),
+    ("unlink", "os.unlink('{m}/../canary.txt')"),
+    ("rename", "os.rename('{m}/../canary.txt', '{m}/moved')"),
+    ("symlink", "os.symlink('/etc/passwd', '{m}/link')"),
+    ("chmod", "os.chmod('{m}/../canary.txt', 0o777)"),
+    ("system", "rc = os.system('touch {m}/system')\nif rc:\n    raise OSError(rc, 'system() failed')"),
+    ("subprocess", "subprocess.run(['touch', '{m}/subprocess'])"),
+    ("execv", "os.execv('/bin/touch', ['touch', '{m}/execv'])"),
+    ("fork", "pid = os.fork()\nif pid == 0:\n    open('{m}/fork', 'w')\n    os._exit(0)"),
+    ("posix_spawn", "os.posix_spawn('/bin/touch', ['touch', '{m}/spawn'], {{}})"),
+    ("libc_system", "rc = ctypes.CDLL(None).system(b'touch {m}/libc')\nif rc:\n    raise OSError(rc, 'failed')"),
+    ("libc_fork", "ctypes.CDLL(None).fork()\nopen('{m}/libc_fork', 'w')"),
+    ("socket", "s = socket.create_connection(('127.0.0.1', {port}))"),
+    ("udp", "socket.socket(socket.AF_INET, socket.SOCK_DGRAM).sendto(b'x', ('127.0.0.1', {port}))"),
+    ("unix_socket", "socket.socket(socket.AF_UNIX).connect('/tmp/none')"),
+    ("kill_parent", "os.kill(os.getppid(), 0)"),
+    ("parent_environ", "result = open(f'/proc/{{os.getppid()}}/environ').read()"),
+    ("parent_mem", "result = open(f'/proc/{{os.getppid()}}/mem', 'rb').read(1)"),
+    ("home", "result = os.listdir(os.path.expanduser('~'))"),
+    ("markers_readable", "result = os.listdir('{m}')"),
+    ("setrlimit", "import resource\nresource.setrlimit(resource.RLIMIT_AS, (-1, -1))"),
+])
+def test_kernel_blocks(worker: SandboxWorker, listener, tmp_path: Path, name: str, code: str) -> None:
+    port, accepted = listener
+    markers = tmp_path / "markers"
+    markers.mkdir()
+    canary = tmp_path / "canary.txt"
+    canary.write_text("untouched")
+    out = worker.call("run", code.format(m=markers, port=port))
+    time.sleep(0.1)
+    assert out.startswith("blocked"), (name, out)
+    assert list(markers.iterdir()) == [] and canary.read_text() == "untouched" and oct(canary.stat().st_mode)[-3:] != "777"
+    assert accepted == []
+
+
+def test_no_secret_in_the_worker(worker: SandboxWorker) -> None:
+    code = ("text = str(dict(os.environ)) + open('/proc/self/environ').read()\n"
+            "result = ('{c}' in text, 'OPENAI_API_KEY' in text, 'MESA_SHADER_CACHE_DISABLE' in os.environ)")
+    # no secret anywhere; caches that write are off rather than given a hole
+    assert worker.call("run", code.format(c=CANARY)) == "ALLOWED (False, False, True)"
+
+
+def test_threads_are_allowed_and_bound_too(worker: SandboxWorker) -> None:
+    code = ("import threading\nbox = []\n"
+            "def go():\n    try:\n        open('/tmp/hgen-thread-escape', 'w')\n        box.append('ALLOWED')\n"
+            "    except OSError as e:\n        box.append('blocked')\n"
+            "t = threading.Thread(target=go)\nt.start()\nt.join()\nresult = box")
+    assert worker.call("run", code) == "ALLOWED ['blocked']"
+    assert not Path("/tmp/hgen-thread-escape").exists()
+
+
+def test_forged_messages_cannot_run_code_in_the_parent(worker: SandboxWorker, tmp_path: Path) -> None:
+    """The parent never unpickles: a pickle written straight onto the worker's pipe is a protocol error."""
+    marker = tmp_path / "unpickled"
+    code = ("import pickle, gc\n"
+            "class P:\n    def __reduce__(self):\n        return (open, ('" + str(marker) + "', 'w'))\n"
+            "from humanoidgen.sandbox import runner\n"
+            "runner._channel.send(P())\n")
+    reply = worker._request(("call", ("run", (code,), {})), 30.0)
+    assert not reply.ok and reply.error_type == "ProtocolError" and not marker.exists()
+    assert worker.call("run", "result = 1") == "ALLOWED 1"  # a fresh worker took over
+
+
+def test_wire_rejects_what_it_cannot_trust() -> None:
+    import numpy as np
+
+    data = wire.encode({"a": np.arange(6, dtype=np.float32).reshape(2, 3), "b": [1, "x", None, float("nan")]})
+    back = wire.decode(data)
+    assert back["a"].shape == (2, 3) and back["b"][:3] == [1, "x", None]
+    for bad in (b"", b"\xff" * 8, data[:-4], data + b"x",
+                wire.encode({"x": 1}).replace(b'"arrays": []', b'"arrays": [{"dtype": "object", "shape": [1], '
+                                                              b'"nbytes": 8}]')):
+        with pytest.raises(wire.WireError):
+            wire.decode(bad)
+    with pytest.raises(TypeError):
+        wire.encode({"f": open})
+
+
+def test_scrubbed_environment_keeps_only_what_the_simulator_reads() -> None:
+    env = scrubbed_environ({"OPENAI_API_KEY": "k", "AWS_SECRET_ACCESS_KEY": "s", "GITHUB_TOKEN": "t",
+                            "MUJOCO_GL": "egl", "PATH": "/usr/bin", "OPENBLAS_CORETYPE": "Haswell"})
+    assert set(env) >= {"MUJOCO_GL", "PATH", "OPENBLAS_CORETYPE", "MESA_SHADER_CACHE_DISABLE"}
+    assert not {"OPENAI_API_KEY", "AWS_SECRET_ACCESS_KEY", "GITHUB_TOKEN"} & set(env)
+    assert env["OMP_NUM_THREADS"] == "1"
