@@ -15,15 +15,23 @@ app = typer.Typer(help="Inspect, export and replay datasets written by `hgen col
 console = Console()
 
 
+def _fail(message: str) -> None:
+    typer.secho(message, fg=typer.colors.RED, err=True)
+    raise typer.Exit(1)
+
+
 def _store(path: Path):
+    """The dataset at `path` (its meta.json readable), or one red line and exit 1; skipped index lines are
+    warned about (yellow), since what they held is not shown or exported."""
     from humanoidgen.episodes.dataset import DatasetError, EpisodeStore
 
     store = EpisodeStore(path)
     try:
         store.meta()
     except DatasetError as exc:
-        typer.secho(str(exc), fg=typer.colors.RED, err=True)
-        raise typer.Exit(1) from None
+        _fail(str(exc))
+    for problem in store.index_problems():
+        typer.secho(f"warning: {problem}", fg=typer.colors.YELLOW, err=True)
     return store
 
 
@@ -35,19 +43,29 @@ def info(path: Path = typer.Argument(..., help="A dataset folder.")) -> None:
     """
     store = _store(path)
     meta, attempts, kept = store.meta(), store.attempts(), store.kept()
-    lengths = [k["length"] for k in kept]
+    bad = store.corrupt()
+    lengths = [k["length"] for k in kept if k["episode"] not in bad and isinstance(k.get("length"), int)]
     console.print(f"[bold]{meta['task']}[/bold]: {len(kept)} episodes kept of {len(attempts)} attempts "
                   f"({100 * len(kept) / max(len(attempts), 1):.0f}% success)")
     if lengths:
+        every, hz = meta.get("recorder", {}).get("every", "?"), meta.get("control_hz")
         console.print(f"frames per episode: min {min(lengths)}, mean {np.mean(lengths):.0f}, max {max(lengths)} "
-                      f"(every {meta['recorder']['every']} control steps at {meta['control_hz']:.0f} Hz)")
-        table = Table("array", "shape (episode 0)", "dtype")
-        for name, arr in store.load(kept[0]["episode"]).items():
+                      f"(every {every} control steps at {hz if hz is None else f'{hz:.0f}'} Hz)")
+        good = next(k["episode"] for k in kept if k["episode"] not in bad)
+        table = Table("array", f"shape (episode {good})", "dtype")
+        for name, arr in store.load(good).items():
             table.add_row(name, str(arr.shape), str(arr.dtype))
         console.print(table)
     failed = [a for a in attempts if not a["success"]]
     for a in failed[:5]:
-        console.print(f"  seed {a['seed']} failed: {a.get('error', '')[:150]}")
+        console.print(f"  seed {a['seed']} failed: {str(a.get('error', ''))[:150]}")
+    if bad:
+        seeds = {k["episode"]: k["seed"] for k in kept}
+        for i, why in sorted(bad.items()):
+            typer.secho(f"damaged: {store.episode_path(i)} (episode {i}, seed {seeds[i]}): {why}",
+                        fg=typer.colors.RED, err=True)
+        _fail(f"{len(bad)} of {len(kept)} episode files are damaged; continue the collection with "
+              f"`hgen collect {meta.get('task_source', meta['task'])} -n N --out {path} --resume` to replace them")
 
 
 @app.command()
@@ -87,8 +105,9 @@ def export(
                           f"episodes, {info['total_frames']} frames at {info['fps']} fps; features "
                           f"{', '.join(k for k in info['features'] if '.' in k or k == 'action')})")
     except DatasetError as exc:
-        typer.secho(str(exc), fg=typer.colors.RED, err=True)
-        raise typer.Exit(1) from None
+        _fail(str(exc))
+    except KeyError as exc:  # a readable episode file or meta.json without an entry the export needs
+        _fail(f"{path}: an episode or meta.json lacks {exc}, which the export needs")
 
 
 @app.command()
@@ -112,14 +131,23 @@ def replay(
 
     store = _store(path)
     meta = store.meta()
+    seeds = {a["episode"]: a["seed"] for a in store.kept()}
+    if episode not in seeds:
+        _fail(f"episode {episode} is not in {store.index_path} (kept episodes: "
+              f"{', '.join(map(str, sorted(seeds))) or 'none'})")
     try:
         frames = store.load(episode)
+        if "qpos" not in frames:
+            raise DatasetError(f"{store.episode_path(episode)} has no qpos array to replay")
+        fps = float(meta["control_hz"]) / int(meta["recorder"]["every"])
     except DatasetError as exc:
-        typer.secho(str(exc), fg=typer.colors.RED, err=True)
-        raise typer.Exit(1) from None
-    seed = next(a["seed"] for a in store.kept() if a["episode"] == episode)
-    _, env = build_scene(load_spec(meta.get("task_source", meta["task"])), seed)
-    fps = meta["control_hz"] / meta["recorder"]["every"]
+        _fail(str(exc))
+    except (KeyError, TypeError, ValueError, ZeroDivisionError) as exc:
+        _fail(f"{store.meta_path} lacks the control rate or recorder settings ({type(exc).__name__}: {exc})")
+    try:
+        _, env = build_scene(load_spec(meta.get("task_source", meta["task"])), seeds[episode])
+    except (KeyError, ValueError, FileNotFoundError) as exc:
+        _fail(str(exc).strip("'\""))
     writer = VideoWriter(video, camera, fps=int(round(fps)), control_hz=fps)
     writer.attach(env)
     try:

@@ -1,7 +1,9 @@
 """`hgen generate scene|script|eval`: LLM-generated task scenes and demonstration scripts.
 
 Endpoint: --base-url / --model override $OPENAI_BASE_URL / $HGEN_LLM_MODEL; the key is read from
-$OPENAI_API_KEY (not needed for a loopback server). With no endpoint configured, each command prints one line
+$OPENAI_API_KEY (not needed for a loopback server); --timeout bounds the wait for one answer. The key and any
+Authorization header are redacted from everything written (--log, --cache-dir, --record, plans, tree logs).
+With no endpoint configured, each command prints one line
 saying so and exits with code 3 (1 for other errors: unreachable endpoint, rejected key, no valid result)."""
 
 from __future__ import annotations
@@ -34,6 +36,9 @@ _CACHE = typer.Option(None, "--cache-dir", help="Cache responses here; identical
 _RECORD = typer.Option(None, "--record", help="Append every request and response to this JSONL file.")
 _REPLAY = typer.Option(None, "--replay", help="Answer from a --record file instead of the endpoint.")
 _RETRIES = typer.Option(4, "--retries", min=0, help="Retries of a failed request (429, 5xx, unreachable).")
+_TIMEOUT = typer.Option(60.0, "--timeout", min=0.1, metavar="SECONDS",
+                        help="Seconds to wait for one LLM answer before it counts as failed (and is retried); "
+                             "reasoning models may need several minutes.")
 _MCTS = typer.Option(None, "--mcts", min=1, help="Search with MCTS, at most N LLM expansions (instead of "
                      "--attempts); the tree log (.tree.json) and picture (.tree.png) go next to the plan.")
 _WORKERS = typer.Option(1, "--workers", min=1, help="With --mcts: expansions run at once (one sandbox each).")
@@ -45,14 +50,14 @@ def _fail(message: str, code: int = 1) -> None:
 
 
 def _client(base_url: str | None, model: str | None, cache_dir: Path | None, record: Path | None,
-            replay: Path | None, retries: int = 4):
+            replay: Path | None, retries: int = 4, timeout: float = 60.0):
     from humanoidgen.llm import LLMClient, LLMConfig
 
     if record is not None and replay is not None:
         _fail("use --record or --replay, not both")
     mode = "replay" if replay else "record" if record else "live"
     cfg = LLMConfig.from_env(base_url=base_url, model=model, cache_dir=cache_dir, mode=mode,
-                             recording_path=replay or record, max_retries=retries)
+                             recording_path=replay or record, max_retries=retries, timeout_s=timeout)
     if mode != "replay" and not cfg.base_url:
         _fail("no LLM endpoint configured: set $OPENAI_BASE_URL (and $OPENAI_API_KEY) or pass --base-url, "
               "or answer from a recording with --replay", EXIT_NOT_CONFIGURED)
@@ -84,7 +89,7 @@ def scene(
     max_repairs: int = typer.Option(2, min=0, help="How many times invalid specs are sent back for repair."),
     log: Path = typer.Option(None, "--log", help="Write every turn (prompt, answer, problems, tokens) as JSON."),
     base_url: str = _BASE_URL, model: str = _MODEL, cache_dir: Path = _CACHE, record: Path = _RECORD,
-    replay: Path = _REPLAY, retries: int = _RETRIES,
+    replay: Path = _REPLAY, retries: int = _RETRIES, timeout: float = _TIMEOUT,
 ) -> None:
     """Generate a task spec (objects, layout, success predicates) from a description, validated in simulation.
 
@@ -93,7 +98,7 @@ def scene(
     os.environ.setdefault("MUJOCO_GL", "egl")
     from humanoidgen.generation.scene_gen import SceneGenerationError, generate_scene
 
-    client = _client(base_url, model, cache_dir, record, replay, retries)
+    client = _client(base_url, model, cache_dir, record, replay, retries, timeout)
     LLMError, NotConfigured = _llm_errors()
     turns = None
     try:
@@ -107,10 +112,18 @@ def scene(
         _fail(str(exc))
     finally:
         if log is not None and turns is not None:
-            log.write_text(json.dumps(turns, indent=1))
+            _write_scene_log(log, turns)
     tokens = sum(t["tokens"]["total"] or 0 for t in turns)
     typer.echo(f"wrote {out} (task {spec.name}, {len(spec.objects)} objects, {len(turns)} turn(s), "
                f"{tokens} tokens); run it with: hgen run {out} --script PLAN.py")
+
+
+def _write_scene_log(path: Path, turns: list[dict]) -> None:
+    """The scene turns as JSON, redacted: a prompt (the user's description) or an answer may quote a key."""
+    from humanoidgen.llm.redact import redact
+
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(json.dumps(redact(turns), indent=1))
 
 
 @app.command()
@@ -123,6 +136,7 @@ def script(
     step_timeout: float = typer.Option(120.0, min=1.0, help="Seconds one step may run before it is stopped."),
     base_url: str = _BASE_URL, model: str = _MODEL, cache_dir: Path = _CACHE, record: Path = _RECORD,
     replay: Path = _REPLAY, retries: int = _RETRIES, mcts: int = _MCTS, workers: int = _WORKERS,
+    timeout: float = _TIMEOUT,
 ) -> None:
     """Generate a demonstration script for a task, run it in a sandbox, retry with the failure explained.
 
@@ -134,7 +148,7 @@ def script(
     os.environ.setdefault("MUJOCO_GL", "egl")
     from humanoidgen.generation.script_gen import generate_script
 
-    client = _client(base_url, model, cache_dir, record, replay, retries)
+    client = _client(base_url, model, cache_dir, record, replay, retries, timeout)
     if mcts is not None:
         _script_mcts(task, client, mcts, workers, seed, step_timeout, out, log)
         return
@@ -177,6 +191,7 @@ def eval_(
     step_timeout: float = typer.Option(120.0, min=1.0, help="Seconds one step may run."),
     base_url: str = _BASE_URL, model: str = _MODEL, cache_dir: Path = _CACHE, record: Path = _RECORD,
     replay: Path = _REPLAY, retries: int = _RETRIES, mcts: int = _MCTS, workers: int = _WORKERS,
+    timeout: float = _TIMEOUT,
 ) -> None:
     """Success rate and token cost of script generation per task.
 
@@ -189,7 +204,7 @@ def eval_(
     from humanoidgen.generation.evaluate import evaluate
 
     names = [t.strip() for t in tasks.split(",") if t.strip()]
-    client = _client(base_url, model, cache_dir, record, replay, retries)
+    client = _client(base_url, model, cache_dir, record, replay, retries, timeout)
     if mcts is not None:
         _eval_mcts(names, trials, client, mcts, workers, step_timeout, json_out)
         return

@@ -4,20 +4,33 @@
     DIR/index.jsonl               one line per attempted seed: success, episode file, length, timings
     DIR/episodes/episode_000000.npz   arrays of one kept episode (see EpisodeRecorder)
 
-Each episode file is written to a temporary name and renamed, and its index line is appended only after, so
-an interrupted collection loses at most the episode in flight and `--resume` continues from the index.
+Each episode file is written to a temporary name, synced and renamed, and its index line is appended only
+after, so an interrupted collection loses at most the episode in flight and `--resume` continues from the index.
+
+Files can still be damaged afterwards (a full disk, a copy cut short, bit rot). Reading tolerates that: a
+broken index line is skipped (`index_problems` says which), a broken episode file raises a DatasetError that
+names it, and `create(..., resume=True)` repairs the store (`repair`) so collection replaces what was lost.
+Nothing is deleted: damaged episode files are renamed to `*.npz.corrupt`, the index before a repair is kept
+as `index.jsonl.bak`.
 """
 
 from __future__ import annotations
 
 import json
+import logging
 import os
-from dataclasses import dataclass
+import re
+import shutil
+from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
 FORMAT_VERSION = 1
+_EPISODE_FILE = re.compile(r"^episode_(\d+)\.npz$")
+
+log = logging.getLogger(__name__)
 
 
 class DatasetError(RuntimeError):
@@ -25,8 +38,20 @@ class DatasetError(RuntimeError):
 
 
 @dataclass
+class _Index:
+    """index.jsonl as read: the valid records, what was wrong with the other lines, whether the file ends
+    mid-line (so the next append must start a new line)."""
+
+    records: list[dict] = field(default_factory=list)
+    problems: list[str] = field(default_factory=list)
+    torn_tail: bool = False
+
+
+@dataclass
 class EpisodeStore:
     root: Path
+    # What the last `repair` fixed (one sentence each); `create(..., resume=True)` also logs them.
+    repaired: list[str] = field(default_factory=list)
 
     def __post_init__(self) -> None:
         self.root = Path(self.root)
@@ -45,12 +70,14 @@ class EpisodeStore:
     # -- writing ------------------------------------------------------------------------------------
     def create(self, meta: dict, resume: bool = False) -> None:
         if self.meta_path.exists():
-            old = json.loads(self.meta_path.read_text())
+            old = self.meta()
             if not resume:
                 raise DatasetError(f"{self.root} already holds a dataset ({len(self.kept())} episodes); "
                                    "use --resume to continue it or choose another --out")
             if old.get("task") != meta.get("task"):
                 raise DatasetError(f"{self.root} holds task {old.get('task')!r}, not {meta.get('task')!r}")
+            for line in self.repair():
+                log.warning("%s", line)
             return
         (self.root / "episodes").mkdir(parents=True, exist_ok=True)
         _atomic_write(self.meta_path, json.dumps({"format_version": FORMAT_VERSION, **meta}, indent=2).encode())
@@ -58,16 +85,22 @@ class EpisodeStore:
     def add(self, record: dict, arrays: dict[str, np.ndarray] | None) -> dict:
         """Append an attempt; with `arrays` (a kept episode) its file is written first."""
         record = dict(record)
+        index = self._read_index()
         if arrays is not None:
-            i = len(self.kept())
+            i = _next_episode(index.records)
             path = self.episode_path(i)
+            path.parent.mkdir(parents=True, exist_ok=True)
             tmp = path.with_name(path.name + ".tmp.npz")
-            np.savez_compressed(tmp, **{k.replace("/", "__"): v for k, v in arrays.items()})
+            with open(tmp, "wb") as f:
+                np.savez_compressed(f, **{k.replace("/", "__"): v for k, v in arrays.items()})
+                f.flush()
+                os.fsync(f.fileno())  # the rename must never publish a file whose bytes are not on disk
             os.replace(tmp, path)
             record["episode"] = i
             record["length"] = int(len(arrays["action"]))
         with open(self.index_path, "a") as f:
-            f.write(json.dumps(record) + "\n")
+            # A line cut short by an interruption must not swallow this record too.
+            f.write(("\n" if index.torn_tail else "") + json.dumps(record) + "\n")
             f.flush()
             os.fsync(f.fileno())
         return record
@@ -76,19 +109,22 @@ class EpisodeStore:
     def meta(self) -> dict:
         if not self.meta_path.exists():
             raise DatasetError(f"no dataset at {self.root} (meta.json missing)")
-        return json.loads(self.meta_path.read_text())
+        try:
+            meta = json.loads(self.meta_path.read_text())
+        except (ValueError, UnicodeDecodeError) as exc:
+            raise DatasetError(f"{self.meta_path} is not valid JSON ({exc}); restore it from a copy "
+                               "(the episodes are untouched)") from None
+        if not isinstance(meta, dict) or not isinstance(meta.get("task"), str):
+            raise DatasetError(f"{self.meta_path} is not a dataset description (no task name); restore it "
+                               "from a copy (the episodes are untouched)")
+        return meta
 
     def attempts(self) -> list[dict]:
-        if not self.index_path.exists():
-            return []
-        out = []
-        for line in self.index_path.read_text().splitlines():
-            if line.strip():
-                try:
-                    out.append(json.loads(line))
-                except json.JSONDecodeError:
-                    break  # a line cut short by an interruption: everything before it stands
-        return out
+        return self._read_index().records
+
+    def index_problems(self) -> list[str]:
+        """Lines of index.jsonl that were skipped, one sentence each (a torn last line included)."""
+        return self._read_index().problems
 
     def kept(self) -> list[dict]:
         return [a for a in self.attempts() if a.get("episode") is not None]
@@ -96,14 +132,152 @@ class EpisodeStore:
     def load(self, i: int) -> dict[str, np.ndarray]:
         path = self.episode_path(i)
         if not path.exists():
-            raise DatasetError(f"episode {i} not found ({len(self.kept())} episodes in {self.root})")
-        with np.load(path) as z:
+            raise DatasetError(f"episode {i} not found ({path.name} missing; {len(self.kept())} episodes "
+                               f"in {self.root})")
+        return _read_episode(path)
+
+    # -- checking and repairing -----------------------------------------------------------------------
+    def corrupt(self) -> dict[int, str]:
+        """Kept episodes whose file is missing, unreadable or not what the index says: episode -> reason.
+        Reads every array of every episode (a zip's CRCs are only checked on reading)."""
+        out = {}
+        for rec in self.kept():
+            i = rec["episode"]
+            reason = _check_episode(self.episode_path(i), rec.get("length"))
+            if reason is not None:
+                out[i] = reason
+        return out
+
+    def verify(self) -> None:
+        """Raise a DatasetError naming every damaged episode file (and the index lines skipped)."""
+        bad = self.corrupt()
+        if bad:
+            raise DatasetError(f"{len(bad)} damaged episode file(s) in {self.root}: " + "; ".join(
+                f"{self.episode_path(i).name}: {why}" for i, why in sorted(bad.items())))
+
+    def repair(self) -> list[str]:
+        """Make the store safe to append to, keeping everything readable: skipped index lines are dropped
+        (the old index is kept as index.jsonl.bak), damaged kept episodes are marked not kept (their files
+        renamed to *.npz.corrupt) so a resumed collection replaces them, and episode files the index does not
+        name (an interruption between writing a file and its index line) are renamed to *.npz.orphan.
+        Returns what was done, one sentence each (also in `self.repaired`)."""
+        self.repaired = []
+        if not self.index_path.exists():
+            return self.repaired
+        index = self._read_index()
+        bad = self.corrupt()
+        messages = list(index.problems)
+        records = []
+        for rec in index.records:
+            i = rec.get("episode")
+            if i in bad:
+                rec = {**rec, "success": False, "dropped_episode": i,
+                       "error": f"episode file {self.episode_path(i).name} was damaged ({bad[i]}); re-collected"}
+                rec.pop("episode")
+                rec.pop("length", None)
+                messages.append(f"{self.episode_path(i)} is damaged ({bad[i]}): renamed to *.corrupt and "
+                                "marked not kept, so it is collected again")
+            records.append(rec)
+        if index.problems or bad or index.torn_tail:
+            shutil.copyfile(self.index_path, self.index_path.with_name("index.jsonl.bak"))
+            _atomic_write(self.index_path, "".join(json.dumps(r) + "\n" for r in records).encode())
+        for i in bad:
+            path = self.episode_path(i)
+            if path.exists():
+                os.replace(path, path.with_name(path.name + ".corrupt"))
+        named = {r["episode"] for r in records if r.get("episode") is not None}
+        folder = self.root / "episodes"
+        for path in sorted(folder.iterdir()) if folder.is_dir() else []:
+            m = _EPISODE_FILE.match(path.name)
+            if m and int(m.group(1)) not in named:
+                os.replace(path, path.with_name(path.name + ".orphan"))
+                messages.append(f"{path} is not in the index (an interrupted write?): renamed to *.orphan")
+            elif path.name.endswith(".tmp.npz"):
+                path.unlink()  # half-written by an interrupted collection; never published
+        self.repaired = messages
+        return messages
+
+    def _read_index(self) -> _Index:
+        index = _Index()
+        if not self.index_path.exists():
+            return index
+        raw = self.index_path.read_bytes()
+        index.torn_tail = bool(raw) and not raw.endswith(b"\n")
+        lines = raw.decode("utf-8", errors="replace").split("\n")
+        for n, line in enumerate(lines, 1):
+            if not line.strip():
+                continue
+            rec = _parse_record(line)
+            if rec is not None:
+                index.records.append(rec)
+            elif n == len(lines) and index.torn_tail:
+                index.problems.append(f"{self.index_path} line {n} was cut short (an interrupted write); skipped")
+            else:
+                index.problems.append(f"{self.index_path} line {n} is not a valid attempt record; skipped")
+        return index
+
+
+def _parse_record(line: str) -> dict | None:
+    """One index line as a record, or None when it is not one (bad JSON, or fields of the wrong type)."""
+    try:
+        rec = json.loads(line)
+    except ValueError:
+        return None
+    if not isinstance(rec, dict) or not isinstance(rec.get("seed"), int) or not isinstance(rec.get("success"), bool):
+        return None
+    ep, length = rec.get("episode"), rec.get("length")
+    if ep is not None and (not isinstance(ep, int) or isinstance(ep, bool) or ep < 0):
+        return None
+    if length is not None and (not isinstance(length, int) or isinstance(length, bool)):
+        return None
+    return rec
+
+
+def _next_episode(records: list[dict]) -> int:
+    """The next episode number: after every number the index names (dropped ones too), so a damaged
+    episode's slot is never reused by a file a reader could mistake for it."""
+    used = [r[k] for r in records for k in ("episode", "dropped_episode") if isinstance(r.get(k), int)]
+    return max(used, default=-1) + 1
+
+
+def _read_episode(path: Path) -> dict[str, np.ndarray]:
+    try:
+        with np.load(path, allow_pickle=False) as z:
             return {k.replace("__", "/"): z[k] for k in z.files}
+    except Exception as exc:  # noqa: BLE001 - any failure to decode the bytes means the file is damaged
+        raise DatasetError(f"{path} is damaged ({_reason(exc)}); continue the collection with --resume "
+                           "to collect it again") from None
+
+
+def _check_episode(path: Path, length: Any) -> str | None:
+    """Why the episode file at `path` is unusable, or None."""
+    if not path.exists():
+        return "file missing"
+    try:
+        with np.load(path, allow_pickle=False) as z:
+            arrays = {k: z[k] for k in z.files}  # reading every member checks its CRC
+    except Exception as exc:  # noqa: BLE001
+        return _reason(exc)
+    if "action" not in arrays:
+        return "no action array"
+    if isinstance(length, int) and len(arrays["action"]) != length:
+        return f"{len(arrays['action'])} frames, the index says {length}"
+    return None
+
+
+def _reason(exc: Exception) -> str:
+    text = str(exc).split(". ")[0]  # numpy's pickle message goes on about trusting the file
+    if isinstance(exc, ValueError) and "pickled" in text:
+        text = "not an episode file"
+    return f"{type(exc).__name__}: {text}"[:200]
 
 
 def _atomic_write(path: Path, data: bytes) -> None:
     tmp = path.with_name(path.name + ".tmp")
-    tmp.write_bytes(data)
+    with open(tmp, "wb") as f:
+        f.write(data)
+        f.flush()
+        os.fsync(f.fileno())
     os.replace(tmp, path)
 
 

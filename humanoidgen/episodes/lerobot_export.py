@@ -234,6 +234,15 @@ def _hf_features(features: dict) -> dict:
     return out
 
 
+def _discard(out: Path, keep_folder: bool) -> None:
+    """Remove what a failed export wrote (the folder itself too, unless it existed before)."""
+    if not keep_folder:
+        shutil.rmtree(out, ignore_errors=True)
+        return
+    for child in out.iterdir() if out.is_dir() else []:
+        shutil.rmtree(child, ignore_errors=True) if child.is_dir() else child.unlink(missing_ok=True)
+
+
 def export_lerobot(store: EpisodeStore, out: Path, cameras: list[str] | None = None, task: str | None = None,
                    robot_type: str = ROBOT_TYPE, crf: int = 23, gop: int = 2, overwrite: bool = False) -> dict:
     """Write `store`'s kept episodes as a LeRobot v3.0 dataset at `out`; returns the info.json written.
@@ -295,82 +304,89 @@ def export_lerobot(store: EpisodeStore, out: Path, cameras: list[str] | None = N
         + [pa.field(k, pa.int64()) for k in ("frame_index", "episode_index", "index", "task_index")],
         metadata={b"huggingface": json.dumps({"info": {"features": _hf_features(features)}}).encode()})
 
-    (out / "meta").mkdir(parents=True, exist_ok=True)
-    data_chunk, data_file, writer = 0, 0, None
-    data_path = None
-    episode_rows: list[dict] = []
-    episode_stats: list[dict[str, dict]] = []
-    total = 0
+    # From here on `out` holds only what this export writes: a failure part way (a damaged episode file, a
+    # full disk) removes it again, so no half dataset is left that a later export would refuse to replace.
+    existed = out.is_dir()
     try:
-        for ep_index, rec in enumerate(kept):
-            arrays = first if ep_index == 0 else store.load(rec["episode"])
-            n = len(arrays["action"])
-            frame_index = np.arange(n, dtype=np.int64)
-            cols = {k: np.ascontiguousarray(arrays[src], np.float32) for k, src in columns.items()}
-            cols.update({
-                "timestamp": (frame_index / fps).astype(np.float32),
-                "frame_index": frame_index,
-                "episode_index": np.full(n, ep_index, np.int64),
-                "index": np.arange(total, total + n, dtype=np.int64),
-                "task_index": np.zeros(n, np.int64),
-            })
-            table = pa.table({k: pa.FixedSizeListArray.from_arrays(pa.array(v.reshape(-1)), v.shape[1])
-                              if v.ndim == 2 else pa.array(v) for k, v in cols.items()}, schema=schema)
-            if writer is not None and data_path.stat().st_size / 2**20 >= DATA_FILES_SIZE_IN_MB:
+        (out / "meta").mkdir(parents=True, exist_ok=True)
+        data_chunk, data_file, writer = 0, 0, None
+        data_path = None
+        episode_rows: list[dict] = []
+        episode_stats: list[dict[str, dict]] = []
+        total = 0
+        try:
+            for ep_index, rec in enumerate(kept):
+                arrays = first if ep_index == 0 else store.load(rec["episode"])
+                n = len(arrays["action"])
+                frame_index = np.arange(n, dtype=np.int64)
+                cols = {k: np.ascontiguousarray(arrays[src], np.float32) for k, src in columns.items()}
+                cols.update({
+                    "timestamp": (frame_index / fps).astype(np.float32),
+                    "frame_index": frame_index,
+                    "episode_index": np.full(n, ep_index, np.int64),
+                    "index": np.arange(total, total + n, dtype=np.int64),
+                    "task_index": np.zeros(n, np.int64),
+                })
+                table = pa.table({k: pa.FixedSizeListArray.from_arrays(pa.array(v.reshape(-1)), v.shape[1])
+                                  if v.ndim == 2 else pa.array(v) for k, v in cols.items()}, schema=schema)
+                if writer is not None and data_path.stat().st_size / 2**20 >= DATA_FILES_SIZE_IN_MB:
+                    writer.close()
+                    writer = None
+                    data_chunk, data_file = _next_file(data_chunk, data_file)
+                if writer is None:
+                    data_path = out / DATA_PATH.format(chunk_index=data_chunk, file_index=data_file)
+                    data_path.parent.mkdir(parents=True, exist_ok=True)
+                    writer = pq.ParquetWriter(data_path, schema, compression="snappy")
+                writer.write_table(table)
+
+                stats = {k: _vector_stats(v) for k, v in cols.items()}
+                row = {"episode_index": ep_index, "tasks": [task], "length": n,
+                       "data/chunk_index": data_chunk, "data/file_index": data_file,
+                       "dataset_from_index": total, "dataset_to_index": total + n}
+                for key, vid in videos.items():
+                    frames = arrays[f"rgb/{key.removeprefix('observation.images.')}"]
+                    if len(frames) != n:
+                        raise DatasetError(f"episode {rec['episode']}: {len(frames)} {key} frames for {n} actions")
+                    row.update(vid.add_episode(frames))
+                    stats[key] = _image_stats(frames)
+                for key, s in stats.items():
+                    for k, v in s.items():
+                        row[f"stats/{key}/{k}"] = np.asarray(v).tolist()
+                row["meta/episodes/chunk_index"] = 0
+                row["meta/episodes/file_index"] = 0
+                episode_rows.append(row)
+                episode_stats.append(stats)
+                total += n
+        finally:
+            if writer is not None:
                 writer.close()
-                writer = None
-                data_chunk, data_file = _next_file(data_chunk, data_file)
-            if writer is None:
-                data_path = out / DATA_PATH.format(chunk_index=data_chunk, file_index=data_file)
-                data_path.parent.mkdir(parents=True, exist_ok=True)
-                writer = pq.ParquetWriter(data_path, schema, compression="snappy")
-            writer.write_table(table)
+            for vid in videos.values():
+                vid.close()
 
-            stats = {k: _vector_stats(v) for k, v in cols.items()}
-            row = {"episode_index": ep_index, "tasks": [task], "length": n,
-                   "data/chunk_index": data_chunk, "data/file_index": data_file,
-                   "dataset_from_index": total, "dataset_to_index": total + n}
-            for key, vid in videos.items():
-                frames = arrays[f"rgb/{key.removeprefix('observation.images.')}"]
-                if len(frames) != n:
-                    raise DatasetError(f"episode {rec['episode']}: {len(frames)} {key} frames for {n} actions")
-                row.update(vid.add_episode(frames))
-                stats[key] = _image_stats(frames)
-            for key, s in stats.items():
-                for k, v in s.items():
-                    row[f"stats/{key}/{k}"] = np.asarray(v).tolist()
-            row["meta/episodes/chunk_index"] = 0
-            row["meta/episodes/file_index"] = 0
-            episode_rows.append(row)
-            episode_stats.append(stats)
-            total += n
-    finally:
-        if writer is not None:
-            writer.close()
-        for vid in videos.values():
-            vid.close()
+        ep_path = out / EPISODES_PATH.format(chunk_index=0, file_index=0)
+        ep_path.parent.mkdir(parents=True, exist_ok=True)
+        pq.write_table(pa.Table.from_pylist(episode_rows), ep_path, compression="snappy")
+        pq.write_table(_tasks_table([task]), out / "meta" / "tasks.parquet")
 
-    ep_path = out / EPISODES_PATH.format(chunk_index=0, file_index=0)
-    ep_path.parent.mkdir(parents=True, exist_ok=True)
-    pq.write_table(pa.Table.from_pylist(episode_rows), ep_path, compression="snappy")
-    pq.write_table(_tasks_table([task]), out / "meta" / "tasks.parquet")
-
-    stats = {key: _aggregate([s[key] for s in episode_stats]) for key in episode_stats[0]}
-    (out / "meta" / "stats.json").write_text(json.dumps(_jsonable(stats), indent=4))
-    info = {
-        "codebase_version": CODEBASE_VERSION,
-        "robot_type": robot_type,
-        "total_episodes": len(kept),
-        "total_frames": total,
-        "total_tasks": 1,
-        "chunks_size": CHUNKS_SIZE,
-        "data_files_size_in_mb": DATA_FILES_SIZE_IN_MB,
-        "video_files_size_in_mb": VIDEO_FILES_SIZE_IN_MB,
-        "fps": fps,
-        "splits": {"train": f"0:{len(kept)}"},
-        "data_path": DATA_PATH,
-        "video_path": VIDEO_PATH if videos else None,
-        "features": features,
-    }
-    (out / "meta" / "info.json").write_text(json.dumps(info, indent=4))
+        stats = {key: _aggregate([s[key] for s in episode_stats]) for key in episode_stats[0]}
+        (out / "meta" / "stats.json").write_text(json.dumps(_jsonable(stats), indent=4))
+        info = {
+            "codebase_version": CODEBASE_VERSION,
+            "robot_type": robot_type,
+            "total_episodes": len(kept),
+            "total_frames": total,
+            "total_tasks": 1,
+            "chunks_size": CHUNKS_SIZE,
+            "data_files_size_in_mb": DATA_FILES_SIZE_IN_MB,
+            "video_files_size_in_mb": VIDEO_FILES_SIZE_IN_MB,
+            "fps": fps,
+            "splits": {"train": f"0:{len(kept)}"},
+            "data_path": DATA_PATH,
+            "video_path": VIDEO_PATH if videos else None,
+            "features": features,
+        }
+        (out / "meta" / "info.json").write_text(json.dumps(info, indent=4))
+    except BaseException:
+        _discard(out, keep_folder=existed)
+        raise
     return info

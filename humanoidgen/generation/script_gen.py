@@ -75,10 +75,13 @@ class ScriptResult:
                 "plan": self.plan, "attempts": [asdict(a) for a in self.attempts]}
 
     def write_log(self, path: Path) -> None:
-        """JSON (one document), or JSONL (one attempt per line) when the name ends in .jsonl."""
+        """JSON (one document), or JSONL (one attempt per line) when the name ends in .jsonl. Redacted: prompts
+        and answers may quote an API key."""
+        from humanoidgen.llm.redact import redact
+
         path = Path(path)
         path.parent.mkdir(parents=True, exist_ok=True)
-        d = self.to_dict()
+        d = redact(self.to_dict())
         if path.suffix == ".jsonl":
             head = {k: v for k, v in d.items() if k != "attempts"}
             path.write_text("".join(json.dumps({**head, "attempt": a}) + "\n" for a in d["attempts"]))

@@ -3,9 +3,14 @@ a response cache and record/replay."""
 
 from __future__ import annotations
 
+import datetime
+import email.utils
+import json
 import logging
+import math
 import threading
 import time
+from dataclasses import replace
 from typing import Any
 from urllib.parse import urlparse
 
@@ -14,6 +19,7 @@ import openai
 from humanoidgen.llm.config import ENV_BASE_URL, LLMConfig
 from humanoidgen.llm.errors import (
     LLMAuthError,
+    LLMBadResponse,
     LLMError,
     LLMNotConfigured,
     LLMRateLimited,
@@ -21,6 +27,7 @@ from humanoidgen.llm.errors import (
     LLMServerError,
     LLMUnreachable,
 )
+from humanoidgen.llm.redact import redact_text, watch_env
 from humanoidgen.llm.results import ChatResult, TokenUsage
 from humanoidgen.llm.store import Recorder, Replayer, ResponseCache, request_key
 
@@ -29,19 +36,22 @@ log = logging.getLogger(__name__)
 _LOOPBACK = {"localhost", "127.0.0.1", "::1", "0.0.0.0"}
 # Local servers (vLLM, Ollama) accept any key; the SDK still wants a non-empty one.
 _PLACEHOLDER_KEY = "EMPTY"
+_sleep = time.sleep  # module-level so tests can watch the retry delays without sleeping
 
 
 class _Retryable(Exception):
-    """Internal: one failed attempt that may succeed if repeated."""
+    """Internal: one failed attempt that may succeed if repeated (after `retry_after` s, if the server said)."""
 
-    def __init__(self, final: LLMError) -> None:
+    def __init__(self, final: LLMError, retry_after: float | None = None) -> None:
         super().__init__(str(final))
         self.final = final
+        self.retry_after = retry_after
 
 
 class LLMClient:
     def __init__(self, config: LLMConfig) -> None:
         self.config = config
+        watch_env(config.api_key_env)  # whatever variable holds the key is redacted from everything written
         self.usage_total = (
             TokenUsage()
         )  # every returned result, cached/replayed included
@@ -77,11 +87,13 @@ class LLMClient:
         key = request_key(request)
 
         if self._replayer is not None:
-            result = self._replayer.next(key, request)
+            result = _redacted(self._replayer.next(key, request))
         else:
             result = self._cache.get(key) if self._cache else None
-            if result is None:
-                result = self._live(model, messages, merged)
+            if result is not None:
+                result = _redacted(result)  # an entry written before redaction existed
+            else:
+                result = _redacted(self._live(model, messages, merged))
                 with self._lock:
                     self.usage_live = self.usage_live + result.usage
                 if self._cache:
@@ -133,7 +145,7 @@ class LLMClient:
                     raise type(final)(
                         f"{final} (gave up after {attempts} attempts)"
                     ) from None
-                delay = cfg.backoff_delay(attempt)
+                delay = self._delay(attempt, err.retry_after)
                 log.warning(
                     "LLM attempt %d/%d failed: %s; retrying in %.2fs",
                     attempt + 1,
@@ -141,8 +153,24 @@ class LLMClient:
                     err,
                     delay,
                 )
-                time.sleep(delay)
+                _sleep(delay)
         raise AssertionError("unreachable")  # pragma: no cover
+
+    def _delay(self, attempt: int, retry_after: float | None) -> float:
+        """The server's Retry-After when it sent one (capped, and said so), else exponential backoff."""
+        cfg = self.config
+        if retry_after is None:
+            return cfg.backoff_delay(attempt)
+        if retry_after > cfg.retry_after_max_s:
+            log.warning(
+                "%s asked to wait %.0fs (Retry-After); waiting %.0fs instead, the cap "
+                "(LLMConfig.retry_after_max_s)",
+                cfg.base_url,
+                retry_after,
+                cfg.retry_after_max_s,
+            )
+            return cfg.retry_after_max_s
+        return retry_after
 
     def _attempt(
         self,
@@ -154,12 +182,15 @@ class LLMClient:
         cfg = self.config
         t0 = time.perf_counter()
         try:
-            resp = sdk.chat.completions.create(model=model, messages=messages, **params)  # type: ignore[arg-type]
+            # The raw response: we parse the body ourselves so a malformed one becomes a clear error
+            # instead of the SDK's JSONDecodeError (or a plain str for a non-JSON content type).
+            raw = sdk.chat.completions.with_raw_response.create(model=model, messages=messages, **params)  # type: ignore[arg-type]
+            body = raw.text
         except openai.APITimeoutError:
             raise _Retryable(
                 LLMUnreachable(
                     f"cannot reach {cfg.base_url}: no answer within {cfg.timeout_s:g}s; "
-                    f"check ${ENV_BASE_URL} / --base-url or raise timeout_s"
+                    f"check ${ENV_BASE_URL} / --base-url or raise the timeout (--timeout)"
                 )
             ) from None
         except openai.APIConnectionError as e:
@@ -171,16 +202,16 @@ class LLMClient:
             ) from None
         except openai.APIStatusError as e:
             raise self._status_error(e) from None
+        except openai.APIError as e:  # anything else the SDK rejects: still one clear line
+            raise LLMBadResponse(f"unusable answer from {cfg.base_url}: {type(e).__name__}: {e}") from None
         latency = time.perf_counter() - t0
-        data = (
-            resp.model_dump()
-        )  # extra fields (reasoning_content) survive: SDK models allow extras
-        choice = (data.get("choices") or [{}])[0]
-        msg = choice.get("message") or {}
+        data = _completion(body, cfg.base_url or "")
+        choice = data["choices"][0]
+        msg = choice.get("message") if isinstance(choice.get("message"), dict) else {}
         return ChatResult(
-            text=msg.get("content") or "",
-            reasoning=msg.get("reasoning_content") or msg.get("reasoning") or None,
-            usage=TokenUsage.from_openai(data.get("usage")),
+            text=_text(msg.get("content")),
+            reasoning=_text(msg.get("reasoning_content") or msg.get("reasoning")) or None,
+            usage=_usage(data.get("usage")),
             model=data.get("model") or model,
             latency_s=latency,
             cached=False,
@@ -195,15 +226,17 @@ class LLMClient:
             return LLMAuthError(
                 f"the endpoint {cfg.base_url} rejected the API key in ${cfg.api_key_env} (HTTP {status}: {detail})"
             )
+        wait = retry_after_s(e.response.headers)
         if status == 429:
             return _Retryable(
-                LLMRateLimited(f"rate limited by {cfg.base_url} (HTTP 429: {detail})")
+                LLMRateLimited(f"rate limited by {cfg.base_url} (HTTP 429: {detail})"), wait
             )
         if status >= 500:
             return _Retryable(
                 LLMServerError(
                     f"server error from {cfg.base_url} (HTTP {status}: {detail})"
-                )
+                ),
+                wait if status == 503 else None,
             )
         hint = (
             " (wrong model name, or base URL missing '/v1'?)" if status == 404 else ""
@@ -211,6 +244,85 @@ class LLMClient:
         return LLMRequestError(
             f"request rejected by {cfg.base_url} (HTTP {status}: {detail}){hint}"
         )
+
+
+def _redacted(result: ChatResult) -> ChatResult:
+    """The answer without secrets: a model (or proxy) echoing the key must not carry it into logs, plans,
+    caches or recordings written downstream."""
+    text = redact_text(result.text)
+    reasoning = redact_text(result.reasoning) if result.reasoning else result.reasoning
+    if text == result.text and reasoning == result.reasoning:
+        return result
+    return replace(result, text=text, reasoning=reasoning)
+
+
+def _completion(body: str, base_url: str) -> dict[str, Any]:
+    """The parsed chat completion of an HTTP 200 body, or LLMBadResponse saying what is wrong with it."""
+    snippet = " ".join(body.split())[:120] or "<empty body>"
+    hint = "; is the base URL an OpenAI-compatible API (usually ending in /v1)?"
+    try:
+        data = json.loads(body)
+    except ValueError as exc:
+        raise LLMBadResponse(
+            f"{base_url} answered HTTP 200 with a body that is not valid JSON ({exc}): {snippet!r}{hint}"
+        ) from None
+    if not isinstance(data, dict):
+        raise LLMBadResponse(
+            f"{base_url} answered HTTP 200 with JSON that is not a chat completion object: {snippet!r}{hint}"
+        )
+    choices = data.get("choices")
+    if not choices:
+        finish = ""
+        if "error" in data:
+            finish = f" (error in the body: {str(data['error'])[:200]})"
+        raise LLMBadResponse(f"the endpoint returned no choices{finish}: {base_url} answered {snippet!r}")
+    if not isinstance(choices, list) or not isinstance(choices[0], dict):
+        raise LLMBadResponse(f"{base_url} answered HTTP 200 with malformed choices: {snippet!r}")
+    return data
+
+
+def _text(content: Any) -> str:
+    """A message's content as text: a string, or the text parts of a list of parts; anything else is none."""
+    if isinstance(content, str):
+        return content
+    if isinstance(content, list):
+        return "".join(str(p.get("text", "")) for p in content if isinstance(p, dict))
+    return ""
+
+
+def _usage(usage: Any) -> TokenUsage:
+    try:
+        return TokenUsage.from_openai(usage if isinstance(usage, dict) else None)
+    except (TypeError, ValueError, AttributeError):
+        return TokenUsage()  # odd token counts are no reason to drop a valid answer
+
+
+def retry_after_s(headers: Any, now: float | None = None) -> float | None:
+    """Seconds a 429/503 answer asks us to wait: `retry-after-ms` (OpenAI), `Retry-After` as seconds or as an
+    HTTP date; None when absent or unreadable."""
+    try:
+        ms = headers.get("retry-after-ms")
+        if ms is not None:
+            value = float(ms) / 1000.0
+            return max(0.0, value) if math.isfinite(value) else None
+        ra = headers.get("retry-after")
+    except (AttributeError, ValueError, TypeError):
+        return None
+    if ra is None:
+        return None
+    ra = str(ra).strip()
+    try:
+        value = float(ra)
+        return max(0.0, value) if math.isfinite(value) else None
+    except ValueError:
+        pass
+    try:
+        when = email.utils.parsedate_to_datetime(ra)
+    except (TypeError, ValueError, IndexError):
+        return None
+    if when.tzinfo is None:  # HTTP dates are GMT
+        when = when.replace(tzinfo=datetime.timezone.utc)
+    return max(0.0, when.timestamp() - (time.time() if now is None else now))
 
 
 def _short(e: openai.APIStatusError, limit: int = 300) -> str:

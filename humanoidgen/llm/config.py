@@ -32,6 +32,9 @@ class LLMConfig(BaseModel):
     max_retries: int = Field(4, ge=0)  # retries after the first attempt
     backoff_s: float = Field(1.0, ge=0)  # first retry delay; doubles each retry
     backoff_max_s: float = Field(30.0, ge=0)  # cap on a single delay
+    # A 429/503 Retry-After is honoured up to this many seconds: a server asking for an hour would otherwise
+    # hang the command silently (the cap is logged when it applies).
+    retry_after_max_s: float = Field(120.0, ge=0)
     temperature: float | None = None
     max_tokens: int | None = None
     cache_dir: Path | None = None

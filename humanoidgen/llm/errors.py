@@ -2,9 +2,17 @@
 
 from __future__ import annotations
 
+from typing import Any
+
+from humanoidgen.llm.redact import redact_text
+
 
 class LLMError(RuntimeError):
-    """Base class of every error raised by `humanoidgen.llm`."""
+    """Base class of every error raised by `humanoidgen.llm`. The message is redacted on creation: it may quote
+    an endpoint's error body, which can echo the key back."""
+
+    def __init__(self, *args: Any) -> None:
+        super().__init__(*(redact_text(a) if isinstance(a, str) else a for a in args))
 
 
 class LLMNotConfigured(LLMError):
@@ -25,6 +33,10 @@ class LLMRateLimited(LLMError):
 
 class LLMServerError(LLMError):
     """5xx on every attempt."""
+
+
+class LLMBadResponse(LLMError):
+    """HTTP 200 whose body is not a chat completion (not JSON, no choices): retrying cannot help."""
 
 
 class LLMRequestError(LLMError):

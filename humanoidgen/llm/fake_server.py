@@ -4,8 +4,9 @@
         LLMClient(LLMConfig(base_url=srv.base_url, ...)).chat([...])
         assert len(srv.requests) == 2
 
-Each script entry serves one request, in order: a `Response` (reply or HTTP error), a plain
-string (a reply), or a callable(request_json) -> Response | str, for conversation-aware scripts.
+Each script entry serves one request, in order: a `Response` (reply, HTTP error, or with `raw` a body sent
+verbatim), a plain string (a reply), or a callable(request_json) -> Response | str, for conversation-aware
+scripts. `headers` add response headers (Retry-After, ...).
 """
 
 from __future__ import annotations
@@ -37,11 +38,19 @@ class Response:
     reasoning_tokens: int | None = None  # None: word count of reasoning, 0 without
     finish_reason: str = "stop"
     delay_s: float = 0.0  # sleep before answering (client timeout tests)
-    headers: dict[str, str] = field(default_factory=dict)
+    headers: dict[str, str] = field(default_factory=dict)  # extra headers, e.g. {"Retry-After": "5"}
+    # Sent verbatim as the body, whatever the status (malformed-answer tests); None: the usual JSON.
+    raw: bytes | str | None = None
+    content_type: str = "application/json"
 
     @classmethod
     def error(cls, status: int, body: Any = None, **kw: Any) -> Response:
         return cls(status=status, body=body, **kw)
+
+    @classmethod
+    def malformed(cls, raw: bytes | str, status: int = 200, **kw: Any) -> Response:
+        """An answer whose body is exactly `raw` (truncated JSON, HTML, {"choices": []}, ...)."""
+        return cls(status=status, raw=raw, **kw)
 
 
 Entry = Response | str | Callable[[dict[str, Any]], Response | str]
@@ -189,7 +198,11 @@ class _Handler(BaseHTTPRequestHandler):
         pass
 
     def _send(
-        self, status: int, payload: Any, headers: dict[str, str] | None = None
+        self,
+        status: int,
+        payload: Any,
+        headers: dict[str, str] | None = None,
+        content_type: str = "application/json",
     ) -> None:
         data = (
             payload
@@ -201,7 +214,7 @@ class _Handler(BaseHTTPRequestHandler):
             )
         )
         self.send_response(status)
-        self.send_header("Content-Type", "application/json")
+        self.send_header("Content-Type", content_type)
         self.send_header("Content-Length", str(len(data)))
         for k, v in (headers or {}).items():
             self.send_header(k, v)
@@ -251,6 +264,9 @@ class _Handler(BaseHTTPRequestHandler):
         r = srv._next(req)
         if r.delay_s:
             time.sleep(r.delay_s)
+        if r.raw is not None:
+            self._send(r.status, r.raw, r.headers, r.content_type)
+            return
         if r.status != 200:
             body = (
                 r.body

@@ -1,12 +1,14 @@
 """Response cache (one JSON file per request key) and JSONL record/replay.
 
-Only the request (model, messages, params) and the result are written, never headers or keys.
+Only the request (model, messages, params) and the result are written, never headers or keys; both are
+redacted (`redact.redact`) on the way out, since a prompt or an answer may quote the key.
 """
 
 from __future__ import annotations
 
 import hashlib
 import json
+import logging
 import os
 import tempfile
 from collections import defaultdict
@@ -14,7 +16,10 @@ from pathlib import Path
 from typing import Any
 
 from humanoidgen.llm.errors import LLMReplayMissing
+from humanoidgen.llm.redact import redact
 from humanoidgen.llm.results import ChatResult
+
+log = logging.getLogger(__name__)
 
 
 def request_key(request: dict[str, Any]) -> str:
@@ -48,6 +53,14 @@ def _atomic_write(path: Path, text: str) -> None:
     os.replace(tmp, path)
 
 
+def _ends_mid_line(path: Path) -> bool:
+    if not path.is_file() or path.stat().st_size == 0:
+        return False
+    with path.open("rb") as f:
+        f.seek(-1, os.SEEK_END)
+        return f.read(1) != b"\n"
+
+
 class ResponseCache:
     def __init__(self, cache_dir: Path) -> None:
         self.dir = Path(cache_dir)
@@ -66,7 +79,7 @@ class ResponseCache:
             return None  # a corrupt entry is a miss, not a crash
 
     def put(self, key: str, request: dict[str, Any], result: ChatResult) -> None:
-        entry = {"key": key, "request": request, "result": result.to_dict()}
+        entry = redact({"key": key, "request": request, "result": result.to_dict()})
         _atomic_write(
             self.path(key), json.dumps(entry, ensure_ascii=False, indent=1, default=str)
         )
@@ -81,12 +94,14 @@ class Recorder:
     def append(self, key: str, request: dict[str, Any], result: ChatResult) -> None:
         self.path.parent.mkdir(parents=True, exist_ok=True)
         line = json.dumps(
-            {"key": key, "request": request, "result": result.to_dict()},
+            redact({"key": key, "request": request, "result": result.to_dict()}),
             ensure_ascii=False,
             default=str,
         )
+        # A recording cut short mid-line (an interrupted run) must not swallow this entry too.
+        torn = _ends_mid_line(self.path)
         with self.path.open("a", encoding="utf-8") as f:
-            f.write(line + "\n")
+            f.write(("\n" if torn else "") + line + "\n")
 
 
 class Replayer:
@@ -97,10 +112,15 @@ class Replayer:
         self._entries: dict[str, list[dict[str, Any]]] = defaultdict(list)
         self._next: dict[str, int] = defaultdict(int)
         if self.path.is_file():
-            for line in self.path.read_text(encoding="utf-8").splitlines():
-                if line.strip():
+            for n, line in enumerate(self.path.read_text(encoding="utf-8", errors="replace").splitlines(), 1):
+                if not line.strip():
+                    continue
+                try:
                     rec = json.loads(line)
                     self._entries[rec["key"]].append(rec["result"])
+                except (ValueError, KeyError, TypeError):
+                    # e.g. the last line of a recording cut short; its request, if asked for, is reported missing
+                    log.warning("%s line %d is not a recorded response; skipped", self.path, n)
 
     def next(self, key: str, request: dict[str, Any]) -> ChatResult:
         entries = self._entries.get(key, [])

@@ -138,10 +138,13 @@ class Tree:
         return cls([Node.from_dict(n) for n in d["nodes"]], d.get("gamma", 0.99), d.get("meta", {}))
 
     def save(self, path: Path, snapshots: bool = True) -> None:
-        """JSON with every node's snapshot, so a loaded tree can be searched further."""
+        """JSON with every node's snapshot, so a loaded tree can be searched further. Redacted: the expansions
+        log holds prompts and answers, which may quote an API key."""
+        from humanoidgen.llm.redact import redact
+
         path = Path(path)
         path.parent.mkdir(parents=True, exist_ok=True)
-        path.write_text(json.dumps(self.to_dict(snapshots)))
+        path.write_text(json.dumps(redact(self.to_dict(snapshots))))
 
     @classmethod
     def load(cls, path: Path) -> Tree:

@@ -7,19 +7,64 @@ fields, unknown object types/models and predicates that name absent objects are 
 from __future__ import annotations
 
 import math
-from typing import Literal
+from typing import Annotated, Any, Literal
 
 import numpy as np
-from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
+from pydantic import AfterValidator, BaseModel, ConfigDict, Field, field_validator, model_validator
+from pydantic_core import PydanticCustomError
 
 from humanoidgen.objects import library
 from humanoidgen.tasks.predicates import Predicate
 
 SAMPLE_ATTEMPTS = 200  # layouts redrawn (same rng stream) until no two footprints overlap
+# Sanity bounds: anything beyond them is a typo or a hostile file, and would only fail later, deep in the
+# simulator (NaN poses) or hang it (an hour-long episode).
+MAX_POSITION_M = 5.0  # the table is about 0.8 x 1.6 m around the robot
+MAX_OFFSET_M = 1.0  # randomization offsets
+MAX_SIZE_M = 1.0  # tolerances, gaps, heights of success predicates
+MAX_YAW_DEG = 360.0
+MAX_TIME_LIMIT_S = 3600.0
+_AXES = "xyz"
+# Predicate fields that are lengths (metres), and the ones that are positions; the rest (angles, openness)
+# carry their own bounds in predicates.py.
+_PREDICATE_LENGTHS = {"xy_tol", "z_tol", "z_gap", "margin", "base_gap", "min_height", "tol"}
+_PREDICATE_POSITIONS = {"target_xy"}
 
 
 class _Strict(BaseModel):
-    model_config = ConfigDict(extra="forbid", frozen=True)
+    # allow_inf_nan=False: YAML's .nan / .inf are not numbers a layout can use.
+    model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
+
+
+def _bad(message: str, **ctx: Any) -> PydanticCustomError:
+    # A custom error reads "field.path: message" in validation_details (no "Value error, " prefix).
+    return PydanticCustomError("out_of_range", message, ctx)
+
+
+def _check_number(what: str, v: Any, limit: float, unit: str, positive: bool = False) -> None:
+    if isinstance(v, bool) or not isinstance(v, (int, float)):
+        return  # not a number: pydantic's own type check reports it
+    if not math.isfinite(v):
+        raise _bad(f"{what} must be a finite number, got {v}")
+    if positive and v <= 0:
+        raise _bad(f"{what} must be greater than 0, got {v:g} {unit}")
+    if abs(v) > limit:
+        raise _bad(f"{what} = {v:g} {unit} is out of range (at most {limit:g} {unit} in magnitude)")
+
+
+def _check_predicate(pred: Any) -> Any:
+    """Every number of a success predicate finite, lengths within MAX_SIZE_M, positions within MAX_POSITION_M
+    (predicates.py bounds only their signs)."""
+    for name, value in pred:
+        what = f"{pred.type}.{name}"
+        if name in _PREDICATE_POSITIONS:
+            for axis, v in zip(_AXES, value):
+                _check_number(f"{what}.{axis}", v, MAX_POSITION_M, "m")
+        elif name in _PREDICATE_LENGTHS and value is not None:
+            _check_number(what, value, MAX_SIZE_M, "m")
+        elif isinstance(value, float):
+            _check_number(what, value, math.inf, "")
+    return pred
 
 
 class ObjectSpec(_Strict):
@@ -28,11 +73,20 @@ class ObjectSpec(_Strict):
     type: str
     type_id: int = Field(default=0, ge=0)
     pos: tuple[float, float] | tuple[float, float, float]  # a missing z puts the object on the table
-    yaw_deg: float = 0.0
+    yaw_deg: float = Field(default=0.0, ge=-MAX_YAW_DEG, le=MAX_YAW_DEG)
     openness: float | None = Field(default=None, ge=0.0, le=1.0)
     # Index of an earlier object this one rides with (contents of a cup): it takes that object's position
     # offset and turns with it about its centre, so randomization never pulls contents out of their container.
     follow: int | None = Field(default=None, ge=0)
+
+    @field_validator("pos", mode="before")
+    @classmethod
+    def _sane_pos(cls, v: Any) -> Any:
+        # Before the tuple union: a NaN would otherwise be reported once per union branch.
+        if isinstance(v, (list, tuple)):
+            for axis, x in zip(_AXES, v):
+                _check_number(axis, x, MAX_POSITION_M, "m")
+        return v
 
     @field_validator("type")
     @classmethod
@@ -68,12 +122,16 @@ class Randomization(_Strict):
     @classmethod
     def _sort_position(cls, v: tuple[float, ...]) -> tuple[float, ...]:
         # The paper's table writes some ranges high-to-low ([0.18, -0.18]); they mean the same box.
+        for name, x in zip(("x1", "x2", "y1", "y2"), v):
+            _check_number(name, x, MAX_OFFSET_M, "m")
         x1, x2, y1, y2 = v
         return (min(x1, x2), max(x1, x2), min(y1, y2), max(y1, y2))
 
     @field_validator("yaw_deg")
     @classmethod
     def _sort_yaw(cls, v: tuple[float, float]) -> tuple[float, float]:
+        for x in v:
+            _check_number("yaw", x, MAX_YAW_DEG, "deg")
         return (min(v), max(v))
 
     @field_validator("openness")
@@ -104,9 +162,10 @@ class TaskSpec(_Strict):
     horizon: Literal["short", "long"]
     objects: list[ObjectSpec] = Field(min_length=1)
     randomization: Randomization = Field(default_factory=Randomization)
-    success: list[Predicate] = Field(min_length=1)  # all must hold
-    time_limit_s: float = Field(default=30.0, gt=0)
-    max_steps: int | None = Field(default=None, gt=0)  # control steps; None: time_limit_s at the control rate
+    success: list[Annotated[Predicate, AfterValidator(_check_predicate)]] = Field(min_length=1)  # all must hold
+    time_limit_s: float = Field(default=30.0, gt=0, le=MAX_TIME_LIMIT_S)
+    # control steps; None: time_limit_s at the control rate
+    max_steps: int | None = Field(default=None, gt=0, le=round(MAX_TIME_LIMIT_S * 50))
     plan: str | None = None  # a reference plan (.py) next to the YAML, written separately
 
     @model_validator(mode="after")
