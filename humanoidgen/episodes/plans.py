@@ -102,22 +102,85 @@ def _parse_one(text: str) -> Plan:
         raise PlanFormatError("the plan is nested too deeply (or contains null bytes) to be parsed") from None
     funcs = [n for n in tree.body if isinstance(n, ast.FunctionDef) and n.name == "step"]
     if funcs:
-        fn = funcs[0]
-        body_lines = stripped.splitlines()[fn.body[0].lineno - 1: fn.end_lineno]
-        # Comments right above the first statement belong to the body too.
-        k = fn.body[0].lineno - 2
-        while k >= fn.lineno and stripped.splitlines()[k].strip().startswith("#"):
-            body_lines.insert(0, stripped.splitlines()[k])
-            k -= 1
-        body = textwrap.dedent("\n".join(body_lines)).splitlines()
-        steps = _split_marked(body, PAPER_STEP_MARK)
-        if len(steps) <= 1:
-            steps = [PlanStep("step", textwrap.dedent("\n".join(body)).strip("\n"))]
-        return Plan(tuple(PlanStep(s.title, textwrap.dedent(s.code)) for s in steps), text)
+        return _paper_form(stripped, tree, funcs[-1], text)
     steps = _split_marked(stripped.splitlines(), STEP_MARK)
     if not steps:
         raise PlanFormatError("the plan has no code")
     return Plan(tuple(PlanStep(s.title, textwrap.dedent(s.code)) for s in steps), text)
+
+
+def _paper_form(source: str, tree: ast.Module, fn: ast.FunctionDef, text: str) -> Plan:
+    """Steps of a `def step(planner):` file.
+
+    Its body is split at `# Step N:` comments when every piece is valid code on its own; what else the file
+    defines (imports, helper functions, constants) runs first as a step of its own, so the body's steps
+    see it. A body that `return`s early, or that cannot be split, stays one step: the file as it is, and
+    the worker calls `step(planner)`. A call of `step(...)` the file makes itself is dropped (it would run
+    the plan twice)."""
+    lines = source.splitlines()
+    extra = [n for n in tree.body if n is not fn and not _calls_step(n)]
+    dropped = [n for n in tree.body if _calls_step(n)]
+    if _returns(fn) or isinstance(fn.body[0], ast.Expr) and len(fn.body) == 1 and _only_docstring(fn):
+        return Plan((PlanStep("step", _without(lines, dropped)),), text)
+    first = fn.body[0].lineno - 1
+    while first - 1 >= fn.lineno and lines[first - 1].strip().startswith("#"):
+        first -= 1  # comments right above the first statement belong to the body
+    body = textwrap.dedent("\n".join(lines[first:fn.end_lineno])).splitlines()
+    steps = _split_marked(body, PAPER_STEP_MARK)
+    marked = any(PAPER_STEP_MARK.match(ln) for ln in body)
+    if not steps or not all(_parses(textwrap.dedent(s.code)) for s in steps):
+        steps, marked = [PlanStep("step", textwrap.dedent("\n".join(body)).strip("\n"))], False
+    if len(steps) == 1 and not marked:
+        steps = [PlanStep("step", steps[0].code)]
+    if extra:
+        defs = "\n".join("\n".join(lines[_start(n) - 1:n.end_lineno]) for n in extra)
+        steps = [PlanStep("definitions", defs), *steps]
+    return Plan(tuple(PlanStep(s.title, textwrap.dedent(s.code)) for s in steps), text)
+
+
+def _start(node: ast.stmt) -> int:
+    decorators = getattr(node, "decorator_list", None) or []
+    return min([node.lineno, *(d.lineno for d in decorators)])
+
+
+def _calls_step(node: ast.stmt) -> bool:
+    """`step(planner)` at top level, or an `if __name__ == "__main__":` block."""
+    if isinstance(node, ast.Expr) and isinstance(node.value, ast.Call):
+        f = node.value.func
+        return isinstance(f, ast.Name) and f.id == "step"
+    if isinstance(node, ast.If) and isinstance(node.test, ast.Compare):
+        return isinstance(node.test.left, ast.Name) and node.test.left.id == "__name__"
+    return False
+
+
+def _returns(fn: ast.FunctionDef) -> bool:
+    """A `return` of the step function itself (not of a function nested in it)."""
+    todo = list(fn.body)
+    while todo:
+        node = todo.pop()
+        if isinstance(node, ast.Return):
+            return True
+        if not isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda, ast.ClassDef)):
+            todo.extend(ast.iter_child_nodes(node))
+    return False
+
+
+def _only_docstring(fn: ast.FunctionDef) -> bool:
+    v = fn.body[0].value if isinstance(fn.body[0], ast.Expr) else None
+    return isinstance(v, ast.Constant) and isinstance(v.value, str)
+
+
+def _without(lines: list[str], nodes: list[ast.stmt]) -> str:
+    drop = {i for n in nodes for i in range(_start(n) - 1, n.end_lineno)}
+    return "\n".join("" if i in drop else ln for i, ln in enumerate(lines)).strip("\n")
+
+
+def _parses(code: str) -> bool:
+    try:
+        ast.parse(code)
+    except (SyntaxError, ValueError, MemoryError, RecursionError):
+        return False
+    return True
 
 
 def load_plan(path: Path) -> Plan:

@@ -31,8 +31,7 @@ from dataclasses import asdict, dataclass
 from typing import Any, Self
 
 from humanoidgen.sandbox import wire
-from humanoidgen.sandbox import checker
-from humanoidgen.sandbox.checker import STEP_FUNCTION, CodeRejected, check_code
+from humanoidgen.sandbox.checker import STEP_FUNCTION, CodeRejected, check_code, safe_builtins
 from humanoidgen.sandbox.lockdown import Limits, lock_down
 
 # Measured (2 CPUs): numpy+mujoco+drake ~0.33 GiB of address space, HumanoidEnv + planner ~1.35 GiB peak.
@@ -128,6 +127,7 @@ class SandboxWorker:
             self._kill()
             raise RuntimeError(f"plan worker setup failed: {str(message)[:MESSAGE_LIMIT]}")
         self.lockdown = reply.get("lockdown") if isinstance(reply.get("lockdown"), dict) else None
+        _warn_once(self.lockdown)
         return True
 
     def close(self) -> None:
@@ -215,6 +215,20 @@ class SandboxWorker:
 
 class _NoReply(Exception):
     pass
+
+
+_warned: set[str] = set()
+
+
+def _warn_once(report: dict | None) -> None:
+    """A layer the kernel lacks is said loudly in the parent (the worker's stderr goes nowhere), once."""
+    import logging
+
+    warnings = report.get("warnings") if isinstance(report, dict) else ["the worker sent no lockdown report"]
+    for w in warnings if isinstance(warnings, list) else []:
+        if isinstance(w, str) and w not in _warned:
+            _warned.add(w)
+            logging.getLogger("humanoidgen.sandbox").warning("PLAN WORKER NOT FULLY LOCKED DOWN: %s", w[:500])
 
 
 _live: weakref.WeakSet[SandboxWorker] = weakref.WeakSet()
@@ -306,7 +320,7 @@ def _worker_main(down: Any, up: Any, setup: Callable[[], dict[str, Any]], limits
 
     import numpy
 
-    builtins_ = _builtins({"numpy": numpy, "math": math})
+    builtins_ = safe_builtins({"numpy": numpy, "math": math})
     namespace: dict[str, Any] = {**provided, "__builtins__": builtins_, "__name__": "__sandbox__"}
     _send({"kind": "ready", "names": sorted(provided), "lockdown": report.to_dict()})
     while True:
@@ -322,14 +336,6 @@ def _worker_main(down: Any, up: Any, setup: Callable[[], dict[str, Any]], limits
         except (TypeError, ValueError) as e:  # a call result that is not wire data
             _send({"kind": "reply", "outcome": asdict(StepOutcome(False, type(e).__name__,
                                                                   f"could not send result: {e}", None, 0.0))})
-
-
-def _builtins(modules: dict[str, Any]) -> dict[str, Any]:
-    if hasattr(checker, "safe_builtins"):
-        return checker.safe_builtins(modules)
-    import builtins
-
-    return {n: getattr(builtins, n) for n in checker.SAFE_BUILTINS if hasattr(builtins, n)}
 
 
 class _CappedIO(io.StringIO):
