@@ -165,3 +165,15 @@ def test_scrubbed_environment_keeps_only_what_the_simulator_reads() -> None:
     assert set(env) >= {"MUJOCO_GL", "PATH", "OPENBLAS_CORETYPE", "MESA_SHADER_CACHE_DISABLE"}
     assert not {"OPENAI_API_KEY", "AWS_SECRET_ACCESS_KEY", "GITHUB_TOKEN"} & set(env)
     assert env["OMP_NUM_THREADS"] == "1"
+
+
+def test_hgen_sandbox_check_reports_every_probe_blocked() -> None:
+    from typer.testing import CliRunner
+
+    from humanoidgen.cli.main import app
+    from humanoidgen.sandbox.probe import PROBES
+
+    res = CliRunner().invoke(app, ["sandbox", "check"])
+    assert res.exit_code == 0, res.output
+    assert "seccomp: on" in res.output and "Landlock: ABI" in res.output
+    assert res.output.count("blocked") >= len(PROBES) and "GOT THROUGH" not in res.output
