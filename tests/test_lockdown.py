@@ -137,11 +137,26 @@ def test_forged_messages_cannot_run_code_in_the_parent(worker: SandboxWorker, tm
     marker = tmp_path / "unpickled"
     code = ("import pickle, gc\n"
             "class P:\n    def __reduce__(self):\n        return (open, ('" + str(marker) + "', 'w'))\n"
-            "from humanoidgen.sandbox import runner\n"
-            "runner._channel.send(P())\n")
+            "import struct\nfrom humanoidgen.sandbox import runner\n"
+            "b = pickle.dumps(P())\nos.write(runner._channel, struct.pack('<Q', len(b)) + b)\n")
     reply = worker._request(("call", ("run", (code,), {})), 30.0)
     assert not reply.ok and reply.error_type == "ProtocolError" and not marker.exists()
     assert worker.call("run", "result = 1") == "ALLOWED 1"  # a fresh worker took over
+
+
+@pytest.mark.parametrize("code, error", [
+    # announces 1 GB, sends 3 bytes, stalls: the parent's deadline still holds
+    ("import struct, time\nfrom humanoidgen.sandbox import runner\n"
+     "os.write(runner._channel, struct.pack('<Q', 10**9) + b'abc')\ntime.sleep(60)", "Timeout"),
+    # announces more than the cap: refused before anything is read
+    ("import struct\nfrom humanoidgen.sandbox import runner\n"
+     "os.write(runner._channel, struct.pack('<Q', 2**62))", "ProtocolError"),
+])
+def test_a_stalling_or_flooding_worker_cannot_hang_the_parent(worker: SandboxWorker, code: str, error: str) -> None:
+    t0 = time.perf_counter()
+    reply = worker._request(("call", ("run", (code,), {})), 3.0)
+    assert not reply.ok and reply.error_type == error and time.perf_counter() - t0 < 10
+    assert worker.call("run", "result = 2") == "ALLOWED 2"
 
 
 def test_wire_rejects_what_it_cannot_trust() -> None:

@@ -25,6 +25,11 @@ DEFAULT_STEP_TIMEOUT_S = 300.0
 CONTROL_TIMEOUT_S = 300.0  # building the scene, judging, handing back the recording
 MEMORY_LIMIT = 4 << 30
 MEMORY_LIMIT_CAMERAS = 12 << 30  # renderer buffers and the frames of a long episode
+# The largest message the parent accepts from an episode's worker: a step's outcome is small, a recording
+# is not. A worker cannot make the parent hold more than this at once.
+MESSAGE_LIMIT = 256 << 20
+MESSAGE_LIMIT_CAMERAS = 16 << 30
+MAX_VIDEO_S = 600.0  # frames past this much video are dropped (a worker cannot fill the disk)
 
 
 @dataclass
@@ -91,12 +96,19 @@ def worker_for(req: EpisodeRequest, spec, plan_text: str, on_frame: Callable[[np
     cameras = req.recorder is not None and (req.recorder.cameras or req.recorder.point_cloud)
     limit = MEMORY_LIMIT_CAMERAS if cameras or on_frame is not None else MEMORY_LIMIT
 
+    video = setup.video
+    budget = [int(MAX_VIDEO_S * video.fps) if video is not None else 0]
+
     def frames(payload) -> None:
         frame = payload.get("frame") if isinstance(payload, dict) else None
-        if on_frame is not None and isinstance(frame, np.ndarray) and frame.ndim == 3 and frame.dtype == np.uint8:
-            on_frame(frame)
+        if (on_frame is None or video is None or budget[0] <= 0 or not isinstance(frame, np.ndarray)
+                or frame.shape != (video.height, video.width, 3) or frame.dtype != np.uint8):
+            return  # only the frames the parent asked for, of the size it asked for
+        budget[0] -= 1
+        on_frame(frame)
 
-    return SandboxWorker(setup, memory_limit=limit, on_stream=frames)
+    return SandboxWorker(setup, memory_limit=limit, on_stream=frames,
+                         max_message_bytes=MESSAGE_LIMIT_CAMERAS if cameras else MESSAGE_LIMIT)
 
 
 def run_task_episode(req: EpisodeRequest, on_frame: Callable[[np.ndarray], None] | None = None
@@ -119,29 +131,48 @@ def run_task_episode(req: EpisodeRequest, on_frame: Callable[[np.ndarray], None]
             if exc.outcome.error_type == "PlanFormatError":
                 raise PlanFormatError(exc.outcome.message) from None
             raise RuntimeError(f"the plan worker could not start the episode: {exc}") from None
-        steps, sim, events = [], 0.0, 0
-        for i, step in enumerate(plan):
-            out = worker.run_step(step["code"], timeout_s=req.step_timeout_s)
-            if out.worker_restarted or not worker.alive:
-                steps.append(StepResult(i, step["title"], False, _error(out), out.seconds))
-                break
-            info = worker.call(PROGRESS, timeout_s=CONTROL_TIMEOUT_S)
-            steps.append(StepResult(i, step["title"], out.ok, "" if out.ok else _error(out), out.seconds,
-                                    float(info["sim_time"]) - sim, [str(e) for e in info["events"][events:]]))
-            sim, events = float(info["sim_time"]), len(info["events"])
-            if not out.ok:
-                break
-        if not worker.alive:  # killed by a timeout or died: nothing left to judge
+        try:
+            plan = [(str(s["title"]), str(s["code"])) for s in plan]
+        except (TypeError, KeyError) as exc:
+            raise RuntimeError(f"the plan worker sent a malformed plan ({exc})") from None
+        steps: list[StepResult] = []
+        sim, events = 0.0, 0
+        try:
+            for i, (title, code) in enumerate(plan):
+                out = worker.run_step(code, timeout_s=req.step_timeout_s)
+                if out.worker_restarted or not worker.alive:
+                    steps.append(StepResult(i, title, False, _error(out), out.seconds))
+                    break
+                info = worker.call(PROGRESS, timeout_s=CONTROL_TIMEOUT_S)
+                now, log = float(info["sim_time"]), [str(e) for e in info["events"]]
+                steps.append(StepResult(i, title, out.ok, "" if out.ok else _error(out), out.seconds, now - sim,
+                                        log[events:]))
+                sim, events = now, len(log)
+                if not out.ok:
+                    break
+            if not worker.alive:  # killed by a timeout or died: nothing left to judge
+                return _lost(spec.name, req.seed, steps), None
+            return _finished(spec.name, req.seed, steps, len(plan), worker.call(FINISH, timeout_s=CONTROL_TIMEOUT_S))
+        except (SandboxError, TypeError, KeyError, ValueError, AttributeError) as exc:
+            # The worker's own bookkeeping failed or answered nonsense (plan code can break it): a failed
+            # episode that says so, not a crash of the caller.
+            steps.append(StepResult(len(steps), "(episode bookkeeping)", False,
+                                    f"the plan worker could not report the episode: {type(exc).__name__}: {exc}"))
             return _lost(spec.name, req.seed, steps), None
-        end = worker.call(FINISH, timeout_s=CONTROL_TIMEOUT_S)
+
+
+def _finished(task: str, seed: int | None, steps: list[StepResult], n_plan: int, end: dict
+              ) -> tuple[EpisodeResult, dict | None]:
     checks = [{"predicate": str(c["predicate"]), "ok": c["ok"] is True, "detail": str(c["detail"])}
               for c in end["checks"]]
-    ok = bool(steps) and all(s.ok for s in steps) and len(steps) == len(plan) and all(c["ok"] for c in checks)
-    result = EpisodeResult(spec.name, req.seed, ok, checks, steps, float(end["wall_seconds"]),
-                           float(end["sim_seconds"]), float(end["plan_seconds"]), end["objects"],
-                           [str(e) for e in end["events"]])
+    ok = bool(steps) and all(s.ok for s in steps) and len(steps) == n_plan and all(c["ok"] for c in checks)
+    objects = end["objects"] if isinstance(end["objects"], dict) else {}
+    result = EpisodeResult(task, seed, ok, checks, steps, float(end["wall_seconds"]), float(end["sim_seconds"]),
+                           float(end["plan_seconds"]), objects, [str(e) for e in end["events"]])
     arrays = end.get("arrays")
-    return result, (arrays if isinstance(arrays, dict) and arrays else None)
+    if isinstance(arrays, dict) and arrays and all(isinstance(v, np.ndarray) for v in arrays.values()):
+        return result, arrays
+    return result, None
 
 
 def _error(out) -> str:

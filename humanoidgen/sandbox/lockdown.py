@@ -156,11 +156,19 @@ def default_read_paths() -> list[Path]:
 
     paths: set[Path] = {Path(sys.prefix), Path(sys.base_prefix), Path(sys.exec_prefix),
                         Path(humanoidgen.__file__).resolve().parent}
-    for entry in sys.path:
-        if entry and entry not in (".", os.getcwd()):
-            p = Path(entry)
-            if p.is_dir() and p.resolve() != Path.home().resolve() and p.resolve() != Path("/"):
-                paths.add(p)
+    # Packages already imported from elsewhere (an editable install, the module holding a test's setup):
+    # their own folder, or the single file of a plain module; never the folder around them (the current
+    # directory or home, where a user's secrets live).
+    for mod in list(sys.modules.values()):
+        f = getattr(mod, "__file__", None)
+        if not isinstance(f, str) or getattr(mod, "__package__", None) is None:
+            continue
+        top = sys.modules.get(mod.__name__.split(".")[0])
+        top_file = getattr(top, "__file__", None)
+        if isinstance(top_file, str) and Path(top_file).name == "__init__.py":
+            paths.add(Path(top_file).resolve().parent)
+        else:
+            paths.add(Path(f).resolve())
     try:
         from humanoidgen.assets.robot_files import cache_dir, resolve_assets_root
 
@@ -174,7 +182,8 @@ def default_read_paths() -> list[Path]:
               "/proc/meminfo", "/proc/stat", "/dev/null", "/dev/zero", "/dev/urandom", "/dev/random"):
         paths.add(Path(p))
     paths.add(Path(f"/proc/{os.getpid()}"))  # /proc/self, and no other process's entry
-    return sorted(p for p in paths if p.exists())
+    kept = sorted(p for p in paths if p.exists())
+    return [p for p in kept if not any(q != p and q in p.parents for q in kept)]  # one rule per subtree
 
 
 _DEVICE_DIRS = ("/dev/dri",)
@@ -255,6 +264,10 @@ def _apply_seccomp() -> None:
     pid = os.getpid()
     f.add_rule(eperm, "kill", sc.Arg(0, sc.NE, pid))
     f.add_rule(eperm, "tgkill", sc.Arg(0, sc.NE, pid))
+    # Scheduling of other processes (root could renice or starve its parent): only this process (0).
+    f.add_rule(eperm, "setpriority", sc.Arg(1, sc.NE, 0))
+    for name in ("sched_setscheduler", "sched_setparam", "migrate_pages", "move_pages"):
+        f.add_rule(eperm, name, sc.Arg(0, sc.NE, 0))
     # Typing into the controlling terminal.
     f.add_rule(eperm, "ioctl", sc.Arg(1, sc.EQ, _TIOCSTI))
     f.add_rule(eperm, "ioctl", sc.Arg(1, sc.EQ, _TIOCLINUX))

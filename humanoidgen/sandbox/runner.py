@@ -12,7 +12,7 @@ new process, before anything else:
 - then `setup()` (trusted, picklable, module level) returns the namespace that steps see.
 
 Requests go down a pipe as pickles (the parent is trusted); everything coming back is `wire`-encoded
-(JSON + raw arrays), never unpickled, with a size cap. A step over its wall-time budget, a worker that
+(JSON + raw arrays), never unpickled, with a size cap and a deadline (`frames`). A step over its wall-time budget, a worker that
 dies, or one that sends a malformed message is killed; the next request starts a fresh worker and says so
 (`worker_restarted=True`). `on_stream` receives what the worker streams while it works (video frames).
 """
@@ -22,6 +22,7 @@ from __future__ import annotations
 import contextlib
 import io
 import os
+import pickle
 import threading
 import time
 import traceback
@@ -30,7 +31,7 @@ from collections.abc import Callable
 from dataclasses import asdict, dataclass
 from typing import Any, Self
 
-from humanoidgen.sandbox import wire
+from humanoidgen.sandbox import frames, wire
 from humanoidgen.sandbox.checker import STEP_FUNCTION, CodeRejected, check_code, safe_builtins
 from humanoidgen.sandbox.lockdown import Limits, lock_down
 
@@ -117,6 +118,8 @@ class SandboxWorker:
         down_r.close()
         up_w.close()  # so a dead worker shows up as EOF on our end
         self._send, self._recv = down_w, up_r
+        os.set_blocking(down_w.fileno(), False)  # both ends are read/written against deadlines
+        os.set_blocking(up_r.fileno(), False)
         try:
             reply = self._receive(self.start_timeout_s)
         except _NoReply as e:
@@ -132,8 +135,8 @@ class SandboxWorker:
 
     def close(self) -> None:
         if self.alive and self._send is not None:
-            with contextlib.suppress(OSError, BrokenPipeError):
-                self._send.send(("exit", None))
+            with contextlib.suppress(OSError, frames.FrameClosed, frames.FrameTimeout):
+                self._post(("exit", None), 1.0)
             self._proc.join(2.0)
         self._kill()
 
@@ -149,7 +152,7 @@ class SandboxWorker:
         self._started_before = True
         t0 = time.perf_counter()
         try:
-            self._send.send(message)
+            self._post(message, timeout_s)
             reply = self._receive(timeout_s)
             out = _outcome(reply)
         except _NoReply as e:
@@ -161,18 +164,25 @@ class SandboxWorker:
         out.worker_restarted = restarted
         return out
 
+    def _post(self, message: Any, timeout_s: float) -> None:
+        try:
+            frames.write_frame(self._send.fileno(), pickle.dumps(message), time.monotonic() + timeout_s)
+        except frames.FrameTimeout:
+            raise _NoReply("timeout") from None
+        except (frames.FrameClosed, OSError):
+            raise _NoReply("died") from None
+
     def _receive(self, timeout_s: float) -> Any:
         """The next reply, handing stream messages to `on_stream` on the way."""
         deadline = time.monotonic() + timeout_s
         while True:
-            left = deadline - time.monotonic()
             try:
-                if left <= 0 or not self._recv.poll(left):
-                    raise _NoReply("timeout")
-                data = self._recv.recv_bytes(self.max_message_bytes)
-            except (EOFError, BrokenPipeError, ConnectionError):
+                data = frames.read_frame(self._recv.fileno(), self.max_message_bytes, deadline)
+            except frames.FrameTimeout:
+                raise _NoReply("timeout") from None
+            except (frames.FrameClosed, OSError):
                 raise _NoReply("died") from None
-            except OSError as e:  # e.g. a message over the size cap: the pipe is no longer in step
+            except frames.FrameTooLarge as e:  # the pipe is no longer in step
                 raise _NoReply(f"protocol: {e}") from None
             try:
                 msg = wire.decode(data)
@@ -279,15 +289,13 @@ def stream(payload: Any) -> None:
     """From inside a worker: send `payload` (wire data) to the parent's `on_stream` now."""
     if _channel is None:
         raise RuntimeError("not in a plan worker")
-    data = wire.encode({"kind": "stream", "payload": payload})
-    with _channel_lock:
-        _channel.send_bytes(data)
+    _send({"kind": "stream", "payload": payload})
 
 
 def _send(msg: Any) -> None:
     data = wire.encode(msg)
     with _channel_lock:
-        _channel.send_bytes(data)
+        frames.write_frame(_channel, data)
 
 
 def _isolate_fds(keep: tuple[int, ...]) -> None:
@@ -309,7 +317,8 @@ def _isolate_fds(keep: tuple[int, ...]) -> None:
 def _worker_main(down: Any, up: Any, setup: Callable[[], dict[str, Any]], limits: Limits) -> None:
     global _channel
     _isolate_fds((down.fileno(), up.fileno()))
-    _channel = up
+    _channel = up.fileno()
+    down_fd = down.fileno()
     try:
         report = lock_down(limits)
         provided = dict(setup())
@@ -325,8 +334,8 @@ def _worker_main(down: Any, up: Any, setup: Callable[[], dict[str, Any]], limits
     _send({"kind": "ready", "names": sorted(provided), "lockdown": report.to_dict()})
     while True:
         try:
-            kind, payload = down.recv()
-        except (EOFError, OSError, KeyboardInterrupt):
+            kind, payload = pickle.loads(frames.read_frame(down_fd, 1 << 40))  # from the trusted parent
+        except (frames.FrameClosed, OSError, KeyboardInterrupt):
             return
         if kind == "exit":
             return
