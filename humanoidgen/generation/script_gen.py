@@ -205,7 +205,7 @@ def _rebinds(attempt: AttemptLog, names: list[str]) -> bool:
     for s in attempt.steps:
         try:
             tree = ast.parse(s.code)
-        except SyntaxError:
+        except (SyntaxError, ValueError, MemoryError, RecursionError):  # untrusted text may exhaust the parser
             continue
         if any(isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store) and n.id in provided
                for n in ast.walk(tree)):

@@ -79,7 +79,7 @@ class SandboxExecutor:
             self._provided = set(step_names())
         try:
             tree = ast.parse(code)
-        except SyntaxError:
+        except (SyntaxError, ValueError, MemoryError, RecursionError):  # untrusted text may exhaust the parser
             return False
         return any(isinstance(n, ast.Name) and isinstance(n.ctx, ast.Store) and n.id in self._provided
                    for n in ast.walk(tree))

@@ -56,7 +56,7 @@ def normalize_code(code: str) -> str:
     """Code without comments, blank lines or formatting differences (the AST's own rendering)."""
     try:
         return ast.unparse(ast.parse(code))
-    except SyntaxError:  # still comparable: drop comments and whitespace by hand
+    except (SyntaxError, ValueError, MemoryError, RecursionError):  # still comparable: strip by hand
         lines = (re.sub(r"#.*$", "", ln).strip() for ln in code.splitlines())
         return "\n".join(re.sub(r"\s+", "", ln) for ln in lines if ln)
 
