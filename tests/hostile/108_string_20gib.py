@@ -1,0 +1,3 @@
+# attempts: 'A' * (20 * 2**30)
+# effect: memory
+s = 'A' * (20 * 2**30)
