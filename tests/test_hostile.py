@@ -368,3 +368,57 @@ def _hide(text: str, secrets: list[str]) -> str:
 
 def _short(text: str, n: int = 300) -> str:
     return text if len(text) <= n else text[:n] + f"... ({len(text)} characters)"
+
+
+# -- the same payloads with the checker out of the way: the kernel alone must hold -------------------------
+KERNEL_EFFECTS = ("file", "exec", "fork", "socket", "env", "signal")
+
+
+def unchecked_setup() -> dict:
+    """A worker whose plan code gets full builtins and no static check at all, as if every refusal of the
+    checker had a hole: what is left is seccomp, Landlock, the scrubbed environment and the rlimits."""
+    import builtins
+    import math
+
+    import numpy as np
+
+    def run(code: str) -> str:
+        ns = {"np": np, "math": math, "planner": None, "__builtins__": builtins}
+        try:
+            exec(compile(code, "<unchecked>", "exec"), ns)  # noqa: S102 - deliberately unchecked
+            if callable(ns.get("step")):
+                ns["step"](None)
+        except BaseException as e:  # noqa: BLE001
+            return f"{type(e).__name__}: {str(e)[:300]}"
+        return "finished"
+
+    return {"run": run}
+
+
+@pytest.fixture(scope="module")
+def unchecked_worker():
+    from humanoidgen.sandbox import SandboxWorker
+
+    with SandboxWorker(unchecked_setup, memory_limit=2 << 30) as w:
+        yield w
+
+
+@pytest.mark.parametrize("script", [s for s in SCRIPTS if s.effect in KERNEL_EFFECTS], ids=lambda s: s.name)
+def test_kernel_alone_stops_the_payload(script, unchecked_worker, box, listener, secrets, signals, capfd):
+    from humanoidgen.episodes.plans import PlanFormatError, parse_plan
+
+    text = _render(script, box, listener.port).decode("utf-8", "surrogateescape")
+    try:
+        code = "\n".join(s.code for s in parse_plan(text).steps)
+    except PlanFormatError:
+        pytest.skip("not a plan the parser reads (covered by the checked battery)")
+    unchecked_worker.start()  # (re)started before the snapshot: the worker itself is no leftover
+    before = _process_state()
+    outcome = _bounded(lambda: unchecked_worker._request(("call", ("run", (code,), {})), 15.0), TIMEOUT_S)
+    problems = _leftovers(box, listener, signals, before, outcome, check_threads=False)
+    out, err = capfd.readouterr()
+    reply = outcome.value
+    texts = {"stdout": out, "stderr": err, "reply": repr(reply.value if reply is not None else outcome.error)}
+    problems += _secret_leaks(texts, secrets)
+    assert not problems, _hide(f"{script.name} with no checker ({script.attempts}):\n- " + "\n- ".join(problems),
+                               secrets)
