@@ -34,9 +34,3 @@ def _warm() -> None:
 
 with contextlib.suppress(Exception):
     _warm()
-
-# Objects that exist now are never collected in the server: a worker's garbage collector then leaves the
-# pages it shares with the server alone instead of copying them (the standard advice before forking).
-import gc  # noqa: E402
-
-gc.freeze()
