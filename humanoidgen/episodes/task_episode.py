@@ -10,7 +10,7 @@ caller (`collect`).
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -123,7 +123,7 @@ def run_task_episode(req: EpisodeRequest, on_frame: Callable[[np.ndarray], None]
     spec = load_spec(req.task)
     text = read_plan_text(plan_file(req.task, spec, req.plan_path))
     if on_frame is not None and req.video is None:
-        req = EpisodeRequest(**{**req.__dict__, "video": VideoSpec()})
+        req = replace(req, video=VideoSpec())
     with worker_for(req, spec, text, on_frame) as worker:
         try:
             plan = worker.call(PLAN, timeout_s=CONTROL_TIMEOUT_S)
@@ -177,7 +177,7 @@ def _finished(task: str, seed: int | None, steps: list[StepResult], n_plan: int,
 
 def _error(out) -> str:
     """The step's failure as one line: `call: reason`, or `Type: message (line n)`."""
-    if out.error_type in ("PlanningError",):
+    if out.error_type == "PlanningError":  # already `call: reason`
         return out.message
     if out.error_type == "CodeRejected":
         return f"rejected: {out.message}"

@@ -78,10 +78,6 @@ class LockdownReport:
     threads_at_lockdown: int = 1
     warnings: list[str] = field(default_factory=list)
 
-    @property
-    def complete(self) -> bool:
-        return self.seccomp and self.landlock_abi > 0 and not self.warnings
-
     def to_dict(self) -> dict:
         return {"seccomp": self.seccomp, "landlock_abi": self.landlock_abi,
                 "threads_at_lockdown": self.threads_at_lockdown, "warnings": list(self.warnings)}
@@ -187,7 +183,7 @@ def default_read_paths() -> list[Path]:
 
 
 _DEVICE_DIRS = ("/dev/dri",)
-_DEVICE_GLOBS = ("nvidia*",)  # NVIDIA's EGL opens its device files read-write and talks to them by ioctl
+_DEVICE_GLOB = "nvidia*"  # NVIDIA's EGL opens its device files read-write and talks to them by ioctl
 
 
 def _apply_landlock(read_paths: list[Path]) -> int:
@@ -208,7 +204,7 @@ def _apply_landlock(read_paths: list[Path]) -> int:
     for d in _DEVICE_DIRS:
         if os.path.isdir(d):
             rs.allow(d, rules=device_rights)
-    for dev in sorted(Path("/dev").glob(_DEVICE_GLOBS[0])):
+    for dev in sorted(Path("/dev").glob(_DEVICE_GLOB)):
         rs.allow(str(dev), rules=device_rights & ~FSAccess.READ_DIR if dev.is_char_device() else device_rights)
     rs.apply()
     return abi
@@ -251,33 +247,34 @@ def _apply_seccomp() -> None:
     f = sc.SyscallFilter(defaction=sc.ALLOW)
     eperm = sc.ERRNO(errno.EPERM)
     for name in _DENY:
-        _add(f, eperm, name)
+        _rule(f, eperm, name)
     for name in _ENOSYS:
-        _add(f, sc.ERRNO(errno.ENOSYS), name)
+        _rule(f, sc.ERRNO(errno.ENOSYS), name)
     # clone without CLONE_THREAD makes a process: denied. Threads (pthread_create) stay allowed.
-    f.add_rule(eperm, "clone", sc.Arg(0, sc.MASKED_EQ, _CLONE_THREAD, 0))
+    _rule(f, eperm, "clone", sc.Arg(0, sc.MASKED_EQ, _CLONE_THREAD, 0))
     # Opening for writing, creating, truncating or appending: denied; read-only opens stay allowed.
     for flag in _O_WRITE_FLAGS:
-        f.add_rule(eperm, "open", sc.Arg(1, sc.MASKED_EQ, flag, flag))
-        f.add_rule(eperm, "openat", sc.Arg(2, sc.MASKED_EQ, flag, flag))
+        _rule(f, eperm, "open", sc.Arg(1, sc.MASKED_EQ, flag, flag))
+        _rule(f, eperm, "openat", sc.Arg(2, sc.MASKED_EQ, flag, flag))
     # Signals only to this process (and its own threads).
     pid = os.getpid()
-    f.add_rule(eperm, "kill", sc.Arg(0, sc.NE, pid))
-    f.add_rule(eperm, "tgkill", sc.Arg(0, sc.NE, pid))
+    _rule(f, eperm, "kill", sc.Arg(0, sc.NE, pid))
+    _rule(f, eperm, "tgkill", sc.Arg(0, sc.NE, pid))
     # Scheduling of other processes (root could renice or starve its parent): only this process (0).
-    f.add_rule(eperm, "setpriority", sc.Arg(1, sc.NE, 0))
+    _rule(f, eperm, "setpriority", sc.Arg(1, sc.NE, 0))
     for name in ("sched_setscheduler", "sched_setparam", "migrate_pages", "move_pages"):
-        f.add_rule(eperm, name, sc.Arg(0, sc.NE, 0))
+        _rule(f, eperm, name, sc.Arg(0, sc.NE, 0))
     # Typing into the controlling terminal.
-    f.add_rule(eperm, "ioctl", sc.Arg(1, sc.EQ, _TIOCSTI))
-    f.add_rule(eperm, "ioctl", sc.Arg(1, sc.EQ, _TIOCLINUX))
+    _rule(f, eperm, "ioctl", sc.Arg(1, sc.EQ, _TIOCSTI))
+    _rule(f, eperm, "ioctl", sc.Arg(1, sc.EQ, _TIOCLINUX))
     f.load()
 
 
-def _add(f, action: int, name: str) -> None:
-    try:
-        f.add_rule(action, name)
-    except Exception as e:  # noqa: BLE001 - a syscall this architecture or libseccomp does not know
-        if "resolve" not in str(e).lower() and not isinstance(e, (ValueError, OSError)):
-            raise
+def _rule(f, action: int, name: str, *args) -> None:
+    """Add one rule; a call this architecture does not have (e.g. `open` on arm64) has nothing to deny.
+    Any other failure propagates, so that a filter missing a rule is reported, never silently loaded."""
+    import pyseccomp as sc
 
+    if sc.resolve_syscall(sc.system_arch(), name) < 0:
+        return
+    f.add_rule(action, name, *args)
