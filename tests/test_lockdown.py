@@ -192,3 +192,73 @@ def test_hgen_sandbox_check_reports_every_probe_blocked() -> None:
     assert res.exit_code == 0, res.output
     assert "seccomp: on" in res.output and "Landlock: ABI" in res.output
     assert res.output.count("blocked") >= len(PROBES) and "GOT THROUGH" not in res.output
+
+
+def _lock_down_in_child(strict: bool, broken: str) -> dict:
+    """lock_down() in a forked child with one layer made to fail; its report (or error) comes back."""
+    import json
+
+    from humanoidgen.sandbox import lockdown
+
+    r, w = os.pipe()
+    pid = os.fork()
+    if pid == 0:  # pragma: no cover - the child
+        os.close(r)
+        try:
+            if strict:
+                os.environ[lockdown.ENV_STRICT] = "1"
+
+            def fail(*_a, **_k):
+                raise OSError("not in this kernel")
+
+            setattr(lockdown, broken, fail)
+            out = {"report": lockdown.lock_down(lockdown.Limits(memory_bytes=None)).to_dict()}
+        except lockdown.LockdownError as e:
+            out = {"error": str(e)}
+        os.write(w, json.dumps(out).encode())
+        os._exit(0)
+    os.close(w)
+    os.waitpid(pid, 0)
+    with os.fdopen(r) as f:
+        return json.loads(f.read())
+
+
+def test_a_missing_layer_is_reported_never_silent() -> None:
+    out = _lock_down_in_child(strict=False, broken="_apply_landlock")
+    assert out["report"]["landlock_abi"] == 0 and out["report"]["seccomp"]
+    assert any("Landlock not applied" in w for w in out["report"]["warnings"])
+    out = _lock_down_in_child(strict=False, broken="_apply_seccomp")
+    assert not out["report"]["seccomp"] and any("NOT blocked" in w for w in out["report"]["warnings"])
+
+
+def test_strict_mode_refuses_an_incomplete_lockdown() -> None:
+    out = _lock_down_in_child(strict=True, broken="_apply_seccomp")
+    assert "seccomp not applied" in out["error"]
+
+
+def test_the_parent_warns_loudly_once(caplog) -> None:
+    from humanoidgen.sandbox import runner
+
+    runner._warned.discard("Landlock not applied (test)")
+    with caplog.at_level("WARNING", logger="humanoidgen.sandbox"):
+        runner._warn_once({"warnings": ["Landlock not applied (test)"]})
+        runner._warn_once({"warnings": ["Landlock not applied (test)"]})
+    hits = [r for r in caplog.records if "NOT FULLY LOCKED DOWN" in r.getMessage()]
+    assert len(hits) == 1 and "Landlock not applied (test)" in hits[0].getMessage()
+
+
+def test_kill_all_ends_the_requests_in_flight() -> None:
+    """What an interrupted collection does: every worker of the process dies, its request fails as data."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    from humanoidgen.sandbox.runner import kill_all
+
+    with SandboxWorker(escape_setup, memory_limit=2 << 30) as w:
+        w.start()
+        with ThreadPoolExecutor(1) as pool:
+            pending = pool.submit(w._request, ("call", ("run", ("import time\ntime.sleep(60)",), {})), 120.0)
+            time.sleep(1.0)
+            t0 = time.perf_counter()
+            kill_all()
+            out = pending.result(timeout=30)
+        assert out.error_type == "WorkerDied" and time.perf_counter() - t0 < 10
