@@ -75,6 +75,21 @@ def test_a_folder_of_step_files_runs_in_natural_order(tmp_path: Path) -> None:
     assert result.success and len(result.steps) == len(ref.steps)
 
 
+def test_a_folder_with_numbered_steps_ignores_stray_files(tmp_path: Path) -> None:
+    # Upstream's folders carry leftovers such as "step3 copy.py"; upstream runs step0, step1, ... by name.
+    folder = tmp_path / "plan"
+    folder.mkdir()
+    (folder / "step0.py").write_text("def step(planner):\n    planner.hand_pre_pinch('right')\n")
+    (folder / "step1.py").write_text("def step(planner):\n    planner.open_hand('right')\n")
+    (folder / "step1 copy.py").write_text("def step(planner):\n    planner.hand_pre_grasp('left')\n")
+    (folder / "helpers.py").write_text("X = 1\n")
+    assert [s.code.strip() for s in load_plan(folder).steps] == ["planner.hand_pre_pinch('right')",
+                                                               "planner.open_hand('right')"]
+    (folder / "step0.py").unlink()
+    (folder / "step1.py").unlink()  # without numbered step files, every .py is a step
+    assert len(load_plan(folder).steps) == 2
+
+
 def test_an_empty_folder_and_a_parser_bomb_are_clear_errors(tmp_path: Path) -> None:
     (tmp_path / "empty").mkdir()
     with pytest.raises(PlanFormatError, match="no .py step files"):

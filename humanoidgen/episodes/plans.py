@@ -82,10 +82,18 @@ def parse_plan(text: str) -> Plan:
     return _parse_one(text)
 
 
+STEP_FILE = re.compile(r"step\d+")
+
+
 def folder_plan_text(folder: Path) -> str:
-    """The step files of a plan folder (`*.py`, natural order: step2 before step10) as one text."""
+    """The step files of a plan folder as one text, in natural order (step2 before step10).
+
+    When the folder has upstream's `step<N>.py` files, only those are the plan: upstream runs `step0`, `step1`, ...
+    by name, so a stray `step3 copy.py` or `notes.py` beside them is not a step. Otherwise every `*.py` is."""
     files = sorted(Path(folder).glob("*.py"), key=lambda p: [int(t) if t.isdigit() else t
                                                               for t in re.split(r"(\d+)", p.stem)])
+    numbered = [p for p in files if STEP_FILE.fullmatch(p.stem)]
+    files = numbered or files
     if not files:
         raise PlanFormatError(f"{folder}: no .py step files in the plan folder")
     return "".join(f"{FILE_MARK}{p.name}\n{p.read_text(encoding='utf-8', errors='replace')}\n" for p in files)
