@@ -1,10 +1,19 @@
-"""Constraints for the planner API's actions, built from the asset annotations.
+"""Constraints for the planner API's actions, built from the asset annotations and the task's targets.
 
 - "grasp" / "pinch": the hand's grasp (pinch) point on the operation point, the hand turned to the operation's
-  axes; with `openness`, the same at the part's pose for that openness (pulling a drawer, lifting a lid).
-- "target": lift what the hand holds 10 cm, keeping the hand's orientation.
-- "target1" / "target2": the first / second push or flip point of an articulated object.
-- "move": the held object's centre (or the grasp point) to `relative_p` (world offset) from another object.
+  axes; with `openness`, the same at the part's pose for that openness (pulling a drawer, lifting a lid). An
+  object without that operation but with the other (a laptop screen is pinched at its edge) uses the other.
+- "target": the object the hand holds (its centre) to the object's target pose in this task (listed in the scene
+  as the object's "targets": a hand-over pose, the place above the bowl, the spot to stack on), keeping the
+  hand's orientation and the object upright. Where the task defines none, it lifts the held object 10 cm.
+- "target1" / "target2": the held object to its target pose of that name, where the task defines one; on an
+  articulated object (drawer, laptop, box): the fingertip on its first / second push or flip point (with
+  `openness`: pushing the part to that openness).
+- "move": the held object's centre (or the grasp point) to `relative_p` (world offset) from another object's
+  centre (`relative_obj_name`, `relative_obj_id`).
+- "pour": the held cup beside and above a receptacle (relative_obj_name, else the nearest bowl or other
+  container), tipped toward it so that its contents fall in.
+Objects may be named by type and obj_id ("cube", 1), as "cube1", or by an alias the scene lists.
 """
 
 from __future__ import annotations
@@ -20,7 +29,9 @@ from humanoidgen.planning.constraints import Const, Constraint
 from humanoidgen.sim.geometry import axis_angle_mat
 from humanoidgen.sim.layout import HAND_BASE_FRAME, Side
 
-ACTIONS = ("grasp", "pinch", "target", "target1", "target2", "move")
+ACTIONS = ("grasp", "pinch", "target", "target1", "target2", "move", "pour")
+# Not the paper's, but plans use them: the object's push / flip / press point (as target1 / target2).
+PUSH_ACTIONS = ("push", "flip", "press")
 # A round body can be wrapped from a range of directions around its axis, not only the annotated one: these
 # turns (degrees), nearest first, are tried where the annotated direction is out of reach.
 WRAP_TURNS_DEG = (0, 20, -20, 40, -40)
@@ -51,6 +62,7 @@ class Generated:
     # Other ways to take the grip (other annotated points, the object's symmetric axes, the other sign), most
     # natural first: Generated objects the goal solver tries in turn when the first cannot be reached.
     alternatives: list = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)  # for the planner's events: a fallback or mapping that was made
 
 
 def _frame_from_two(l1: np.ndarray, w1: np.ndarray, l2: np.ndarray, w2: np.ndarray) -> np.ndarray | None:
@@ -234,49 +246,83 @@ def keep_orientation(env, side: Side, held: tuple[str, int] | None = None) -> li
 def generate(env, holding: dict, obj_name: str, obj_id: int, action: str, side: Side, openness: float | None = None,
              relative_obj_name: str | None = None, relative_obj_id: int | None = None,
              relative_p: np.ndarray | None = None, point: str | None = None, finger_offset: float = 0.0) -> Generated:
-    if action not in ACTIONS:
+    ta = _target_actions
+    if action not in ACTIONS + PUSH_ACTIONS:
         raise ConstraintGenerationError(f"unknown action {action!r}; use one of {', '.join(ACTIONS)}")
-    frame = HAND_BASE_FRAME[side]
-    env.scene.object(obj_name, obj_id)  # a clear error for an unknown object
+    obj = env.scene.object(obj_name, obj_id)  # a clear error for an unknown object; aliases resolve here
+    obj_name, obj_id = obj.type_name, obj.obj_id
+    rel = None
+    if relative_obj_name is not None:
+        rel = env.scene.object(relative_obj_name, relative_obj_id or 0)
+        relative_obj_name, relative_obj_id = rel.type_name, rel.obj_id
     if action in ("grasp", "pinch"):
-        return grasp_or_pinch(env, side, obj_name, obj_id, action, openness, point, finger_offset)
+        operation, note = ta.operation_for(obj, action)
+        gen = grasp_or_pinch(env, side, obj_name, obj_id, operation, openness, point, finger_offset)
+        if note is not None:
+            for g in [gen, *gen.alternatives]:
+                g.posture = g.posture or ("pinch" if operation == "pinch" else None)  # hand_grasp closes as a pinch
+            gen.notes.append(note)
+        return gen
+    articulated = obj.annotations is not None and obj.annotations.articulation is not None
+    if action in ta.TARGET_ACTIONS and not (articulated and action != "target"
+                                            and not ta.has_task_target(env, obj, action, side)):
+        return ta.to_target(env, holding, obj, action, side)
+    if action in ("target1", "target2") + PUSH_ACTIONS:
+        if not articulated:
+            raise ConstraintGenerationError(f"{obj_name} has no push/flip/press annotation; actions for it: "
+                                            f"{', '.join(ta.actions_of(obj))}")
+        k, note = ta.push_index(obj, action)
+        gen = _push(env, side, obj_name, obj_id, k, openness)
+        gen.notes += [note] if note else []
+        return gen
+    if action == "pour":
+        return ta.pour(env, holding, obj, side, rel)
+    return _move(env, holding, obj_name, obj_id, side, rel, relative_p)
+
+
+def _push(env, side: Side, obj_name: str, obj_id: int, k: int, openness: float | None) -> Generated:
+    """The fingertip on the object's k-th push/flip/press point (target1: k = 0, target2: k = 1)."""
+    obj = env.scene.object(obj_name, obj_id)
+    ops = [o for o in obj.annotations.operations if o.operation in _target_actions.PUSH_OPERATIONS]
+    if len(ops) <= k:
+        raise ConstraintGenerationError(f"{obj_name} has {len(ops)} push/flip/press annotation(s), so no target{k + 1}; "
+                                        f"actions for it: {', '.join(_target_actions.actions_of(obj))}")
+    frame = HAND_BASE_FRAME[side]
+    op = ops[k]
+    target = get_point_in_env(env, op.point, obj_name, obj_id, openness=openness)
+    approach = get_axis_in_env(env, op.approach_axis, obj_type=obj_name, obj_id=obj_id, openness=openness)
+    press_axis = get_axis_in_env(env, f"{side}_press_axis")
+    # A fingertip pushes as well up to PUSH_CONE off the push direction; that freedom keeps far or turned
+    # parts (a drawer front at the table's edge) within reach. Along the direction is preferred.
+    gen = Generated([
+        Constraint(env, "point2point", frame, hand_key_point=get_point_in_env(env, f"press_point_base_{side}_hand"),
+                   object_key_point=target, name=f"fingertip on {obj_name} {op.point}"),
+        Constraint(env, "angle", frame, hand_axis=press_axis, object_axis=approach, lower=0.0,
+                   upper=np.radians(PUSH_CONE_DEG), name=f"fingertip within {PUSH_CONE_DEG} deg of the push direction"),
+        Const(env, "parallel", frame, hand_axis=press_axis, object_axis=approach, weight=0.5,
+              name="fingertip along the push direction (preferred)"),
+    ], approach_axis=approach, approach_object=obj.body)
+    _ride_with_part(env, gen, obj_name, obj_id, op.point, openness)  # so the hand does not swing about
+    return gen
+
+
+def _move(env, holding: dict, obj_name: str, obj_id: int, side: Side, rel, relative_p) -> Generated:
+    """The held object's centre (or, holding nothing, the grasp point) at `relative_p` from `rel`'s centre."""
+    if rel is None:
+        raise ConstraintGenerationError("'move' needs relative_obj_name (and relative_obj_id, relative_p: the world "
+                                        "offset from that object's centre)")
+    frame = HAND_BASE_FRAME[side]
     held = holding.get(side)
     held_here = held is not None and (held.type_name, held.obj_id) == (obj_name, obj_id)
-    if action == "target":
-        if not held_here:
-            raise ConstraintGenerationError(f"'target' lifts what the {side} hand holds, and it does not hold {obj_name} {obj_id}")
-        c = get_point_in_env(env, "center", obj_name, obj_id)
-        return Generated([Constraint(env, "point2point", frame, hand_key_point=c, object_key_point=c + LIFT,
-                                     name=f"{obj_name} {obj_id} 10 cm higher"), *keep_orientation(env, side, (obj_name, obj_id))])
-    if action in ("target1", "target2"):
-        ann = env.scene.object(obj_name, obj_id).annotations
-        ops = [o for o in ann.operations if o.operation in ("push", "flip", "press")]
-        k = 0 if action == "target1" else 1
-        if len(ops) <= k:
-            raise ConstraintGenerationError(f"{obj_name} has {len(ops)} push/flip/press annotation(s); no {action}")
-        op = ops[k]
-        target = get_point_in_env(env, op.point, obj_name, obj_id, openness=openness)
-        approach = get_axis_in_env(env, op.approach_axis, obj_type=obj_name, obj_id=obj_id, openness=openness)
-        press_axis = get_axis_in_env(env, f"{side}_press_axis")
-        # A fingertip pushes as well up to PUSH_CONE off the push direction; that freedom keeps far or turned
-        # parts (a drawer front at the table's edge) within reach. Along the direction is preferred.
-        gen = Generated([
-            Constraint(env, "point2point", frame, hand_key_point=get_point_in_env(env, f"press_point_base_{side}_hand"),
-                       object_key_point=target, name=f"fingertip on {obj_name} {op.point}"),
-            Constraint(env, "angle", frame, hand_axis=press_axis, object_axis=approach, lower=0.0,
-                       upper=np.radians(PUSH_CONE_DEG), name=f"fingertip within {PUSH_CONE_DEG} deg of the push direction"),
-            Const(env, "parallel", frame, hand_axis=press_axis, object_axis=approach, weight=0.5,
-                  name="fingertip along the push direction (preferred)"),
-        ], approach_axis=approach, approach_object=env.scene.object(obj_name, obj_id).body)
-        _ride_with_part(env, gen, obj_name, obj_id, op.point, openness)  # so the hand does not swing about
-        return gen
-    # move
-    if relative_obj_name is None:
-        raise ConstraintGenerationError("'move' needs relative_obj_name (and relative_obj_id, relative_p)")
-    rel = get_point_in_env(env, "center", relative_obj_name, relative_obj_id or 0)
+    base = get_point_in_env(env, "center", rel.type_name, rel.obj_id)
     offset = np.zeros(3) if relative_p is None else np.asarray(relative_p, float)
     hand_point = (get_point_in_env(env, "center", obj_name, obj_id) if held_here
                   else get_point_in_env(env, f"grasp_point_base_{side}_hand"))
-    return Generated([Constraint(env, "point2point", frame, hand_key_point=hand_point, object_key_point=rel + offset,
-                                 name=f"{obj_name} {obj_id} at {relative_obj_name} {relative_obj_id or 0} + {offset.round(3).tolist()}"),
+    return Generated([Constraint(env, "point2point", frame, hand_key_point=hand_point, object_key_point=base + offset,
+                                 name=f"{obj_name} {obj_id} at {rel.type_name} {rel.obj_id} + {offset.round(3).tolist()}"),
                       *keep_orientation(env, side, (obj_name, obj_id) if held_here else None)])
+
+
+# Imported last: target_actions builds on this module's Generated and keep_orientation (and is imported with it
+# wherever the planner is, e.g. in the plan worker before its lockdown).
+from humanoidgen.planning import target_actions as _target_actions  # noqa: E402

@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Iterable
+from dataclasses import dataclass, field, fields
 from typing import TYPE_CHECKING
 
 import mujoco
@@ -12,12 +14,67 @@ import numpy as np
 from humanoidgen.objects import library
 from humanoidgen.objects.articulated import set_openness
 from humanoidgen.sim.env import HumanoidEnv
-from humanoidgen.sim.scene import Scene, SceneBuilder
+from humanoidgen.sim.scene import Scene, SceneBuilder, SceneObject
 
 if TYPE_CHECKING:
     from humanoidgen.tasks.spec import ResolvedObject, TaskSpec
+    from humanoidgen.tasks.targets import SceneTargets
 
 SETTLE_S = 0.3  # long enough for objects dropped from their bbox height to come to rest
+_NUMBERED = re.compile(r"^([a-z_]*[a-z])_?(\d+)$")  # "cube0", "cube_1", "bottle1": the paper's way of naming objects
+
+
+@dataclass
+class TaskScene(Scene):
+    """A task's scene: the compiled scene plus the task's object aliases and target poses.
+
+    `object()` is where every planner call and query turns a name into an object, so aliases are resolved here
+    once: "rectangular_cube" (an alias from the task's YAML), "cube0" / "cube_0" (type and obj_id in one name, as
+    the paper's task descriptions write them) and plain "cube" with obj_id."""
+
+    aliases: dict[str, tuple[str, int]] = field(default_factory=dict)
+    targets: SceneTargets | None = None
+
+    @classmethod
+    def wrap(cls, scene: Scene, aliases: dict[str, tuple[str, int]] | None = None) -> TaskScene:
+        return cls(**{f.name: getattr(scene, f.name) for f in fields(Scene)}, aliases=dict(aliases or {}))
+
+    def object(self, type_name: str, obj_id: int = 0) -> SceneObject:
+        canonical = self.resolve(type_name, obj_id)
+        try:
+            return super().object(*canonical)
+        except KeyError as exc:
+            if not self.aliases:
+                raise
+            names = ", ".join(f"{a} = {t}[{i}]" for a, (t, i) in sorted(self.aliases.items()))
+            raise KeyError(f"{exc.args[0] if exc.args else exc}; aliases: {names}") from None
+
+    def resolve(self, name: str, obj_id: int = 0) -> tuple[str, int]:
+        """(type, obj_id) that a plan's (name, obj_id) means."""
+        if not isinstance(name, str) or any(o.type_name == name for o in self.objects):
+            return name, obj_id
+        if name in self.aliases:
+            t, i = self.aliases[name]
+            if obj_id not in (0, i):
+                raise KeyError(f"{name!r} names one object, {t}[{i}]; leave obj_id out (or use "
+                               f"obj_name={t!r}, obj_id={obj_id})")
+            return t, i
+        m = _NUMBERED.match(name)
+        if m is not None:
+            base, n = m.group(1), int(m.group(2))
+            if base in self.aliases:
+                # "rectangular_cube0": the paper numbers even a single object; 0 (or its own obj_id) is the only one.
+                t, i = self.aliases[base]
+                if n not in (0, i):
+                    raise KeyError(f"{name!r}: {base!r} names one object, {t}[{i}]; use obj_name={base!r}")
+                return self.resolve(base, obj_id)
+            if any(o.type_name == base for o in self.objects):
+                # obj_id 0 is the default: "cube1" with obj_id left out (or 0) means cube[1].
+                if obj_id not in (0, n):
+                    raise KeyError(f"{name!r} says obj_id {n} but obj_id={obj_id} was given; use "
+                                   f"obj_name={base!r}, obj_id={n}")
+                return base, n
+        return name, obj_id
 
 
 def footprint(obj: ResolvedObject) -> np.ndarray:
@@ -56,12 +113,13 @@ def overlapping_pairs(layout: list[ResolvedObject], skip: Iterable[tuple[int, in
     return out
 
 
-def build_layout(layout: list[ResolvedObject], settle_s: float = SETTLE_S) -> tuple[Scene, HumanoidEnv]:
+def build_layout(layout: list[ResolvedObject], settle_s: float = SETTLE_S,
+                 aliases: dict[str, tuple[str, int]] | None = None) -> tuple[TaskScene, HumanoidEnv]:
     """Add the objects in order, set the articulated ones' openness, and let everything settle with the robot
     holding its initial posture."""
     builder = SceneBuilder()
     objs = [builder.add_object(o.type, o.type_id, pos=tuple(o.pos), yaw=o.yaw) for o in layout]
-    scene = builder.build()
+    scene = TaskScene.wrap(builder.build(), aliases)
     env = HumanoidEnv(scene)
     for spec, obj in zip(layout, objs):
         if spec.openness is not None:
@@ -73,6 +131,11 @@ def build_layout(layout: list[ResolvedObject], settle_s: float = SETTLE_S) -> tu
     return scene, env
 
 
-def build_scene(spec: TaskSpec, seed: int | None = None, settle_s: float = SETTLE_S) -> tuple[Scene, HumanoidEnv]:
-    """The task's scene for episode `seed` (None: the default layout)."""
-    return build_layout(spec.sample_layout(seed), settle_s=settle_s)
+def build_scene(spec: TaskSpec, seed: int | None = None, settle_s: float = SETTLE_S) -> tuple[TaskScene, HumanoidEnv]:
+    """The task's scene for episode `seed` (None: the default layout), with the task's aliases and targets."""
+    from humanoidgen.tasks.targets import SceneTargets
+
+    scene, env = build_layout(spec.sample_layout(seed), settle_s=settle_s, aliases=spec.aliases())
+    # After settling: a target anchored at an object's start is where the object came to rest.
+    scene.targets = SceneTargets(list(spec.targets), seed, env)
+    return scene, env

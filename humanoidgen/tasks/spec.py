@@ -2,54 +2,42 @@
 
 A `TaskSpec` is plain data (one YAML file per task under `specs/`), validated strictly by pydantic: unknown
 fields, unknown object types/models and predicates that name absent objects are errors that name the field.
+Objects may carry `aliases` (other names plans use for them); `targets` are the objects' target poses for the
+paper's action="target" (schema and checks in targets.py).
 """
 
 from __future__ import annotations
 
 import math
+import re
 from typing import Annotated, Any, Literal
 
 import numpy as np
-from pydantic import AfterValidator, BaseModel, ConfigDict, Field, field_validator, model_validator
-from pydantic_core import PydanticCustomError
+from pydantic import AfterValidator, Field, field_validator, model_validator
 
 from humanoidgen.objects import library
+from humanoidgen.tasks.bounds import (
+    AXES as _AXES,
+    MAX_OFFSET_M,
+    MAX_POSITION_M,
+    MAX_SIZE_M,
+    MAX_TIME_LIMIT_S,
+    MAX_YAW_DEG,
+    Strict as _Strict,
+    bad as _bad,
+    check_number as _check_number,
+)
 from humanoidgen.tasks.predicates import Predicate
+from humanoidgen.tasks.targets import TargetSpec, check_targets
 
 SAMPLE_ATTEMPTS = 200  # layouts redrawn (same rng stream) until no two footprints overlap
-# Sanity bounds: anything beyond them is a typo or a hostile file, and would only fail later, deep in the
-# simulator (NaN poses) or hang it (an hour-long episode).
-MAX_POSITION_M = 5.0  # the table is about 0.8 x 1.6 m around the robot
-MAX_OFFSET_M = 1.0  # randomization offsets
-MAX_SIZE_M = 1.0  # tolerances, gaps, heights of success predicates
-MAX_YAW_DEG = 360.0
-MAX_TIME_LIMIT_S = 3600.0
-_AXES = "xyz"
+# An alias is another name a plan may use for one object ("rectangular_cube" for cube[0]); it must not end in a digit
+# ("cube0" already means cube[0]) nor be a type name.
+_ALIAS = re.compile(r"^[a-z][a-z_]*[a-z]$")
 # Predicate fields that are lengths (metres), and the ones that are positions; the rest (angles, openness)
 # carry their own bounds in predicates.py.
 _PREDICATE_LENGTHS = {"xy_tol", "z_tol", "z_gap", "margin", "base_gap", "min_height", "tol"}
 _PREDICATE_POSITIONS = {"target_xy"}
-
-
-class _Strict(BaseModel):
-    # allow_inf_nan=False: YAML's .nan / .inf are not numbers a layout can use.
-    model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
-
-
-def _bad(message: str, **ctx: Any) -> PydanticCustomError:
-    # A custom error reads "field.path: message" in validation_details (no "Value error, " prefix).
-    return PydanticCustomError("out_of_range", message, ctx)
-
-
-def _check_number(what: str, v: Any, limit: float, unit: str, positive: bool = False) -> None:
-    if isinstance(v, bool) or not isinstance(v, (int, float)):
-        return  # not a number: pydantic's own type check reports it
-    if not math.isfinite(v):
-        raise _bad(f"{what} must be a finite number, got {v}")
-    if positive and v <= 0:
-        raise _bad(f"{what} must be greater than 0, got {v:g} {unit}")
-    if abs(v) > limit:
-        raise _bad(f"{what} = {v:g} {unit} is out of range (at most {limit:g} {unit} in magnitude)")
 
 
 def _check_predicate(pred: Any) -> Any:
@@ -78,6 +66,20 @@ class ObjectSpec(_Strict):
     # Index of an earlier object this one rides with (contents of a cup): it takes that object's position
     # offset and turns with it about its centre, so randomization never pulls contents out of their container.
     follow: int | None = Field(default=None, ge=0)
+    # Other names plans may use for this object (the paper's task descriptions say "rectangular_cube",
+    # "target_cube"); the scene resolves them (tasks/scene.py).
+    aliases: list[str] = Field(default_factory=list, max_length=8)
+
+    @field_validator("aliases")
+    @classmethod
+    def _alias_names(cls, v: list[str]) -> list[str]:
+        for a in v:
+            if not _ALIAS.match(a):
+                raise _bad(f"alias {a!r} must be lowercase letters and '_' (no digits at the end: 'cube0' already "
+                           "names cube[0])")
+            if a in library.families():
+                raise _bad(f"alias {a!r} is an object type; choose another name")
+        return v
 
     @field_validator("pos", mode="before")
     @classmethod
@@ -167,6 +169,8 @@ class TaskSpec(_Strict):
     # control steps; None: time_limit_s at the control rate
     max_steps: int | None = Field(default=None, gt=0, le=round(MAX_TIME_LIMIT_S * 50))
     plan: str | None = None  # a reference plan (.py) next to the YAML, written separately
+    # Named target poses of objects, for the paper's action="target" / "target1" / "target2" (tasks/targets.py).
+    targets: list[TargetSpec] = Field(default_factory=list, max_length=64)
 
     @model_validator(mode="after")
     def _references(self) -> TaskSpec:
@@ -185,9 +189,29 @@ class TaskSpec(_Strict):
             for ref in pred.refs():
                 if ref.id >= counts.get(ref.type, 0):
                     raise ValueError(f"success.{k} ({pred.type}): no object {ref}; the task has {present}")
+        check_targets(self.targets, self.objects, present)
+        self._check_aliases()
         if self.plan is not None and not self.plan.endswith(".py"):
             raise ValueError(f"plan: expected a .py file name, got {self.plan!r}")
         return self
+
+    def _check_aliases(self) -> None:
+        owner: dict[str, int] = {}
+        for i, o in enumerate(self.objects):
+            for a in o.aliases:
+                if a in owner:
+                    raise _bad(f"objects.{i}.aliases: {a!r} already names objects.{owner[a]}; an alias names one object")
+                owner[a] = i
+
+    def aliases(self) -> dict[str, tuple[str, int]]:
+        """alias -> (type, obj_id) of the object it names."""
+        out: dict[str, tuple[str, int]] = {}
+        counts: dict[str, int] = {}
+        for o in self.objects:
+            for a in o.aliases:
+                out[a] = (o.type, counts.get(o.type, 0))
+            counts[o.type] = counts.get(o.type, 0) + 1
+        return out
 
     def step_limit(self, control_hz: float = 50.0) -> int:
         return self.max_steps if self.max_steps is not None else math.ceil(self.time_limit_s * control_hz)

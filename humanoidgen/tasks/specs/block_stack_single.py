@@ -1,4 +1,4 @@
-# Reference plan: the right hand pinches cube 1 and stacks it on cube 0.
+# Reference plan: the right hand pinches cube 1, lifts it and stacks it on cube 0 (the task's target pose for cube 1).
 # step: pinch cube 1 with the right hand
 planner.hand_pre_pinch("right")
 c = planner.generate_constraints(obj_name="cube", obj_id=1, action="pinch", hand_name="right")
@@ -7,13 +7,13 @@ planner.move_to_pose_with_screw(pose, "right", attach_obj=False)
 planner.hand_pinch("right", pinch_object="cube", obj_id=1)
 
 # step: lift cube 1
-c = planner.generate_constraints(obj_name="cube", obj_id=1, action="target", hand_name="right")
+c = planner.generate_constraints(obj_name="cube", obj_id=1, action="move", hand_name="right",
+                                 relative_obj_name="cube", relative_obj_id=1, relative_p=np.array([0, 0, 0.10]))
 _, pose = planner.generate_end_effector_pose(c, hand_name="right")
 planner.move_to_pose_with_screw(pose, "right", attach_obj=True, object_name="cube", object_id=1)
 
-# step: put cube 1 just above cube 0 and let go
-c = planner.generate_constraints(obj_name="cube", obj_id=1, action="move", hand_name="right",
-                                 relative_obj_name="cube", relative_obj_id=0, relative_p=np.array([0, 0, 0.045]))
+# step: put cube 1 on its target (just above cube 0, coming down onto it) and let go
+c = planner.generate_constraints(obj_name="cube", obj_id=1, action="target", hand_name="right")
 _, pose = planner.generate_end_effector_pose(c, hand_name="right")
 planner.move_to_pose_with_screw(pose, "right", attach_obj=True, object_name="cube", object_id=1)
 planner.open_hand("right")

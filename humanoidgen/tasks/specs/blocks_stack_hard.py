@@ -11,9 +11,11 @@ planner.hand_pinch("left", pinch_object="cube", obj_id=0)
 planner.hand_pinch("right", pinch_object="cube", obj_id=1)
 
 # step: lift both cubes together
-c_l = planner.generate_constraints(obj_name="cube", obj_id=0, action="target", hand_name="left")
+c_l = planner.generate_constraints(obj_name="cube", obj_id=0, action="move", hand_name="left",
+                                   relative_obj_name="cube", relative_obj_id=0, relative_p=np.array([0, 0, 0.10]))
 _, pose_l = planner.generate_end_effector_pose(c_l, hand_name="left")
-c_r = planner.generate_constraints(obj_name="cube", obj_id=1, action="target", hand_name="right")
+c_r = planner.generate_constraints(obj_name="cube", obj_id=1, action="move", hand_name="right",
+                                   relative_obj_name="cube", relative_obj_id=1, relative_p=np.array([0, 0, 0.10]))
 _, pose_r = planner.generate_end_effector_pose(c_r, hand_name="right")
 planner.move_to_pose_with_screw([pose_l, pose_r], "all", attach_obj=[True, True],
                                 object_name=["cube", "cube"], object_id=[0, 1])
@@ -47,7 +49,8 @@ c = planner.generate_constraints(obj_name="cube", obj_id=2, action="pinch", hand
 _, pose = planner.generate_end_effector_pose(c, hand_name="right")
 planner.move_to_pose_with_screw(pose, "right", attach_obj=False)
 planner.hand_pinch("right", pinch_object="cube", obj_id=2)
-c = planner.generate_constraints(obj_name="cube", obj_id=2, action="target", hand_name="right")
+c = planner.generate_constraints(obj_name="cube", obj_id=2, action="move", hand_name="right",
+                                 relative_obj_name="cube", relative_obj_id=2, relative_p=np.array([0, 0, 0.10]))
 _, pose = planner.generate_end_effector_pose(c, hand_name="right")
 planner.move_to_pose_with_screw(pose, "right", attach_obj=True, object_name="cube", object_id=2)
 

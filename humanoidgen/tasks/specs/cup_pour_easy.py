@@ -6,7 +6,8 @@ c = planner.generate_constraints(obj_name="cup", obj_id=0, action="grasp", hand_
 _, pose = planner.generate_end_effector_pose(c, hand_name="right")
 planner.move_to_pose_with_screw(pose, "right", attach_obj=False)
 planner.hand_grasp("right", grasp_object="cup", obj_id=0)
-c = planner.generate_constraints(obj_name="cup", obj_id=0, action="target", hand_name="right")
+c = planner.generate_constraints(obj_name="cup", obj_id=0, action="move", hand_name="right",
+                                 relative_obj_name="cup", relative_obj_id=0, relative_p=np.array([0, 0, 0.10]))
 _, pose = planner.generate_end_effector_pose(c, hand_name="right")
 planner.move_to_pose_with_screw(pose, "right", attach_obj=True, object_name="cup", object_id=0)
 

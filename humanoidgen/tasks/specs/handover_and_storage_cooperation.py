@@ -25,7 +25,8 @@ c = planner.generate_constraints(obj_name="cube", obj_id=0, action="pinch", hand
 _, pose = planner.generate_end_effector_pose(c, hand_name="right")
 planner.move_to_pose_with_screw(pose, "right", attach_obj=False)
 planner.hand_pinch("right", pinch_object="cube", obj_id=0)
-c = planner.generate_constraints(obj_name="cube", obj_id=0, action="target", hand_name="right")
+c = planner.generate_constraints(obj_name="cube", obj_id=0, action="move", hand_name="right",
+                                 relative_obj_name="cube", relative_obj_id=0, relative_p=np.array([0, 0, 0.10]))
 _, pose = planner.generate_end_effector_pose(c, hand_name="right")
 planner.move_to_pose_with_screw(pose, "right", attach_obj=True, object_name="cube", object_id=0)
 
@@ -46,7 +47,8 @@ c = planner.generate_constraints(obj_name="cube", obj_id=0, action="pinch", hand
 _, pose = planner.generate_end_effector_pose(c, hand_name="left")
 planner.move_to_pose_with_screw(pose, "left", attach_obj=False)
 planner.hand_pinch("left", pinch_object="cube", obj_id=0)
-c = planner.generate_constraints(obj_name="cube", obj_id=0, action="target", hand_name="left")
+c = planner.generate_constraints(obj_name="cube", obj_id=0, action="move", hand_name="left",
+                                 relative_obj_name="cube", relative_obj_id=0, relative_p=np.array([0, 0, 0.10]))
 _, pose = planner.generate_end_effector_pose(c, hand_name="left")
 planner.move_to_pose_with_screw(pose, "left", attach_obj=True, object_name="cube", object_id=0)
 

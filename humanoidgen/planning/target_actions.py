@@ -1,0 +1,199 @@
+"""The paper's "target" actions and "pour", for an object the hand holds; and how an action an object lacks maps
+to one it has. (Grasp, pinch, push and move constraints are in `constraint_gen`.)
+
+- "target" / "target1" / "target2": the held object's centre to the pose the task defines for it under that name
+  (`tasks/targets.py`), the hand keeping its orientation (a cost) and the object its tilt (within 10 deg). A task
+  without that target for the object: "target" lifts the object 10 cm (and says so in the events); the others are
+  an error that lists what the object has.
+- "pour": the held cup tipped over a receptacle (the one named by relative_obj_name, else the nearest object with
+  a "storage" annotation), its pour lip leading.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env
+from humanoidgen.planning.constraint_gen import LIFT, ConstraintGenerationError, Generated, keep_orientation
+from humanoidgen.planning.constraints import Const, Constraint
+from humanoidgen.sim.layout import HAND_BASE_FRAME, Side
+from humanoidgen.sim.scene import SceneObject
+
+TARGET_ACTIONS = ("target", "target1", "target2")
+PUSH_OPERATIONS = ("push", "flip", "press")  # what target1/target2 mean on articulated objects, in annotation order
+# Pouring: the cup's centre this far beside the receptacle's centre (on the cup's side) and this far above its rim;
+# tipped this much (the first that can be reached). At 130 deg cubes still stick to a cup wall (wood on ceramic
+# holds up to about 40 deg of slope), so the steepest comes first.
+POUR_TILTS_DEG = (160.0, 140.0, 120.0)
+# A target not well above the held object (a place on the table, on another object) is come to from above, over
+# the approach's last centimetres: straight across at table height, a pinched object drags on the table and slips.
+FROM_ABOVE_BELOW_M = 0.05
+DOWN = np.array([0.0, 0.0, -1.0])
+POUR_SIDE_M = 0.06
+POUR_ABOVE_RIM_M = 0.16
+# An action the object lacks -> the operation that does the same job on it (a laptop screen's edge is pinched,
+# not grasped; a drawer handle is grasped, not pinched).
+SIMILAR_OPERATIONS = {"grasp": ("pinch",), "pinch": ("grasp",)}
+
+
+def _label(obj: SceneObject) -> str:
+    return f"{obj.type_name} {obj.obj_id}"
+
+
+def scene_targets(env):
+    """The task's targets (tasks.targets.SceneTargets), or None for a scene built without a task."""
+    return getattr(env.scene, "targets", None)
+
+
+def has_task_target(env, obj: SceneObject, name: str, side: Side) -> bool:
+    targets = scene_targets(env)
+    return targets is not None and targets.find(obj.type_name, obj.obj_id, name, side) is not None
+
+
+def require_held(holding: dict, obj: SceneObject, side: Side, action: str) -> SceneObject:
+    """The object, if the hand `side` holds it; otherwise an error that says what to do first."""
+    held = holding.get(side)
+    if held is obj or (held is not None and (held.type_name, held.obj_id) == (obj.type_name, obj.obj_id)):
+        return held
+    other = "left" if side == "right" else "right"
+    o = holding.get(other)
+    if o is not None and (o.type_name, o.obj_id) == (obj.type_name, obj.obj_id):
+        raise ConstraintGenerationError(f"{_label(obj)} is held by the {other} hand, not the {side}: use "
+                                        f"hand_name={other!r} for action={action!r}")
+    now = f"holds {_label(held)}" if held is not None else "holds nothing"
+    raise ConstraintGenerationError(
+        f"action={action!r} moves the object the hand holds, and the {side} hand {now}, not {_label(obj)}. Take it "
+        f"first: generate_constraints(obj_name={obj.type_name!r}, obj_id={obj.obj_id}, action='pinch' (or 'grasp'), "
+        f"hand_name={side!r}), move there, then hand_pinch/hand_grasp; then ask for {action!r}")
+
+
+def to_target(env, holding: dict, obj: SceneObject, action: str, side: Side) -> Generated:
+    """Constraints bringing the held object to its task target `action` (see the module docstring)."""
+    art = obj.annotations.articulation if obj.annotations is not None else None
+    targets = scene_targets(env)
+    target = targets.find(obj.type_name, obj.obj_id, action, side) if targets is not None else None
+    defined = targets.names(obj.type_name, obj.obj_id, side) if targets is not None else []
+    has = f"; its targets here: {', '.join(defined)}" if defined else ""
+    if target is None and art is not None:
+        raise ConstraintGenerationError(
+            f"{_label(obj)} has no {action!r} pose in this task{has}; to move its part, use action='grasp' (or "
+            "'pinch') with openness=..., or 'target1'/'target2' to push it")
+    require_held(holding, obj, side, action)
+    frame = HAND_BASE_FRAME[side]
+    centre = get_point_in_env(env, "center", obj.type_name, obj.obj_id)
+    keep = keep_orientation(env, side, None if art is not None else (obj.type_name, obj.obj_id))
+    if target is not None:
+        goal = target.position(env)
+        gen = Generated([Constraint(env, "point2point", frame, hand_key_point=centre, object_key_point=goal,
+                                    name=f"{_label(obj)} at its {action}: {target.spec.label()}"), *keep])
+        if goal[2] <= centre[2] + FROM_ABOVE_BELOW_M:
+            gen.approach_axis = DOWN  # and open_hand backs the hand out upward, clear of what it set down
+        return gen
+    if action != "target":
+        raise ConstraintGenerationError(
+            f"{_label(obj)} has no {action!r} pose in this task{has}; use action='move' with relative_obj_name, "
+            "relative_obj_id and relative_p (world offset from that object's centre)")
+    gen = Generated([Constraint(env, "point2point", frame, hand_key_point=centre, object_key_point=centre + LIFT,
+                                name=f"{_label(obj)} 10 cm higher (no target in this task)"), *keep])
+    gen.notes.append(f"{_label(obj)} has no 'target' pose in this task{has}: 'target' lifted it 10 cm instead; to "
+                     "put it somewhere, use action='move' with relative_obj_name/relative_obj_id/relative_p")
+    return gen
+
+
+def _receptacle(env, obj: SceneObject) -> SceneObject:
+    """The nearest other object that can hold what is poured (it has a "storage" annotation)."""
+    here = get_point_in_env(env, "center", obj.type_name, obj.obj_id)
+    cands = [o for o in env.scene.objects if o is not obj and o.annotations is not None
+             and any(f.function == "storage" for f in o.annotations.functions)]
+    if not cands:
+        raise ConstraintGenerationError("there is nothing to pour into (no object with a 'storage' annotation); "
+                                        "name one with relative_obj_name/relative_obj_id")
+    dist = [np.linalg.norm((get_point_in_env(env, "center", o.type_name, o.obj_id) - here)[:2]) for o in cands]
+    return cands[int(np.argmin(dist))]
+
+
+def pour(env, holding: dict, obj: SceneObject, side: Side, receptacle: SceneObject | None) -> Generated:
+    """The held object beside and above the receptacle, tipped toward it; the steepest reachable tilt first."""
+    require_held(holding, obj, side, "pour")
+    ann = obj.annotations
+    functions = {f.function: f for f in (ann.functions if ann is not None else [])}
+    if "pour" not in functions and "storage" not in functions:
+        can = sorted({o.type_name for o in env.scene.objects if o.annotations is not None
+                      and any(f.function in ("pour", "storage") for f in o.annotations.functions)})
+        raise ConstraintGenerationError(f"{obj.type_name} cannot pour (no 'pour' annotation); objects here that can: "
+                                        f"{', '.join(can) or 'none'}")
+    into = receptacle if receptacle is not None else _receptacle(env, obj)
+    if into is obj:
+        raise ConstraintGenerationError(f"{_label(obj)} cannot pour into itself; name the receptacle with "
+                                        "relative_obj_name/relative_obj_id")
+    frame = HAND_BASE_FRAME[side]
+    rc = get_point_in_env(env, "center", into.type_name, into.obj_id)
+    rim_z = rc[2] + (into.annotations.bbox_max[2] if into.annotations is not None else 0.0)
+    here = get_point_in_env(env, "center", obj.type_name, obj.obj_id)
+    away = np.array([*(here - rc)[:2], 0.0])
+    # Beside the receptacle on the side the cup comes from (straight above it: from the robot's side).
+    away = away / np.linalg.norm(away) if np.linalg.norm(away) > 1e-3 else np.array([-1.0, 0.0, 0.0])
+    toward, up = -away, np.array([0.0, 0.0, 1.0])
+    goal = rc + POUR_SIDE_M * away
+    goal[2] = rim_z + POUR_ABOVE_RIM_M
+    body_up = get_axis_in_env(env, "z", obj_type=obj.type_name, obj_id=obj.obj_id)
+    lip = functions.get("pour")
+    lip_axis = get_axis_in_env(env, lip.axis, obj_type=obj.type_name, obj_id=obj.obj_id) if lip else None
+    ways = []
+    for tilt in POUR_TILTS_DEG:
+        th = np.radians(tilt)
+        cons = [Constraint(env, "point2point", frame, hand_key_point=here, object_key_point=goal,
+                           name=f"{_label(obj)} beside and above {_label(into)}"),
+                Constraint(env, "parallel", frame, hand_axis=body_up, object_axis=np.cos(th) * up + np.sin(th) * toward,
+                           name=f"{_label(obj)} tipped {tilt:.0f} deg toward {_label(into)}")]
+        if lip_axis is not None:
+            # Tipping turns a lip that faces the receptacle down and over it: prefer the grip that does so (a cost,
+            # since the hand's grip fixes how the cup turns).
+            cons.append(Const(env, "parallel", frame, hand_axis=lip_axis, object_axis=np.cos(th) * toward - np.sin(th) * up,
+                              weight=0.3, name=f"pour lip ({lip.point}) toward {_label(into)} (preferred)"))
+        ways.append(Generated(cons))
+    ways[0].alternatives = ways[1:]
+    ways[0].notes.append(f"pour: {_label(obj)} tipped toward {_label(into)}")
+    return ways[0]
+
+
+def operation_for(obj: SceneObject, operation: str) -> tuple[str, str | None]:
+    """The operation to use for a grasp/pinch request, and a note when it had to be mapped to another one."""
+    ann = obj.annotations
+    if ann is None:
+        raise ConstraintGenerationError(f"{_label(obj)} has no annotations; only action='move' applies to it")
+    if ann.operations_of(operation):
+        return operation, None
+    has = sorted({o.operation for o in ann.operations})
+    for other in SIMILAR_OPERATIONS.get(operation, ()):
+        if ann.operations_of(other):
+            points = ", ".join(sorted({o.point for o in ann.operations_of(other)}))
+            return other, (f"{obj.type_name} has no {operation!r} annotation: used its {other!r} at {points} instead "
+                           f"(it has: {', '.join(has)})")
+    raise ConstraintGenerationError(f"{obj.type_name} has no {operation!r} annotation; it supports: "
+                                    f"{', '.join(has) or 'nothing'} (as actions: {', '.join(actions_of(obj))})")
+
+
+def actions_of(obj: SceneObject) -> list[str]:
+    """The generate_constraints actions that make sense for the object, for error messages."""
+    ann = obj.annotations
+    ops = {o.operation for o in ann.operations} if ann is not None else set()
+    out = [a for a in ("grasp", "pinch") if a in ops]
+    pushes = [o for o in (ann.operations if ann is not None else []) if o.operation in PUSH_OPERATIONS]
+    out += [f"target{k + 1} ({o.operation} at {o.point})" for k, o in enumerate(pushes[:2])]
+    return out + ["target (once held)", "move"]
+
+
+def push_index(obj: SceneObject, action: str) -> tuple[int, str | None]:
+    """target1/target2 -> index 0/1 of the object's push/flip/press annotations; "push"/"flip"/"press" (not paper
+    actions, but plans use them) -> the first annotation of that kind, else the first push-like one (noted)."""
+    if action in ("target1", "target2"):
+        return (0 if action == "target1" else 1), None
+    ops = [o for o in obj.annotations.operations if o.operation in PUSH_OPERATIONS] if obj.annotations else []
+    for k, o in enumerate(ops):
+        if o.operation == action:
+            return k, None
+    if not ops:
+        raise ConstraintGenerationError(f"{obj.type_name} has no push/flip/press annotation; actions for it: "
+                                        f"{', '.join(actions_of(obj))}")
+    return 0, f"{obj.type_name} has no {action!r} annotation: used its {ops[0].operation!r} at {ops[0].point} (target1)"
