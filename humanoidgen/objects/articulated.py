@@ -347,6 +347,9 @@ class BoxFamily(_ArticulatedFamily):
         D, tl, tab = p["depth"], self._TL, self._TAB
         points = [
             _pt("lid_front", (-D - 2 * tab, 0, tl / 2), "lid", "tip of the tab on the lid's front edge"),
+            # The paper's box lid has two push/flip points (target1: flip up from under the tab; target2: push
+            # down on the outer face), like the laptop's screen edge and screen back.
+            _pt("lid_top", (-D + 0.015, 0, tl), "lid", "lid's outer face, 1.5 cm in from its front edge"),
             _pt("storage", (0, 0, self._T + 0.005), None, "inside the box, just above its floor"),
         ]
         axes = _BASIC_AXES + [
@@ -356,6 +359,7 @@ class BoxFamily(_ArticulatedFamily):
             _ax("opening", (0, 0, 1), None, "out of the box's opening"),
         ]
         ops = [_op(o, "lid_front", "edge_in", "lid_in", "hinge") for o in ("grasp", "pinch", "flip")]
+        ops.append(_op("push", "lid_top", "lid_in", "edge_in", "hinge"))
         return _Annot(p["description"], points, axes, ops,
                       [FunctionAnnotation(function="storage", point="storage", axis="opening")],
                       Articulation(joint="hinge", closed=0.0, open=p["open_deg"] * _DEG))

@@ -4,30 +4,39 @@ timing, and the check that two arms moving at once keep apart. A mixin of Humano
 from __future__ import annotations
 
 import time
+from contextlib import nullcontext
 
 import mujoco
 import numpy as np
 
-from humanoidgen.objects.hands import HAND_POSTURES
-from humanoidgen.planning.hand_ops import contents
+from humanoidgen.objects.hands import HAND_POSTURES, hand_points
+from humanoidgen.planning.approach import APPROACH_DISTANCES, WRAP_TOUCH, Approaches  # noqa: F401 (re-exported)
+from humanoidgen.objects.describe import openness as openness_of
+from humanoidgen.planning.feedback import motion_advice
+from humanoidgen.planning.hand_ops import contents, finger_contacts, is_held
 from humanoidgen.planning.motion import (
     JointPath,
     MotionError,
-    first_collision,
     plan_arm_motion,
     time_dense_path,
     track_poses,
 )
 from humanoidgen.planning.paths import time_parametrize
-from humanoidgen.planning.poses import Pose, screw_interpolate
+from humanoidgen.planning.poses import Pose
 from humanoidgen.sim.action import ARM_SLICE, HAND_SLICE
 from humanoidgen.sim.layout import SIDES, Side
 from humanoidgen.sim.scene import SceneObject
 
-# Grasps and pinches come in straight along the approach axis over the first of these that fits (metres).
-APPROACH_DISTANCES = (0.08, 0.05, 0.03)
-WRAP_TOUCH = 0.003  # how far the open hand may press into a body it comes to wrap (m)
 RETREAT_DISTANCE = 0.10  # after letting go, the hand backs out along its approach axis this far
+FOLLOW_ENOUGH = 0.9  # a part followed this much of the way, where the arm's reach ends, is followed enough
+FOLLOW_TOL = 0.05  # openness: a part this near the asked openness after a move got there
+FOLLOW_RETRY = 0.3  # a part that moved at least this share of the way but stopped short is pushed again, once
+HAND_MOTION_TIME = 0.5  # seconds to change the fingers' posture on the way (as planner.HAND_MOTION_TIME)
+
+
+def _with_hand(arm: np.ndarray, hand: np.ndarray) -> np.ndarray:
+    """Arm samples (n, 7) with the hand's targets (6,) on every row: (n, 13)."""
+    return np.hstack([arm, np.repeat(hand[None], len(arm), 0)])
 
 
 class PlanningError(RuntimeError):
@@ -39,8 +48,11 @@ class PlanningError(RuntimeError):
         self.reason = reason
 
 
-class ArmMoves:
-    """Arm motion planning for HumanoidMotionPlanner (uses its env, kin, collisions, holding, log, seed)."""
+class ArmMoves(Approaches):
+    """Arm motion planning for HumanoidMotionPlanner (uses its env, kin, collisions, holding, log, seed).
+
+    A planned move is an (n, 13) array per arm: 7 arm joint targets and the hand's 6 finger targets per
+    control step, so that the fingers can change on the way (open at the pre-pose before coming in)."""
 
     def _retreat(self, side: Side, open_fingers: bool = False) -> None:
         """Back the hand out along its last approach axis (best effort: skipped if that way is blocked),
@@ -51,6 +63,11 @@ class ArmMoves:
                 self._move_fingers((side,), "open")
             return
         self.kin.sync(self.env.data.qpos)
+        if open_fingers:
+            # The fingers open on the way out: check the way with them open, or the closed fingers around a
+            # handle would block every way back.
+            self.kin.set_hand(side, np.array(HAND_POSTURES["open"]))
+            self.kin.forward()
         p, R = self.kin.ee_pose(side)
         arm = self.kin.arms[side]
         try:
@@ -84,8 +101,8 @@ class ArmMoves:
             # Each arm's own path was checked against the scene when it was planned; here only arm vs arm.
             n = max(len(left), len(right))
             for k in range(0, n, 2):
-                self.kin.set_arm("left", left[min(k, len(left) - 1)])
-                self.kin.set_arm("right", right[min(k, len(right) - 1)])
+                self.kin.set_arm("left", left[min(k, len(left) - 1), :7])
+                self.kin.set_arm("right", right[min(k, len(right) - 1), :7])
                 self.kin.forward()
                 if self.collisions.arm_arm_distance() < 0.003:
                     return False
@@ -121,9 +138,17 @@ class ArmMoves:
     def _plan_side(self, side: Side, target: Pose, path_constraints: list = ()) -> np.ndarray:
         t0 = time.perf_counter()
         try:
-            return self._plan_side_timed(side, target, path_constraints)
+            with self._touch_for(side, target):
+                return self._plan_side_timed(side, target, path_constraints)
         finally:
             self.plan_seconds.append(time.perf_counter() - t0)
+
+    def _touch_for(self, side: Side, target: Pose):
+        """The fingers may come closer to the table on the way to a goal that was solved that way."""
+        if not getattr(target, "finger_table_slack", 0.0):
+            return nullcontext()
+        table = self.collisions.body_geoms(self.env.model.body("table").id)
+        return self.collisions.allow_touch(self.collisions.finger_geoms(side), table, target.finger_table_slack)
 
     def _plan_side_timed(self, side: Side, target: Pose, path_constraints: list) -> np.ndarray:
         self.kin.sync(self.env.data.qpos)
@@ -137,121 +162,102 @@ class ArmMoves:
         arm = self.kin.arms[side]
         q0 = np.clip(self.kin.arm_q(side), arm.lo, arm.hi)
         dt = 1.0 / self.env.control_hz
+        hand = self.action[HAND_SLICE[side]].copy()
         try:
-            legs = []
+            legs: list[JointPath] = []
+            posture = None
             if target.follow is not None:
                 try:
                     path = self._follow_part(side, q0, target)
-                    return time_dense_path(path, dt, v_max=0.6, a_max=2.0)
+                    return _with_hand(time_dense_path(path, dt, v_max=0.6, a_max=2.0), hand)
                 except MotionError:
                     # A fingertip pushing a part (nothing held) may instead go straight to the solved goal.
                     if self.holding[side] is not None or target.joint_q is None:
                         raise
                     target = Pose(target.p, target.q, joint_q=target.joint_q, side=side)
             if target.approach_axis is not None and target.joint_q is not None:
-                # Come in straight along the approach axis: back out from the goal to find the pre-pose (same
-                # arm posture family), get there any collision-free way, then move in along the line.
-                approach, pre, reasons = self._straight_approach(side, target.joint_q, target.p, target.R,
-                                                                 target.approach_axis, target.approach_object,
-                                                                 wrap=target.posture == "wrap")
-                if approach is None:
-                    raise MotionError("no straight approach to the target (" + "; ".join(reasons) + ")")
-                back = approach[::-1]
-                legs.append(plan_arm_motion(self.kin, self.collisions, side, q0, pre, q_goal=back[-1], seed=self.seed))
-                legs.append(JointPath(approach, "screw"))
+                # Come in straight along the approach axis from a pre-pose reached any collision-free way.
+                plan = self._plan_approach(side, q0, target)
+                legs, posture = plan.legs, plan.posture
+                if "solved" in plan.label or posture is not None:  # a way in the plan's author did not ask for
+                    self.events.append(f"the {side} hand came in {plan.label}"
+                                       + (f" with the fingers {posture}" if posture else ""))
             else:
                 legs.append(plan_arm_motion(self.kin, self.collisions, side, q0, (target.p, target.R),
                                             q_goal=target.joint_q, path_constraints=path_constraints,
                                             seed=self.seed))
         except MotionError as exc:
-            raise PlanningError("move_to_pose_with_screw", f"{side} arm: {exc}") from None
+            advice = "" if "Suggestion" in str(exc) else motion_advice(str(exc))
+            raise PlanningError("move_to_pose_with_screw",
+                                f"{side} arm: {exc}" + (f". Suggestion: {advice}" if advice else "")) from None
         finally:
             self.collisions.ignored_bodies = ignored_before
             self.kin.sync(self.env.data.qpos)
         out = []
-        for leg in legs:
+        for k, leg in enumerate(legs):
             if leg.method == "rrt_connect":
-                out.append(time_parametrize(leg.waypoints, dt=dt)[1])
+                samples = time_parametrize(leg.waypoints, dt=dt)[1]
             else:
                 # Gentler with something in the hand: a pinched object slips under hard accelerations.
                 v, a = (0.6, 1.5) if self._carries(side) else (1.0, 3.0)
-                out.append(time_dense_path(leg.waypoints, dt, v_max=v, a_max=a))
+                samples = time_dense_path(leg.waypoints, dt, v_max=v, a_max=a)
+            if k == len(legs) - 1 and posture is not None and len(legs) > 1:
+                # Change the fingers at the pre-pose, arm still, before the last (straight) leg.
+                goal = np.array(HAND_POSTURES[posture])
+                n = max(1, int(round(HAND_MOTION_TIME * self.env.control_hz)))
+                hold = np.repeat(out[-1][-1:, :7], n, 0) if out else np.repeat(samples[:1], n, 0)
+                fingers = hand + (goal - hand) * (np.arange(1, n + 1) / n)[:, None]
+                out.append(np.hstack([hold, fingers]))
+                hand = goal
+            out.append(_with_hand(samples, hand))
         return np.vstack(out)
 
-    def _straight_approach(self, side: Side, q_goal: np.ndarray, p: np.ndarray, R: np.ndarray, axis: np.ndarray,
-                           approach_object: str | None, distances: tuple[float, ...] = APPROACH_DISTANCES,
-                           wrap: bool = False):
-        """The straight approach into a goal along `axis`, over the first distance that fits: (joint path from the
-        pre-pose to the goal, the pre-pose, reasons) or (None, None, reasons). The object being approached may be
-        touched; everything else is avoided. For a wrap the open hand must not push into the (standing, round)
-        object on the way either, beyond WRAP_TOUCH: a knocked-over bottle or cup cannot be wrapped."""
-        ignored_before = set(self.collisions.ignored_bodies)
-        if approach_object is not None:
-            self.collisions.ignored_bodies.add(self.env.model.body(approach_object).id)
-        reasons = []
-        try:
-            for distance in distances:  # a shorter straight approach where the long one won't fit
-                pre = (p - distance * axis, R)
-                back, reason = track_poses(self.kin, side, q_goal, screw_interpolate(p, R, *pre))
-                if not reason:
-                    approach = np.vstack([back[::-1], q_goal])
-                    if first_collision(self.kin, self.collisions, side, approach) is None:
-                        if not wrap or approach_object is None or self._wrap_clear(side, approach, approach_object):
-                            return approach, pre, reasons
-                        reason = f"the open hand would push into {approach_object} on the way in"
-                    else:
-                        reason = "the straight approach along the operation's axis collides"
-                reasons.append(f"{distance * 100:.0f} cm: {reason}")
-            return None, None, reasons
-        finally:
-            self.collisions.ignored_bodies = ignored_before
+    def _part_path_poses(self, side: Side, f: dict) -> tuple[list, np.ndarray, float]:
+        """The hand's poses along an articulated part's joint path to f["q_target"], keeping the hand where it
+        is on the part now: (poses, joint values of the part at each, the part's joint value now).
 
-    def _wrap_clear(self, side: Side, approach: np.ndarray, body: str) -> bool:
-        ignored = set(self.collisions.ignored_bodies)
-        self.collisions.ignored_bodies.discard(self.env.model.body(body).id)
-        try:
-            return first_collision(self.kin, self.collisions, side, approach, clearance=-WRAP_TOUCH) is None
-        finally:
-            self.collisions.ignored_bodies = ignored
-
-    def _approach_fits(self, side: Side, result, gen) -> bool:
-        """Whether a solved grip can be approached straight along its axis (the shortest approach)."""
-        if gen is None or gen.approach_axis is None or gen.follow is not None:
-            return True
-        self.kin.sync(self.env.data.qpos)
-        self._attach_held(side)
-        approach, _, _ = self._straight_approach(side, result.q, result.ee_pos, result.ee_mat, gen.approach_axis,
-                                                 gen.approach_object, distances=APPROACH_DISTANCES[-1:],
-                                                 wrap=gen.posture == "wrap")
-        self.kin.sync(self.env.data.qpos)
-        return approach is not None
-
-    def _follow_part(self, side: Side, q0: np.ndarray, target: Pose) -> np.ndarray:
-        """Track the hand along an articulated part's joint path (a drawer slides, a lid turns)."""
-        f = target.follow
+        A hand holding the part turns with it. A fingertip pushing it (nothing held) only keeps its tip on the
+        same spot of the part and its orientation as it is: it presses, it has no grip to turn with, and a
+        wrist turned the whole way a lid swings soon runs out of its joint range."""
         m, d = self.env.model, self.kin.data
         jid = m.joint(f["joint"]).id
         adr = m.jnt_qposadr[jid]
         part_body = m.jnt_bodyid[jid]
         q_now = float(self.env.data.qpos[adr])
+        slide = m.jnt_type[jid] == mujoco.mjtJoint.mjJNT_SLIDE
         # Aim a little past the target along the joint, even past its end stop: the arm lags a loaded part by
         # about that much, and the stop itself holds the part (forward kinematics ignores joint limits).
-        overshoot = 0.01 if m.jnt_type[jid] == mujoco.mjtJoint.mjJNT_SLIDE else 0.05
+        overshoot = 0.01 if slide else 0.05
         q_end = float(f["q_target"] + np.sign(f["q_target"] - q_now) * overshoot)
         p_hand, R_hand = self.kin.ee_pose(side)
         part_p, part_R = d.xpos[part_body].copy(), d.xmat[part_body].reshape(3, 3).copy()
         rel_p, rel_R = part_R.T @ (p_hand - part_p), part_R.T @ R_hand
         poses = []
         base = d.qpos.copy()
-        n = max(2, int(np.ceil(abs(f["q_target"] - q_now) / (0.01 if m.jnt_type[jid] == mujoco.mjtJoint.mjJNT_SLIDE else 0.03))))
+        n = max(2, int(np.ceil(abs(f["q_target"] - q_now) / (0.01 if slide else 0.03))))
         q_steps = np.linspace(q_now, q_end, n + 1)[1:]
+        pushing = self.holding[side] is None
+        tip_local = hand_points(side)[f"press_point_base_{side}_hand"]  # in the wrist frame
+        wrist = self.kin.arms[side].wrist
+        wp, wR = d.xpos[wrist].copy(), d.xmat[wrist].reshape(3, 3).copy()
+        tip = wp + wR @ tip_local
+        rel_tip = part_R.T @ (tip - part_p)
         for qj in q_steps:
             d.qpos[adr] = qj
             mujoco.mj_kinematics(m, d)
             pp, pR = d.xpos[part_body], d.xmat[part_body].reshape(3, 3)
-            poses.append((pp + pR @ rel_p, pR @ rel_R))
+            if pushing:
+                poses.append((p_hand + (pp + pR @ rel_tip - tip), R_hand))
+            else:
+                poses.append((pp + pR @ rel_p, pR @ rel_R))
         d.qpos[:] = base
         self.kin.forward()
+        return poses, q_steps, q_now
+
+    def _follow_part(self, side: Side, q0: np.ndarray, target: Pose) -> np.ndarray:
+        """Track the hand along an articulated part's joint path (a drawer slides, a lid turns)."""
+        f = target.follow
+        poses, q_steps, q_now = self._part_path_poses(side, f)
         path, reason = track_poses(self.kin, side, q0, poses)
         if not reason:
             return np.vstack([q0, path])
@@ -259,8 +265,8 @@ class ArmMoves:
         # enough is for the task to judge.
         way = abs(f["q_target"] - q_now)
         reached = abs(q_steps[len(path) - 1] - q_now) if len(path) else 0.0
-        if len(path) and reached >= 0.9 * way:
-            if reached < way:
+        if len(path) and reached >= FOLLOW_ENOUGH * way:
+            if reached < 0.995 * way:
                 self.events.append(f"followed {f['obj'][0]} {f['obj'][1]} {100 * reached / way:.0f}% of the way: "
                                    f"the {side} arm's reach ends there")
             return np.vstack([q0, path])
@@ -272,3 +278,46 @@ class ArmMoves:
             if not back_reason and np.max(np.abs(back[-1] - q0)) < 0.15:
                 return np.vstack([q0, back[::-1][1:], target.joint_q])
         raise MotionError(f"following {f['body']}'s joint: {reason}")
+
+    def _part_openness(self, target: Pose) -> float | None:
+        if target.follow is None:
+            return None
+        obj = self.env.scene.object(*target.follow["obj"])
+        return openness_of(self.env.model, self.env.data, obj)
+
+    def _check_part_followed(self, side: Side, target: Pose, start: float) -> None:
+        """After a move that rides with a part: did the part get to the openness asked? One more push from where
+        it stopped if it moved a good part of the way; a part that stays short is an error that says why (or an
+        event, when it went most of the way)."""
+        f = target.follow
+        obj = self.env.scene.object(*f["obj"])
+        wanted = obj.annotations.articulation.openness_of(f["q_target"])
+        got = self._part_openness(target)
+        way = wanted - start
+        if abs(got - wanted) <= FOLLOW_TOL or abs(way) < 1e-6:
+            return
+        if (got - start) / way >= FOLLOW_RETRY:
+            self._run_arm_samples({side: self._plan_side(side, target)})
+            self._settle(0.2)
+            got = self._part_openness(target)
+            if abs(got - wanted) <= FOLLOW_TOL:
+                self.events.append(f"pushed {obj.type_name} {obj.obj_id} a second time to reach openness {wanted:g}")
+                return
+        share = (got - start) / way
+        label = f"{obj.type_name} {obj.obj_id}"
+        if share >= 0.5:
+            self.events.append(f"{label} reached openness {got:.2f} of the {wanted:g} asked")
+            return
+        if self.holding[side] is not None:
+            why = (f"the {side} hand's grip on it {'came off' if not self._holds(side, obj) else 'held, but the part did not follow'}: "
+                   f"grasp it again and move it in smaller steps of openness")
+        else:
+            why = ("the fingertip did not carry it (it slid off or lost contact): put the fingertip where the part "
+                   "has to give way (for a flip: under the edge, e.g. offset along the part's inner axis), push in "
+                   "smaller steps with explicit Constraints, or grasp it and move it with openness=")
+        raise PlanningError("move_to_pose_with_screw",
+                            f"{label} is at openness {got:.2f} after the move, not the {wanted:g} asked (it moved "
+                            f"{max(share, 0.0) * 100:.0f}% of the way from {start:.2f}): {why}")
+
+    def _holds(self, side: Side, obj: SceneObject) -> bool:
+        return is_held(finger_contacts(self.env.model, self.env.data, side, obj.body))

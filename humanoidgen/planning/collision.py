@@ -7,6 +7,8 @@ Distances come from `mj_geomDistance` on the scratch kinematics; a bounding-sphe
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 
 import mujoco
@@ -35,10 +37,17 @@ class CollisionWorld:
     ignored_bodies: set[int] = field(default_factory=set)
     influence: float = 0.05  # pairs farther apart than this are not measured
     held_slack: float = 0.006
+    # Hand parts meant to touch something: mover geom -> (obstacle geoms, slack). Their distances to those
+    # obstacles count `slack` more, so they may come that much closer than everything else (fingertips that
+    # must reach the table side of a low object). Set through `allow_touch`.
+    touch: dict[int, tuple[frozenset[int], float]] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
         m = self.kin.model
         self._arm_bodies = {s: _arm_body_ids(m, s) for s in SIDES}
+        prefix = {s: HAND_PREFIX[s] + "_" for s in SIDES}
+        self._finger_geoms = {s: [g for g in range(m.ngeom) if m.body(int(m.geom_bodyid[g])).name.startswith(prefix[s])
+                                  and _collidable(m, g)] for s in SIDES}
         self._floor = {g for g in range(m.ngeom) if m.geom_type[g] == mujoco.mjtGeom.mjGEOM_PLANE}
         self._fromto = np.zeros(6)
 
@@ -67,6 +76,33 @@ class CollisionWorld:
             out.append(g)
         return out
 
+    def finger_geoms(self, side: Side) -> list[int]:
+        """The collidable geoms of `side`'s fingers (thumb, index, ..., not the palm)."""
+        return list(self._finger_geoms[side])
+
+    def body_geoms(self, body: int) -> frozenset[int]:
+        m = self.kin.model
+        return frozenset(g for g in range(m.ngeom) if int(m.geom_bodyid[g]) == body and _collidable(m, g))
+
+    @contextmanager
+    def allow_touch(self, movers: list[int], obstacles: frozenset[int], slack: float) -> Iterator[None]:
+        """Within the block, `movers` may come `slack` closer to `obstacles` than the clearances ask."""
+        saved = dict(self.touch)
+        try:
+            for g in movers:
+                self.touch[g] = (obstacles, slack)
+            yield
+        finally:
+            self.touch = saved
+
+    def pair_distance(self, g1: int, g2: int) -> float:
+        """Distance between two geoms at the scratch state (FAR beyond `influence`)."""
+        return float(mujoco.mj_geomDistance(self.kin.model, self.kin.data, g1, g2, self.influence, self._fromto))
+
+    def _slack(self, mover: int, obstacle: int) -> float:
+        t = self.touch.get(mover)
+        return t[1] if t is not None and obstacle in t[0] else 0.0
+
     # -- queries --------------------------------------------------------------------------------------
     def _near_pairs(self, movers: list[int], obstacles: list[int]) -> np.ndarray:
         """Index pairs (i, j) of movers[i], obstacles[j] whose bounding spheres are within `influence`."""
@@ -84,8 +120,11 @@ class CollisionWorld:
             return dist, grad
         m, d = self.kin.model, self.kin.data
         nearest: dict[int, np.ndarray] = {}
+        touch = self.touch
         for i, j in self._near_pairs(movers, obstacles):
             dd = mujoco.mj_geomDistance(m, d, movers[i], obstacles[j], self.influence, self._fromto)
+            if touch:
+                dd += self._slack(movers[i], obstacles[j])
             if dd < dist[i]:
                 dist[i] = dd
                 nearest[i] = self._fromto.copy()
@@ -115,6 +154,8 @@ class CollisionWorld:
                 dd = mujoco.mj_geomDistance(m, d, movers[i], obstacles[j], self.influence, self._fromto)
                 if m.geom_bodyid[movers[i]] == held:
                     dd += self.held_slack
+                if self.touch:
+                    dd += self._slack(movers[i], obstacles[j])
                 if dd < best:
                     best, pair = dd, (movers[i], obstacles[j])
         return best, pair
@@ -128,8 +169,9 @@ class CollisionWorld:
             best = min(best, mujoco.mj_geomDistance(m, d, left[i], right[j], self.influence, self._fromto))
         return best
 
-    def penetrations(self, sides: tuple[Side, ...], clearance: float = 0.0) -> list[tuple[str, float]]:
-        """Every (moving body, obstacle body) closer than `clearance`, deepest first: "a and b", distance."""
+    def contact_pairs(self, sides: tuple[Side, ...], clearance: float = 0.0) -> list[tuple[int, int, float]]:
+        """(moving body, obstacle body, distance) for each obstacle body closer than `clearance` to something
+        moving: its deepest contact, deepest first. Obstacles are named by their object (root) body."""
         m, d = self.kin.model, self.kin.data
         worst: dict[tuple[int, int], float] = {}
         for side in sides:
@@ -138,17 +180,20 @@ class CollisionWorld:
                 continue
             for i, j in self._near_pairs(movers, obstacles):
                 g1, g2 = movers[i], obstacles[j]
-                dd = mujoco.mj_geomDistance(m, d, g1, g2, self.influence, self._fromto)
+                dd = mujoco.mj_geomDistance(m, d, g1, g2, self.influence, self._fromto) + self._slack(g1, g2)
                 if dd < clearance:
                     key = (self._owner(g1), self._owner(g2))
                     worst[key] = min(worst.get(key, FAR), dd)
-        # One line per obstacle body: its deepest contact.
         per_obstacle: dict[int, tuple[int, float]] = {}
         for (b1, b2), dd in worst.items():
             if b2 not in per_obstacle or dd < per_obstacle[b2][1]:
                 per_obstacle[b2] = (b1, dd)
-        out = [(f"{m.body(b1).name} and {m.body(b2).name}", dd) for b2, (b1, dd) in per_obstacle.items()]
-        return sorted(out, key=lambda x: x[1])
+        return sorted(((b1, b2, dd) for b2, (b1, dd) in per_obstacle.items()), key=lambda x: x[2])
+
+    def penetrations(self, sides: tuple[Side, ...], clearance: float = 0.0) -> list[tuple[str, float]]:
+        """Every (moving body, obstacle body) closer than `clearance`, deepest first: "a and b", distance."""
+        m = self.kin.model
+        return [(f"{m.body(b1).name} and {m.body(b2).name}", dd) for b1, b2, dd in self.contact_pairs(sides, clearance)]
 
     def _owner(self, g: int) -> int:
         """The body to name for a geom: the object (root body), or the robot link itself."""

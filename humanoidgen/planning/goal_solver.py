@@ -27,6 +27,11 @@ from humanoidgen.sim.layout import Side
 VIOLATION_SLACK = 1e-4
 
 
+def _depth(d: float) -> str:
+    """A contact's distance in words: how deep, or how close (a clearance not kept)."""
+    return f"{-d * 1000:.1f} mm deep" if d < 0 else f"{d * 1000:.1f} mm apart"
+
+
 @dataclass
 class GoalResult:
     """Outcome of a goal solve. On failure `violations` says which constraint missed and by how much."""
@@ -40,6 +45,9 @@ class GoalResult:
     min_clearance: float | None = None
     seeds_tried: int = 0
     solve_time: float = 0.0
+    # On a failure caused by collisions: (moving body, obstacle body, distance) of the contacts the goal needs.
+    contacts: list[tuple[int, int, float]] = field(default_factory=list)
+    miss: float | None = None  # on a failure: how far (m) the closest solution's hand points are from their targets
 
     def message(self) -> str:
         if self.success:
@@ -73,8 +81,11 @@ class GoalSolver:
     major_iterations: int = 200
 
     def solve(self, side: Side, constraints: list[Constraint], q_current: np.ndarray,
-              q_nominal: np.ndarray, avoid_collisions: bool = True, thorough: bool = False) -> GoalResult:
-        """`thorough`: if the usual seeds find nothing, try `n_extra_seeds` more random ones (slow; for a last try)."""
+              q_nominal: np.ndarray, avoid_collisions: bool = True, thorough: bool = False,
+              time_limit: float | None = None, max_seeds: int | None = None) -> GoalResult:
+        """`thorough`: if the usual seeds find nothing, try `n_extra_seeds` more random ones (slow; for a last try).
+        `time_limit` (s): no further seed is started after this long (the current posture's and the nominal
+        one's always are); for the planner's wider, optional searches. `max_seeds`: at most this many seeds."""
         t0 = time.perf_counter()
         hard = [c for c in constraints if not c.soft]
         soft = [c for c in constraints if c.soft]
@@ -152,12 +163,17 @@ class GoalSolver:
                 yield from (rng.uniform(arm.lo, arm.hi) for _ in range(self.n_extra_seeds))
 
         for s in rounds():
+            if time_limit is not None and tried >= 2 and time.perf_counter() - t0 > time_limit:
+                break
+            if max_seeds is not None and tried >= max_seeds:
+                break
             tried += 1
             # Solve without collisions first (cheap and smooth); only if that lands in contact, solve again
             # with the distance constraints, starting from there.
             qs = np.clip(solver.Solve(free_prog, s, options).GetSolution(free_q), arm.lo, arm.hi)
             viol, clear = check(qs)
-            if movers and (viol >= VIOLATION_SLACK or clear < self.clearance - 1e-3):
+            late = time_limit is not None and time.perf_counter() - t0 > time_limit
+            if movers and not late and (viol >= VIOLATION_SLACK or clear < self.clearance - 1e-3):
                 # From the free solution (near, but in contact), else from the seed itself (SNOPT can stall
                 # pushing a link out of a deep contact it starts in).
                 for start in ([qs, s] if viol < VIOLATION_SLACK else [s]):
@@ -181,6 +197,7 @@ class GoalSolver:
         if best is None:
             assert closest is not None
             violations: list[str] = []
+            contacts: list[tuple[int, int, float]] = []
             if movers:
                 # Would the constraints hold if collisions did not count? Then collisions are the reason.
                 for s in seeds[:2]:
@@ -188,9 +205,11 @@ class GoalSolver:
                     qf = np.clip(res.GetSolution(free_q), arm.lo, arm.hi)
                     at(qf)
                     if max([c.violation(self.kin) for c in hard], default=0.0) < VIOLATION_SLACK:
-                        hits = self.collisions.penetrations((side,), self.clearance)
+                        contacts = self.collisions.contact_pairs((side,), self.clearance)
+                        hits = [(f"{self.kin.model.body(b1).name} and {self.kin.model.body(b2).name}", d)
+                                for b1, b2, d in contacts]
                         if hits:
-                            listed = ", ".join(f"{what} ({max(-d, 0) * 1000:.1f} mm deep)" for what, d in hits)
+                            listed = ", ".join(f"{what} ({_depth(d)})" for what, d in hits)
                             violations.append(
                                 f"collision: the constraints are reachable only with these in contact: {listed} "
                                 f"(need {self.clearance * 1000:.0f} mm clearance); ignore an object if the contact "
@@ -200,7 +219,19 @@ class GoalSolver:
             if not violations:
                 at(closest[1])
                 violations = [c.describe(self.kin) for c in hard if c.violation(self.kin) >= VIOLATION_SLACK]
-            best = GoalResult(False, None, violations=violations or ["solver did not converge"], seeds_tried=tried)
+            if not violations and movers:
+                # The closest solution meets the constraints but not the clearance: say what it touches.
+                contacts = self.collisions.contact_pairs((side,), self.clearance)
+                if contacts:
+                    listed = ", ".join(f"{self.kin.model.body(b1).name} and {self.kin.model.body(b2).name} "
+                                       f"({_depth(d)})" for b1, b2, d in contacts)
+                    violations = [f"collision: the closest solution found has these in contact: {listed} "
+                                  f"(need {self.clearance * 1000:.0f} mm clearance)"]
+            at(closest[1])
+            miss = max([c.violation(self.kin) for c in hard if getattr(c, "type", "") in ("point2point", "point2line")],
+                       default=None)
+            best = GoalResult(False, None, violations=violations or ["solver did not converge"], seeds_tried=tried,
+                              contacts=contacts if violations else [], miss=miss)
         at(best.q if best.q is not None else q_current)
         self.kin.data.qpos[:] = base_qpos
         self.kin.forward()

@@ -32,6 +32,26 @@ def finger_contacts(model: mujoco.MjModel, data: mujoco.MjData, side: Side, body
     return touched
 
 
+def hand_touches(scene: Scene, model: mujoco.MjModel, data: mujoco.MjData, side: Side) -> dict[str, set[str]]:
+    """What `side`'s hand touches now: {"cube 1": {"index", "thumb"}, "the table": {"palm"}, ...}."""
+    prefix = HAND_PREFIX[side] + "_"
+    palm = f"{side}_wrist_yaw_link"
+    names = {model.body(o.body).id: f"{o.type_name} {o.obj_id}" for o in scene.objects}
+    table = model.body("table").id if "table" in [model.body(b).name for b in range(model.nbody)] else -1
+    out: dict[str, set[str]] = {}
+    for c in data.contact[: data.ncon]:
+        for mine, other in ((c.geom1, c.geom2), (c.geom2, c.geom1)):
+            name = model.body(model.geom_bodyid[mine]).name
+            part = name[len(prefix):].split("_")[0] if name.startswith(prefix) else ("palm" if name == palm else None)
+            if part is None:
+                continue
+            root = _root(model, other)
+            label = names.get(root) or ("the table" if model.geom_bodyid[other] == table else None)
+            if label is not None:
+                out.setdefault(label, set()).add(part)
+    return out
+
+
 def is_held(touched: set[str]) -> bool:
     """Held means squeezed from two sides: the thumb against a finger (or the palm)."""
     return "thumb" in touched and bool(touched & {"index", "middle", "ring", "pinky", "palm"})

@@ -8,7 +8,7 @@ from dataclasses import dataclass, field
 import mujoco
 import numpy as np
 
-from humanoidgen.sim.layout import ARM_JOINTS, HAND_BASE_FRAME, SIDES, WRIST_BODY, Side
+from humanoidgen.sim.layout import ARM_JOINTS, HAND_BASE_FRAME, HAND_JOINTS, SIDES, WRIST_BODY, Side
 
 EE_FRAME_SIDE: dict[str, Side] = {HAND_BASE_FRAME[s]: s for s in SIDES}
 
@@ -56,6 +56,15 @@ class Kinematics:
                 wrist=m.body(WRIST_BODY[side]).id,
                 site=m.site(HAND_BASE_FRAME[side]).id,
             )
+        # The six driven finger joints of each hand, and the mimic followers tied to them (equality constraints:
+        # follower = c0 + c1 * driver), so that a posture can be set on the scratch model without simulating.
+        self._hand_adr = {s: np.array([m.jnt_qposadr[m.joint(n).id] for n in HAND_JOINTS[s]]) for s in SIDES}
+        self._followers: list[tuple[int, int, float, float]] = []
+        for eq in range(m.neq):
+            if m.eq_type[eq] == mujoco.mjtEq.mjEQ_JOINT:
+                c = m.eq_data[eq]
+                self._followers.append((int(m.jnt_qposadr[m.eq_obj1id[eq]]), int(m.jnt_qposadr[m.eq_obj2id[eq]]),
+                                        float(c[0]), float(c[1])))
         self._jacp = np.zeros((3, m.nv))
         self._jacr = np.zeros((3, m.nv))
 
@@ -66,6 +75,19 @@ class Kinematics:
 
     def set_arm(self, side: Side, q: np.ndarray) -> None:
         self.data.qpos[self.arms[side].qadr] = q
+
+    def set_hand(self, side: Side, posture: np.ndarray) -> None:
+        """Put `side`'s fingers at a 6-D posture (driven joints, action order) and their followers with them
+        (call `forward` after). Used to check a motion with the fingers the way they will be then."""
+        adr = self._hand_adr[side]
+        self.data.qpos[adr] = posture
+        driven = set(adr.tolist())
+        for follower, driver, c0, c1 in self._followers:
+            if driver in driven:
+                self.data.qpos[follower] = c0 + c1 * self.data.qpos[driver]
+
+    def hand_q(self, side: Side) -> np.ndarray:
+        return self.data.qpos[self._hand_adr[side]].copy()
 
     def arm_q(self, side: Side) -> np.ndarray:
         return self.data.qpos[self.arms[side].qadr].copy()

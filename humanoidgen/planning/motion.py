@@ -62,6 +62,13 @@ def track_poses(kin: Kinematics, side: Side, q_start: np.ndarray, poses: list[tu
             if np.linalg.norm(e) < tol and all(c.violation(kin) < 2e-3 for c in path_constraints):
                 break
             dq = JJ.T @ np.linalg.solve(JJ @ JJ.T + 1e-4 * np.eye(len(E)), E)
+            # A joint at its limit that the step pushes further out would only be clipped back, and the step
+            # would stall there (a goal boxed in by limits): drop it from this step so the others take over.
+            blocked = ((q <= arm.lo + 1e-6) & (dq < 0)) | ((q >= arm.hi - 1e-6) & (dq > 0))
+            if blocked.any():
+                JJ = JJ.copy()
+                JJ[:, blocked] = 0.0
+                dq = JJ.T @ np.linalg.solve(JJ @ JJ.T + 1e-4 * np.eye(len(E)), E)
             q = q + np.clip(dq, -0.1, 0.1)
             if np.any(q < arm.lo - 1e-6) or np.any(q > arm.hi + 1e-6):
                 q = np.clip(q, arm.lo, arm.hi)

@@ -25,8 +25,9 @@ from humanoidgen.planning import constraint_gen
 from humanoidgen.planning.collision import CollisionWorld
 from humanoidgen.planning.constraints import Const, Constraint, ConstraintError
 from humanoidgen.planning.goal_solver import GoalResult, GoalSolver
-from humanoidgen.planning.hand_ops import body_speed, finger_contacts, is_held, resting_on
+from humanoidgen.planning.hand_ops import body_speed, finger_contacts, hand_touches, is_held, resting_on
 from humanoidgen.planning.arm_moves import ArmMoves, PlanningError
+from humanoidgen.planning.goal_search import GoalSearch
 from humanoidgen.planning.kinematics import Kinematics
 from humanoidgen.planning.poses import Pose
 from humanoidgen.sim.action import ARM_SLICE, HAND_SLICE
@@ -94,7 +95,7 @@ def _logged(fn: Callable) -> Callable:
 
 
 @dataclass
-class HumanoidMotionPlanner(ArmMoves):
+class HumanoidMotionPlanner(GoalSearch, ArmMoves):
     env: HumanoidEnv
     seed: int = 0
     on_step: Callable[[np.ndarray], None] | None = None  # called after every control step with the action
@@ -104,6 +105,7 @@ class HumanoidMotionPlanner(ArmMoves):
     last_approach: dict = field(default_factory=dict)  # side -> approach axis of the hand's last grasp/pinch
     grip: dict = field(default_factory=dict)  # side -> "grasp" or "pinch": how the held object is held
     closing: dict = field(default_factory=dict)  # side -> finger posture the next hand_grasp closes with
+    wider_search: bool = True  # goal_search rungs 3-4 (fingers near the table, the wrist's freedom); off to compare
 
     def __post_init__(self) -> None:
         self.kin = Kinematics(self.env.model)
@@ -135,10 +137,14 @@ class HumanoidMotionPlanner(ArmMoves):
             self.on_step(self.action.copy())
 
     def _run_arm_samples(self, samples: dict[Side, np.ndarray]) -> None:
+        """Per control step, each side's row: 7 arm targets, or 7 arm and 6 finger targets."""
         n = max(len(s) for s in samples.values())
         for k in range(n):
             for side, s in samples.items():
-                self.action[ARM_SLICE[side]] = s[min(k, len(s) - 1)]
+                row = s[min(k, len(s) - 1)]
+                self.action[ARM_SLICE[side]] = row[:7]
+                if len(row) > 7:
+                    self.action[HAND_SLICE[side]] = row[7:]
             self._step()
 
     def _settle(self, seconds: float = SETTLE_TIME) -> None:
@@ -176,10 +182,19 @@ class HumanoidMotionPlanner(ArmMoves):
         self._settle(0.3)
         touched = finger_contacts(self.env.model, self.env.data, side, obj.body)
         if not is_held(touched):
+            if not touched:
+                tip = (f"the hand is not at {obj_type} {obj_id}: check that the move before reached its grip pose, "
+                       f"or that {obj_type} {obj_id} did not move away")
+            elif "thumb" not in touched:
+                other = "pinch" if verb == "grasp" else "grasp"
+                tip = (f"the thumb does not reach it: the grip point is off for this part's shape; try "
+                       f"action='{other}', another point= of its annotations, or finger_offset= (e.g. 0.02)")
+            else:
+                tip = "only the thumb touches it: the fingers close past it; try finger_offset=-0.01 or another point="
             raise PlanningError(
                 f"hand_{verb}",
                 f"the {side} hand closed but does not hold {obj_type} {obj_id} "
-                f"(touching: {', '.join(sorted(touched)) or 'nothing'}; a hold needs the thumb against a finger)",
+                f"(touching: {', '.join(sorted(touched)) or 'nothing'}; a hold needs the thumb against a finger): {tip}",
             )
         self.holding[side] = obj
         self.grip[side] = verb
@@ -251,22 +266,31 @@ class HumanoidMotionPlanner(ArmMoves):
 
     # -- constraints and goal poses ---------------------------------------------------------------------
     @_logged
-    def generate_constraints(self, obj_name: str, obj_id: int, action: str, hand_name: str,
+    def generate_constraints(self, obj_name: str, obj_id: int = 0, action: str = "", hand_name: str = "right",
                              openness: float | None = None, relative_obj_name: str | None = None,
                              relative_obj_id: int | None = None, relative_p: np.ndarray | None = None,
                              point: str | None = None, finger_offset: float = 0.0) -> list:
-        """Constraints for an action on an object, from its annotations (see `constraint_gen`).
+        """Constraints for an action on an object, from its annotations and the task's targets (see the actions
+        below). `hand_name` is "right" unless given (the paper's default); `obj_name` may be a type ("cube"
+        with obj_id), a numbered name ("cube1") or an alias the scene lists.
 
+        "target" ("target1", "target2") moves the object the hand holds to the target pose the task defines for
+        it (the scene lists each object's targets); without one, "target" lifts it 10 cm (noted in the events).
         `point` picks one annotated point of a grasp/pinch (e.g. "rim"); by default the hand takes the most
         natural of the object's annotations and falls back to the others when that one cannot be reached.
         `finger_offset` (m) holds a grasp/pinch that much further out along the fingers (negative: deeper in the
         hand), e.g. 0.02 to pinch a 3 cm block with the index pad rather than around its corner."""
+        if not action:
+            raise PlanningError("generate_constraints", f"give action=, one of {', '.join(constraint_gen.ACTIONS)}")
         (side,) = _sides(hand_name) if hand_name != "all" else (None,)
         if side is None:
-            raise PlanningError("generate_constraints", "hand_name must be 'left' or 'right'")
+            raise PlanningError("generate_constraints", "hand_name must be 'left' or 'right' (one hand at a time)")
         self.kin.sync(self.env.data.qpos)
         gen = constraint_gen.generate(self.env, self.holding, obj_name, obj_id, action, side, openness,
                                       relative_obj_name, relative_obj_id, relative_p, point, finger_offset)
+        self.events.extend(gen.notes)  # fallbacks and mappings are feedback for the plan's author
+        if gen.notes:
+            self.log[-1].message = "; ".join(gen.notes)
         cons = list(gen.constraints)
         for c in cons:
             c.meta = gen  # the move needs the approach axis and the part to follow
@@ -278,53 +302,28 @@ class HumanoidMotionPlanner(ArmMoves):
         (side,) = _sides(hand_name)
         if not constraints:
             raise PlanningError("generate_end_effector_pose", "no constraints given")
-        self.kin.sync(self.env.data.qpos)
-        gen = first_gen = getattr(constraints[0], "meta", None)
-        ignored_before = set(self.collisions.ignored_bodies)
-        self.collisions.ignored_bodies |= self._touched_by(gen)  # the hand is meant to touch what it operates on
-        held = self.holding[side]
-        if held is not None and held.annotations is not None and held.annotations.articulation is not None:
-            self.collisions.ignored_bodies.add(self.env.model.body(held.body).id)
-        self._attach_held(side)
-        self._ignore_contents(side)
-        try:
-            result = self.solver.solve(side, list(constraints), self.kin.arm_q(side), self.nominal[side])
-            usable = result.success and self._approach_fits(side, result, gen)
-            for alternative in (gen.alternatives if gen is not None and not usable else []):
-                self.collisions.ignored_bodies = ignored_before | self._touched_by(alternative)
-                retry = self.solver.solve(side, list(alternative.constraints), self.kin.arm_q(side),
-                                          self.nominal[side])
-                # A grip whose goal solves but whose straight approach does not fit is kept only as a last resort.
-                if retry.success and self._approach_fits(side, retry, alternative):
-                    result, gen = retry, alternative
-                    break
-                if retry.success and not result.success:
-                    result, gen = retry, alternative
-            if not result.success:  # a last, slower try of the first way with many more seeds
-                self.collisions.ignored_bodies = ignored_before | self._touched_by(first_gen)
-                retry = self.solver.solve(side, list(constraints), self.kin.arm_q(side), self.nominal[side],
-                                          thorough=True)
-                if retry.success:
-                    result, gen = retry, first_gen
-        finally:
-            self.collisions.ignored_bodies = ignored_before
-            self.kin.sync(self.env.data.qpos)
-        self.goal_results.append(result)
-        if not result.success:
-            raise PlanningError("generate_end_effector_pose", result.message())
-        pose = Pose.from_mat(result.ee_pos, result.ee_mat, joint_q=result.q, side=side)
-        if gen is not None:
-            pose.approach_axis = gen.approach_axis
-            pose.approach_object = gen.approach_object
-            pose.follow = gen.follow
-            pose.posture = gen.posture
-        return result, pose
+        return self._solve_goal(list(constraints), side)
 
     def _touched_by(self, gen) -> set[int]:
         """The body a grip, pinch or push is meant to touch (none for other constraints)."""
         if gen is None or gen.approach_object is None:
             return set()
         return {self.env.model.body(gen.approach_object).id}
+
+    def _stopped_short(self, side: Side, err: float) -> str:
+        """Why the hand did not get there, for the plan's author: what it is pressing against, and what to try."""
+        touches = hand_touches(self.env.scene, self.env.model, self.env.data, side)
+        held = self.holding[side]
+        if held is not None:
+            touches.pop(f"{held.type_name} {held.obj_id}", None)
+        msg = f"the {side} hand stopped {err * 1000:.0f} mm from its target"
+        if touches:
+            listed = ", ".join(f"{what} ({', '.join(sorted(parts))})" for what, parts in touches.items())
+            return (msg + f", pressed against {listed}: the simulation does not let it through (ignore_collision only "
+                    "stops the planner avoiding it). Aim short of that surface, move it out of the way first, or "
+                    "push a part along the way it gives (generate_constraints with openness=)")
+        return msg + (": the arm could not keep to the planned motion (a heavy load or a joint at its limit): "
+                      "try a shorter move or a target nearer the robot")
 
     def _attach_held(self, side: Side) -> None:
         held = self.holding[side]
@@ -356,8 +355,11 @@ class HumanoidMotionPlanner(ArmMoves):
         if len(sides) == 2:
             samples = self._coordinate_arms(samples)
         carried = {s: self._relative_to_hand(s, self.holding[s]) for s in sides if self._carries(s)}
+        part_start = {s: self._part_openness(t) for s, t in targets.items() if t.follow is not None}
         self._run_arm_samples(samples)
         self._settle(0.2)
+        for side, start in part_start.items():
+            self._check_part_followed(side, targets[side], start)
         for side, target in targets.items():
             err = np.linalg.norm(self._current_pose(side).p - target.p)
             if err <= 0.02 or target.follow is not None:
@@ -367,7 +369,7 @@ class HumanoidMotionPlanner(ArmMoves):
             if touching and err <= 0.05:  # the hand arrived against what it came to operate on
                 self.log[-1].message = f"stopped {err * 1000:.0f} mm short, touching {target.approach_object}"
                 continue
-            raise PlanningError("move_to_pose_with_screw", f"the {side} hand stopped {err * 1000:.0f} mm from its target")
+            raise PlanningError("move_to_pose_with_screw", self._stopped_short(side, err))
         for side, before in carried.items():
             slip = np.linalg.norm(self._relative_to_hand(side, self.holding[side]) - before)
             # A wrapped body may settle in the fist when turned (pouring) and still be held; a pinched one may not.

@@ -25,6 +25,9 @@ class Pose:
     approach_object: str | None = None  # body the hand may touch at the end of the approach
     follow: dict | None = field(default=None, repr=False)  # articulated part path: body, joint, q0, q1
     posture: str | None = None  # finger posture for closing on the object there (e.g. "wrap")
+    # The fingers may come this much closer to the table than the general clearance on the way to this pose
+    # (a goal that needs a fingertip at a low edge; goal_search.FINGER_TABLE_CLEARANCE).
+    finger_table_slack: float = 0.0
 
     def __post_init__(self) -> None:
         self.p = np.asarray(self.p, float).reshape(3)

@@ -1,0 +1,205 @@
+"""How a hand comes in to a grip or a push: straight along the operation's axis over the last few centimetres,
+after getting to a pre-approach pose any collision-free way. A mixin of HumanoidMotionPlanner (through ArmMoves).
+
+Ways to come in, tried in order (the first whose transit can also be planned wins):
+
+1. the straight line tracked back from the solved goal (the goal's arm posture), for APPROACH_DISTANCES;
+2. a pre-approach pose backed off along the axis and solved on its own (any arm posture, collisions avoided;
+   the hand turned up to PRE_POSE_TURN_DEG if the exact orientation is out of reach there), for
+   PRE_POSE_DISTANCES, with the straight (screw) motion tracked forward from it into the goal pose. A goal boxed
+   in by joint limits, from which the line cannot be tracked back, is often reached this way from another posture.
+
+The transit to the pre-pose is a screw motion, else RRT-Connect (`motion.plan_arm_motion`).
+
+A movable part (a drawer's handle, a box lid) gives way when pushed, so an approach may touch the part it
+comes to by at most PART_TOUCH. Where the fingers as they are would push it (the pre-grasp thumb stands 10 cm
+out of the palm, in front of a handle) but open fingers would not, the hand opens at the pre-pose and comes in
+open; the grasp then closes around the handle.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Iterator
+from dataclasses import dataclass
+
+import numpy as np
+
+from humanoidgen.objects.hands import HAND_POSTURES
+from humanoidgen.planning.feedback import approach_advice
+from humanoidgen.planning.goal_targets import PoseTarget, pose_within
+from humanoidgen.planning.motion import JointPath, MotionError, first_collision, plan_arm_motion, track_poses
+from humanoidgen.planning.poses import Pose, screw_interpolate
+from humanoidgen.sim.layout import Side
+
+# Grasps and pinches come in straight along the approach axis over the first of these that fits (metres).
+APPROACH_DISTANCES = (0.08, 0.05, 0.03)
+# Pre-approach poses solved on their own when the line cannot be tracked back from the goal (metres).
+PRE_POSE_DISTANCES = (0.08, 0.05, 0.03, 0.02)
+PRE_POSE_TURN_DEG = 20.0  # a solved pre-pose may be turned this far from the goal's orientation
+WRAP_TOUCH = 0.003  # how far the open hand may press into a body it comes to wrap (m)
+PART_TOUCH = 0.002  # how far an approach may press into a movable part it comes to (m)
+APPROACH_BUDGET_S = 12.0  # no further way of coming in is tried after this long
+TRANSIT_TIME_LIMIT = 2.0  # RRT-Connect seconds per way of coming in after the first (the first gets the default)
+
+
+@dataclass
+class ComeIn:
+    """One way of coming in: the joint path from the pre-pose into the goal, and how to get ready for it."""
+
+    path: np.ndarray  # (n, 7), path[0] at the pre-pose, path[-1] at the goal pose
+    pre: tuple[np.ndarray, np.ndarray]  # the pre-pose (p, R)
+    label: str  # "8 cm" or "5 cm from a solved pre-pose": for the log and for failure reasons
+    posture: str | None = None  # finger posture to take at the pre-pose before coming in (None: as they are)
+
+
+@dataclass
+class ApproachPlan:
+    legs: list[JointPath]  # the transit to the pre-pose, then the straight approach
+    posture: str | None  # see ComeIn.posture
+    label: str
+
+
+class Approaches:
+    """Approach planning for HumanoidMotionPlanner (uses env, kin, collisions, solver, nominal, seed)."""
+
+    def _plan_approach(self, side: Side, q0: np.ndarray, target: Pose) -> ApproachPlan:
+        """Transit and straight approach into `target` (which has an approach axis and joint_q); MotionError
+        with every way's reason if none works."""
+        reasons: list[str] = []
+        first = True
+        t0 = time.perf_counter()
+        for way in self._ways_in(side, target, reasons):
+            if time.perf_counter() - t0 > APPROACH_BUDGET_S:
+                reasons.append(f"stopped looking after {APPROACH_BUDGET_S:.0f} s")
+                break
+            try:
+                transit = plan_arm_motion(self.kin, self.collisions, side, q0, way.pre, q_goal=way.path[0],
+                                          seed=self.seed, **({} if first else {"time_limit": TRANSIT_TIME_LIMIT}))
+            except MotionError as exc:
+                reasons.append(f"{way.label}: no way to the pre-approach pose ({exc})")
+                first = False
+                continue
+            return ApproachPlan([transit, JointPath(way.path, "screw")], way.posture, way.label)
+        advice = approach_advice(side, reasons, target.p, target.approach_axis)
+        raise MotionError("no straight approach to the target (" + "; ".join(reasons) + ")"
+                          + (f". Suggestion: {advice}" if advice else ""))
+
+    def _ways_in(self, side: Side, target: Pose, reasons: list[str]) -> Iterator[ComeIn]:
+        """Every way of coming in that fits, most direct first; appends why the others do not fit."""
+        p, R, axis, body = target.p, target.R, target.approach_axis, target.approach_object
+        wrap = target.posture == "wrap"
+        for distance in APPROACH_DISTANCES:
+            pre = (p - distance * axis, R)
+            back, reason = track_poses(self.kin, side, target.joint_q, screw_interpolate(p, R, *pre))
+            label = f"{distance * 100:.0f} cm"
+            if not reason:
+                path = np.vstack([back[::-1], target.joint_q])
+                posture, reason = self._check_way_in(side, path, body, wrap)
+                if not reason:
+                    yield ComeIn(path, pre, label, posture)
+                    continue
+            reasons.append(f"{label}: {reason}")
+        for distance in PRE_POSE_DISTANCES:
+            label = f"{distance * 100:.0f} cm from a pre-approach pose solved on its own"
+            solved = self.solver.solve(side, [PoseTarget(side, p - distance * axis, R, name="pre-approach pose")],
+                                       target.joint_q, self.nominal[side])
+            if not solved.success:
+                # The hand may turn on the way in: a pre-pose turned up to PRE_POSE_TURN_DEG, screwed into the goal.
+                solved = self.solver.solve(side, pose_within(side, p - distance * axis, R, PRE_POSE_TURN_DEG,
+                                                             "pre-approach pose"), target.joint_q, self.nominal[side])
+            pre = (solved.ee_pos, solved.ee_mat) if solved.success else (p - distance * axis, R)
+            if not solved.success:
+                reasons.append(f"{label}: the pre-approach pose is out of reach or in collision "
+                               f"({'; '.join(solved.violations)})")
+                continue
+            fwd, reason = track_poses(self.kin, side, solved.q, screw_interpolate(*pre, p, R))
+            if not reason:
+                path = np.vstack([solved.q, fwd])
+                posture, reason = self._check_way_in(side, path, body, wrap)
+                if not reason:
+                    yield ComeIn(path, pre, label, posture)
+                    continue
+            reasons.append(f"{label}: {reason}")
+
+    def _check_way_in(self, side: Side, path: np.ndarray, body: str | None, wrap: bool) -> tuple[str | None, str]:
+        """(finger posture to come in with, "") when the approach path fits, else (None, why not). The body
+        approached may be touched; everything else is avoided."""
+        if first_collision_ignoring(self, side, path, body) is not None:
+            return None, "the straight approach along the operation's axis collides"
+        if body is None:
+            return None, ""
+        if wrap and not self._wrap_clear(side, path, body):
+            return None, f"the open hand would push into {body} on the way in"
+        if self._is_movable_part(body) and not self._part_clear(side, path, body):
+            # Try the way in with open fingers: the grip closes around the part from there.
+            saved = self.kin.hand_q(side)
+            self.kin.set_hand(side, np.array(HAND_POSTURES["open"]))
+            self.kin.forward()
+            try:
+                if first_collision_ignoring(self, side, path, body) is None and self._part_clear(side, path, body):
+                    return "open", ""
+            finally:
+                self.kin.set_hand(side, saved)
+                self.kin.forward()
+            # Neither fits without pushing the part; come in as before (a part at its end stop does not move).
+        return None, ""
+
+    def _is_movable_part(self, body: str) -> bool:
+        obj = next((o for o in self.env.scene.objects if o.body == body), None)
+        return obj is not None and obj.annotations is not None and obj.annotations.articulation is not None
+
+    def _part_clear(self, side: Side, path: np.ndarray, body: str) -> bool:
+        return self._clear_of(side, path, body, PART_TOUCH)
+
+    def _wrap_clear(self, side: Side, approach: np.ndarray, body: str) -> bool:
+        return self._clear_of(side, approach, body, WRAP_TOUCH)
+
+    def _clear_of(self, side: Side, path: np.ndarray, body: str, touch: float) -> bool:
+        """Whether `path` stays out of `body` but for `touch` (everything else as the ignore list says)."""
+        ignored = set(self.collisions.ignored_bodies)
+        self.collisions.ignored_bodies.discard(self.env.model.body(body).id)
+        try:
+            return first_collision(self.kin, self.collisions, side, path, clearance=-touch) is None
+        finally:
+            self.collisions.ignored_bodies = ignored
+
+    def _straight_approach(self, side: Side, q_goal: np.ndarray, p: np.ndarray, R: np.ndarray, axis: np.ndarray,
+                           approach_object: str | None, distances: tuple[float, ...] = APPROACH_DISTANCES,
+                           wrap: bool = False):
+        """The straight approach into a goal along `axis` tracked back from the goal, over the first distance
+        that fits: (joint path from the pre-pose to the goal, the pre-pose, reasons) or (None, None, reasons)."""
+        reasons = []
+        for distance in distances:
+            pre = (p - distance * axis, R)
+            back, reason = track_poses(self.kin, side, q_goal, screw_interpolate(p, R, *pre))
+            if not reason:
+                approach = np.vstack([back[::-1], q_goal])
+                _, reason = self._check_way_in(side, approach, approach_object, wrap)
+                if not reason:
+                    return approach, pre, reasons
+            reasons.append(f"{distance * 100:.0f} cm: {reason}")
+        return None, None, reasons
+
+    def _approach_fits(self, side: Side, result, gen) -> bool:
+        """Whether a solved grip can be approached straight along its axis (the shortest approach)."""
+        if gen is None or gen.approach_axis is None or gen.follow is not None:
+            return True
+        self.kin.sync(self.env.data.qpos)
+        self._attach_held(side)
+        approach, _, _ = self._straight_approach(side, result.q, result.ee_pos, result.ee_mat, gen.approach_axis,
+                                                 gen.approach_object, distances=APPROACH_DISTANCES[-1:],
+                                                 wrap=gen.posture == "wrap")
+        self.kin.sync(self.env.data.qpos)
+        return approach is not None
+
+
+def first_collision_ignoring(planner, side: Side, path: np.ndarray, body: str | None) -> int | None:
+    """`first_collision` along `path` with `body` (the object approached) off the obstacle list."""
+    ignored = set(planner.collisions.ignored_bodies)
+    if body is not None:
+        planner.collisions.ignored_bodies.add(planner.env.model.body(body).id)
+    try:
+        return first_collision(planner.kin, planner.collisions, side, path)
+    finally:
+        planner.collisions.ignored_bodies = ignored

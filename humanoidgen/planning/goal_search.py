@@ -1,0 +1,362 @@
+"""How the planner looks for a goal pose before it says there is none: a mixin of HumanoidMotionPlanner behind
+`generate_end_effector_pose`.
+
+In order, each rung tried only when the ones before found nothing (so a goal found before is found the same way):
+
+1. a held articulated part carries the hand: the goal is where the grip goes with the part (tracked along the
+   part's joint path from the grip as it is), not a fresh solve of the grip at the new openness;
+2. the grip as asked, then the object's other annotated grips (straight approach fitting preferred), then the
+   first once more with many more solver seeds (`GoalSolver.solve(thorough=True)`);
+3. the fingers may come within FINGER_TABLE_CLEARANCE of the table (not the general 5 mm) when the contact the
+   goal needs is between a finger and the table: a fingertip taking a low edge (an event says so);
+4. the wrist's freedom: each exact axis of a generated grip or push relaxed into a cone (CONE_DEG for the
+   approach direction, ROLL_DEG about it), the exact axes kept as a preference; for at most RELAXED_WAYS grips
+   and RELAX_BUDGET_S seconds (an event gives the angles taken).
+
+A failure then says which constraint missed and by how much, or which bodies collide, and what to change
+(`feedback`). A push that cannot move a part the way asked (the fingertip would have to pull) is refused first.
+"""
+
+from __future__ import annotations
+
+import time
+from contextlib import nullcontext
+
+import numpy as np
+
+from humanoidgen.objects.describe import openness as openness_of
+from humanoidgen.planning.arm_moves import FOLLOW_ENOUGH, PlanningError
+from humanoidgen.planning.feedback import body_label, contact_advice, push_advice, range_advice
+from humanoidgen.planning.goal_solver import GoalResult
+from humanoidgen.planning.goal_targets import AxisWithin
+from humanoidgen.planning.motion import track_poses
+from humanoidgen.planning.poses import Pose
+from humanoidgen.sim.layout import HAND_PREFIX, OPERABLE_RANGE, Side
+
+FINGER_TABLE_CLEARANCE = 0.0015  # m: fingers meant to touch may come this close to the table
+CONE_DEG = 15.0  # the approach direction of a grip or push may tilt this far
+ROLL_DEG = 15.0  # and the grip turn this far about it
+RELAXED_WAYS = 3  # grips tried with the wrist's freedom: the first and two alternatives
+RELAX_BUDGET_S = 6.0  # seconds for rungs 3 and 4 together
+RELAX_SOLVE_S = 2.0  # no new solver seed after this long in one of their solves
+RELAX_MAX_MISS = 0.08  # m: grips missing by more than this are not tried with the wrist's freedom
+RELAX_SEEDS = 4  # and at most this many seeds each (the current and nominal postures, two random)
+ON_POINT = 0.025  # a fingertip this near a push point is on it: a push from there rides with the part
+PUSH_MIN_COS = 0.3  # a fingertip drives a part only where the part gives way within ~70 deg of the push
+
+
+class GoalSearch:
+    """Goal search for HumanoidMotionPlanner (uses env, kin, collisions, solver, holding, nominal, events)."""
+
+    def _solve_goal(self, constraints: list, side: Side) -> tuple[GoalResult, Pose]:
+        self.kin.sync(self.env.data.qpos)
+        gen = getattr(constraints[0], "meta", None)
+        held = self.holding[side]
+        follow = getattr(gen, "follow", None) if gen is not None else None
+        holds_part = follow is not None and held is not None and held.body == follow["body"]
+        if follow is not None and not holds_part:
+            self._check_push_direction(side, gen)
+        # The hand rides with the part from where it is on it: holding it, or a fingertip already on the point.
+        riding = holds_part or (follow is not None and held is None and self._on_push_point(side, follow))
+        ignored_before = set(self.collisions.ignored_bodies)
+        slack = 0.0
+        try:
+            result = None
+            if riding:
+                result = self._riding_goal(side, follow)
+            if result is None or not result.success:
+                first_try = result
+                result, gen, tried = self._exact_goal(side, constraints, gen, ignored_before, thorough=not riding)
+                if first_try is not None and (not result.success or not self._reaches_back(side, follow, result)):
+                    result = first_try  # the part's own path says best why not
+            if not result.success and not riding and getattr(self, "wider_search", True):
+                result, gen, slack = self._wider_goal(side, gen, tried, ignored_before, result)
+        finally:
+            self.collisions.ignored_bodies = ignored_before
+            self.kin.sync(self.env.data.qpos)
+        self.goal_results.append(result)
+        if not result.success:
+            raise PlanningError("generate_end_effector_pose", self._goal_failure(side, constraints, gen, result))
+        pose = Pose.from_mat(result.ee_pos, result.ee_mat, joint_q=result.q, side=side)
+        pose.finger_table_slack = slack
+        if gen is not None:
+            pose.approach_axis = gen.approach_axis
+            pose.approach_object = gen.approach_object
+            pose.follow = gen.follow
+            pose.posture = gen.posture
+        return result, pose
+
+    # -- ignore lists ----------------------------------------------------------------------------------
+    def _use_ignores(self, side: Side, gen, ignored_before: set[int]) -> None:
+        """What a goal for `gen` may touch: the body it operates on, a held part, what rests in a carried object."""
+        self.collisions.ignored_bodies = ignored_before | self._touched_by(gen)
+        held = self.holding[side]
+        if held is not None and held.annotations is not None and held.annotations.articulation is not None:
+            self.collisions.ignored_bodies.add(self.env.model.body(held.body).id)
+        self._attach_held(side)
+        self._ignore_contents(side)
+
+    # -- rung 1: a held part carries the hand ------------------------------------------------------------
+    def _on_push_point(self, side: Side, follow: dict) -> bool:
+        from humanoidgen.objects.queries import get_point_in_env
+
+        obj = self.env.scene.object(*follow["obj"])
+        tip = get_point_in_env(self.env, f"press_point_base_{side}_hand")
+        point = get_point_in_env(self.env, follow["part_point"], obj.type_name, obj.obj_id)
+        return float(np.linalg.norm(tip - point)) < ON_POINT
+
+    def _reaches_back(self, side: Side, follow: dict, result: GoalResult) -> bool:
+        """Whether a freshly solved goal for a part the hand rides with can be used: the move then tracks the
+        part's path back from it to where the hand is now (`ArmMoves._follow_part`'s fallback), so check that."""
+        self.kin.sync(self.env.data.qpos)
+        arm = self.kin.arms[side]
+        q0 = np.clip(self.kin.arm_q(side), arm.lo, arm.hi)
+        poses, _, _ = self._part_path_poses(side, follow)
+        back, reason = track_poses(self.kin, side, result.q, poses[-2::-1] + [self.kin.ee_pose(side)])
+        return not reason and np.max(np.abs(back[-1] - q0)) < 0.15
+
+    def _riding_goal(self, side: Side, follow: dict) -> GoalResult:
+        t0 = time.perf_counter()
+        self._use_ignores(side, None, set(self.collisions.ignored_bodies))
+        arm = self.kin.arms[side]
+        q0 = np.clip(self.kin.arm_q(side), arm.lo, arm.hi)
+        poses, q_steps, q_now = self._part_path_poses(side, follow)
+        path, reason = track_poses(self.kin, side, q0, poses)
+        way = abs(follow["q_target"] - q_now)
+        reached = abs(q_steps[len(path) - 1] - q_now) if len(path) else 0.0
+        if not reason or (len(path) and reached >= FOLLOW_ENOUGH * way):
+            q = path[-1]
+            self.kin.set_arm(side, q)
+            self.kin.forward()
+            p, R = self.kin.ee_pose(side)
+            self.kin.sync(self.env.data.qpos)
+            return GoalResult(True, q, p, R, 0.0, [], None, 0, time.perf_counter() - t0)
+        obj = self.env.scene.object(*follow["obj"])
+        held = self.holding[side] is not None
+        art = obj.annotations.articulation
+        now = openness_of(self.env.model, self.env.data, obj)
+        got = art.openness_of(q_steps[len(path) - 1]) if len(path) else now
+        wanted = art.openness_of(follow["q_target"])
+        pushes = self._pushes_toward(side, obj, wanted, skip_point=None if held else follow["part_point"])
+        self.kin.sync(self.env.data.qpos)
+        return GoalResult(False, None, violations=[
+            f"the {side} hand {'holding' if held else 'pushing'} {obj.type_name} {obj.obj_id} can move it only "
+            f"from openness {now:.2f} to {got:.2f} of the {wanted:.2f} asked ({reason}): the hand would have to go "
+            f"where the {side} arm does not reach. " + (
+                f"Move it to about {got:.2f} this way, then let go (open_hand) and push it the rest with the "
+                f"fingertip (hand_press; " + push_advice(f"{obj.type_name} {obj.obj_id}", wanted, pushes, side) + ")"
+                if held else f"Push it to about {got:.2f} from here, then from a point nearer the robot, or with the "
+                f"other hand ({push_advice(f'{obj.type_name} {obj.obj_id}', wanted, pushes, side)})")],
+            solve_time=time.perf_counter() - t0)
+
+    # -- rung 2: as asked, the other grips, more seeds ----------------------------------------------------
+    def _exact_goal(self, side: Side, constraints: list, gen, ignored_before: set[int], thorough: bool = True):
+        first_gen = gen
+        tried: list[tuple[object, list, GoalResult]] = []  # (grip or None, its constraints, result)
+        self._use_ignores(side, gen, ignored_before)
+        result = self.solver.solve(side, list(constraints), self.kin.arm_q(side), self.nominal[side])
+        tried.append((gen, list(constraints), result))
+        usable = result.success and self._approach_fits(side, result, gen)
+        for alternative in (gen.alternatives if gen is not None and not usable else []):
+            self._use_ignores(side, alternative, ignored_before)
+            retry = self.solver.solve(side, list(alternative.constraints), self.kin.arm_q(side), self.nominal[side])
+            tried.append((alternative, list(alternative.constraints), retry))
+            # A grip whose goal solves but whose straight approach does not fit is kept only as a last resort.
+            if retry.success and self._approach_fits(side, retry, alternative):
+                result, gen = retry, alternative
+                break
+            if retry.success and not result.success:
+                result, gen = retry, alternative
+        if not result.success and thorough:  # a last, slower try of the first way with many more seeds
+            self._use_ignores(side, first_gen, ignored_before)
+            retry = self.solver.solve(side, list(constraints), self.kin.arm_q(side), self.nominal[side], thorough=True)
+            if retry.success:
+                result, gen = retry, first_gen
+        if not result.success:
+            gen = first_gen
+        return result, gen, tried
+
+    # -- rungs 3 and 4: closer to the table, the wrist's freedom -------------------------------------------
+    def _wider_goal(self, side: Side, gen, tried: list, ignored_before: set[int], failed: GoalResult):
+        """(result, gen, finger-table slack) from the wider searches, or the failure as it was."""
+        t0 = time.perf_counter()
+        table = self.env.model.body("table").id
+        fingers = set(self._finger_bodies(side))
+        low = [(g, cons) for g, cons, r in tried
+               if r.contacts and all(b1 in fingers and b2 == table for b1, b2, _ in r.contacts)]
+        slack = self.solver.clearance - FINGER_TABLE_CLEARANCE
+        table_geoms = self.collisions.body_geoms(table)
+        finger_geoms = self.collisions.finger_geoms(side)
+        for g, cons in low:
+            self._use_ignores(side, g, ignored_before)
+            with self.collisions.allow_touch(finger_geoms, table_geoms, slack):
+                retry = self.solver.solve(side, cons, self.kin.arm_q(side), self.nominal[side],
+                                          time_limit=RELAX_SOLVE_S, max_seeds=RELAX_SEEDS)
+            if retry.success:
+                self.events.append(self._table_event(side, retry, finger_geoms, table_geoms))
+                return retry, g, slack
+        if gen is None or getattr(gen, "approach_axis", None) is None:
+            return failed, gen, 0.0
+        robot = {self.env.model.body(b).id for b in range(self.env.model.nbody)
+                 if int(self.env.model.body_rootid[b]) == self.env.model.body("pelvis").id}
+        if failed.contacts and any(b2 in robot for _, b2, _ in failed.contacts):
+            return failed, gen, 0.0  # the other arm or the body in the way: turning the wrist does not clear it
+        if not failed.contacts and all(r.miss is not None and r.miss > RELAX_MAX_MISS for _, _, r in tried):
+            return failed, gen, 0.0  # far out of reach: a cone of CONE_DEG at the wrist does not bring it there
+        ways = [gen] + list(gen.alternatives)[:RELAXED_WAYS - 1]
+        for touch in ((0.0, slack) if low else (0.0,)):
+            for g in ways:
+                if time.perf_counter() - t0 > RELAX_BUDGET_S:
+                    break
+                relaxed = _relax(side, g)
+                if not relaxed:
+                    continue
+                self._use_ignores(side, g, ignored_before)
+                with (self.collisions.allow_touch(finger_geoms, table_geoms, touch) if touch else nullcontext()):
+                    retry = self.solver.solve(side, relaxed, self.kin.arm_q(side), self.nominal[side],
+                                              time_limit=RELAX_SOLVE_S, max_seeds=RELAX_SEEDS)
+                if retry.success:
+                    self.events.append(self._relaxed_event(side, g, relaxed, retry))
+                    if touch:
+                        self.events.append(self._table_event(side, retry, finger_geoms, table_geoms))
+                    return retry, g, touch
+                if retry.contacts and not failed.contacts and g is gen:
+                    failed = retry  # what the wrist's freedom runs into says more than a bare miss
+        return failed, gen, 0.0
+
+    def _finger_bodies(self, side: Side) -> list[int]:
+        m = self.env.model
+        return [b for b in range(m.nbody) if m.body(b).name.startswith(HAND_PREFIX[side] + "_")]
+
+    def _table_event(self, side: Side, result: GoalResult, finger_geoms: list[int], table_geoms) -> str:
+        self.kin.set_arm(side, result.q)
+        self.kin.forward()
+        d = min(self.collisions.pair_distance(g, t) for g in finger_geoms for t in table_geoms)
+        self.kin.sync(self.env.data.qpos)
+        return (f"the {side} fingers come within {max(d, 0.0) * 1000:.1f} mm of the table at this goal (they are "
+                f"meant to touch there; {self.solver.clearance * 1000:.0f} mm elsewhere)")
+
+    def _relaxed_event(self, side: Side, gen, relaxed: list, result: GoalResult) -> str:
+        self.kin.set_arm(side, result.q)
+        self.kin.forward()
+        angles = [f"{c.name.split(' (within')[0]} {c.angle(self.kin):.0f} deg" for c in relaxed
+                  if isinstance(c, AxisWithin) and not c.soft]
+        self.kin.sync(self.env.data.qpos)
+        what = gen.constraints[0].name if gen.constraints else "the grip"
+        return (f"the exact {what} is out of the {side} hand's reach; it takes it with the wrist turned "
+                f"({', '.join(angles)} off the annotated axes)")
+
+    # -- pushes ----------------------------------------------------------------------------------------
+    def _push_op(self, gen):
+        """The push/flip/press annotation a part-riding push was made from (by its point), or None."""
+        f = gen.follow
+        ann = self.env.scene.object(*f["obj"]).annotations
+        return next((o for o in ann.operations if o.operation in ("push", "flip", "press") and o.point == f["part_point"]),
+                    None)
+
+    def _push_cos(self, gen) -> float:
+        """How well the fingertip drives the part toward the asked openness: the cosine between the way the
+        touched point moves and the direction the fingertip presses in, both now. A push or press presses along
+        its approach axis; a flip gets under the part and lifts it, so it only ever opens (cosine 1 or -1)."""
+        from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env
+
+        f = gen.follow
+        obj = self.env.scene.object(*f["obj"])
+        now = openness_of(self.env.model, self.env.data, obj)
+        wanted = obj.annotations.articulation.openness_of(f["q_target"])
+        step = float(np.clip(wanted - now, -0.05, 0.05))
+        op = self._push_op(gen)
+        if abs(step) < 1e-3 or op is None:
+            return 1.0
+        if op.operation == "flip":
+            return 1.0 if step > 0 else -1.0
+        p0 = get_point_in_env(self.env, f["part_point"], obj.type_name, obj.obj_id, openness=float(np.clip(now, 0, 1)))
+        p1 = get_point_in_env(self.env, f["part_point"], obj.type_name, obj.obj_id,
+                              openness=float(np.clip(now + step, 0, 1)))
+        v = p1 - p0
+        n = np.linalg.norm(v)
+        axis = get_axis_in_env(self.env, op.approach_axis, obj_type=obj.type_name, obj_id=obj.obj_id)
+        return 1.0 if n < 1e-6 else float(v @ axis / n)
+
+    def _pushes_toward(self, side: Side, obj, wanted: float, skip_point: str | None = None) -> list[str]:
+        """The annotated pushes (target1, target2) that drive `obj` toward openness `wanted`, as suggestions;
+        each marked when its push point is out of the hand's reach now."""
+        from humanoidgen.planning import constraint_gen
+
+        out = []
+        for action in ("target1", "target2"):
+            try:
+                other = constraint_gen.generate(self.env, self.holding, obj.type_name, obj.obj_id, action, side, wanted)
+                start = constraint_gen.generate(self.env, self.holding, obj.type_name, obj.obj_id, action, side, None)
+            except (ValueError, KeyError):
+                continue
+            if other.follow is None or other.follow["part_point"] == skip_point or self._push_cos(other) < PUSH_MIN_COS:
+                continue
+            self._use_ignores(side, start, set(self.collisions.ignored_bodies))
+            reach = self.solver.solve(side, list(start.constraints), self.kin.arm_q(side), self.nominal[side])
+            out.append(f"action='{action}' (at {other.follow['part_point']}"
+                       + ("" if reach.success else f", out of the {side} hand's reach now") + ")")
+        return out
+
+    def _check_push_direction(self, side: Side, gen) -> None:
+        """Refuse a fingertip push that cannot move the part the way asked (it would have to pull)."""
+        if not any(getattr(c, "type", "") == "angle" for c in gen.constraints):
+            return  # a grip, not a push
+        cos = self._push_cos(gen)
+        if cos >= PUSH_MIN_COS:
+            return
+        f = gen.follow
+        obj = self.env.scene.object(*f["obj"])
+        wanted = obj.annotations.articulation.openness_of(f["q_target"])
+        ignored = set(self.collisions.ignored_bodies)
+        try:
+            usable = self._pushes_toward(side, obj, wanted, skip_point=f["part_point"])
+        finally:
+            self.collisions.ignored_bodies = ignored
+            self.kin.sync(self.env.data.qpos)
+        op = self._push_op(gen)
+        why = (f"a flip gets under {obj.type_name} {obj.obj_id} at {f['part_point']} and lifts it: it opens it, it "
+               f"cannot bring it down to openness {wanted:g}" if op is not None and op.operation == "flip" else
+               f"a fingertip at {obj.type_name} {obj.obj_id} {f['part_point']} cannot move it to openness {wanted:g}: "
+               f"the point moves {np.degrees(np.arccos(np.clip(cos, -1, 1))):.0f} deg away from the push direction, "
+               f"so the finger would have to pull")
+        raise PlanningError("generate_end_effector_pose",
+                            why + "; " + push_advice(f"{obj.type_name} {obj.obj_id}", wanted, usable, side))
+
+    # -- failure message ---------------------------------------------------------------------------------
+    def _goal_failure(self, side: Side, constraints: list, gen, result: GoalResult) -> str:
+        msg = result.message()
+        advice = ""
+        if result.contacts:
+            other = self.holding["left" if side == "right" else "right"]
+            advice = contact_advice(self.env, side, result.contacts, getattr(gen, "approach_object", None),
+                                    held_by_other=None if other is None else f"{other.type_name} {other.obj_id}")
+            bodies = ", ".join(dict.fromkeys(body_label(self.env, b) for _, b, _ in result.contacts))
+            msg += f" [in the way: {bodies}]"
+        else:
+            point = next((c.object_key_point for c in constraints
+                          if getattr(c, "type", "") == "point2point" and not c.soft), None)
+            if point is not None and any("mm from its target" in v for v in result.violations):
+                other = "left" if side == "right" else "right"
+                in_other = OPERABLE_RANGE[other].contains(point, tol=0.01)
+                advice = range_advice(side, point) or (
+                    f"the point is just out of the {side} arm's reach in this hand orientation: "
+                    + (f"try the {other} hand, " if in_other else "")
+                    + "another grip (point=...), or move the object nearer the robot first")
+        return msg + (f". Suggestion: {advice}" if advice else "")
+
+
+def _relax(side: Side, gen) -> list:
+    """The grip's constraints with each exact hand axis opened into a cone (and preferred exact)."""
+    out, changed = [], False
+    approach = getattr(gen, "approach_axis", None)
+    for c in gen.constraints:
+        if getattr(c, "type", "") == "parallel" and not c.soft and c.local_axis is not None:
+            is_approach = approach is not None and abs(float(c.object_axis @ approach)) > 0.999
+            limit = np.radians(CONE_DEG if is_approach else ROLL_DEG)
+            out.append(AxisWithin(side, c.local_axis, c.object_axis, limit, f"{c.name} (within {np.degrees(limit):.0f} deg)"))
+            out.append(AxisWithin(side, c.local_axis, c.object_axis, limit, f"{c.name} (preferred)", soft=True))
+            changed = True
+        else:
+            out.append(c)
+    return out if changed else []
