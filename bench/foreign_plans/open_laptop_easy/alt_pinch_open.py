@@ -1,0 +1,16 @@
+# Pinch the screen edge and turn it up to 0.85 instead of flipping it from under; the left hand is not used.
+from humanoidgen.motion_planning.h1_2.solution.generated.solver_env import *
+def step(planner:HumanoidMotionPlanner):
+    # Step 1: Right hand pinches the screen edge
+    planner.hand_pre_pinch("right")
+    c = planner.generate_constraints(obj_name="laptop", obj_id=0, action="pinch", hand_name="right")
+    _, pose = planner.generate_end_effector_pose(c, "right")
+    planner.move_to_pose_with_screw(pose, "right", attach_obj=False)
+    planner.hand_pinch("right", pinch_object="laptop", obj_id=0)
+    # Step 2: Right hand lifts the screen to an openness of 0.85
+    c = planner.generate_constraints(obj_name="laptop", obj_id=0, action="pinch", hand_name="right", openness=0.85)
+    _, pose = planner.generate_end_effector_pose(c, "right")
+    planner.move_to_pose_with_screw(pose, "right", attach_obj=True, object_name="laptop", object_id=0)
+    # Step 3: Release
+    planner.open_hand("right")
+    planner.move_to_pose_with_screw(planner.right_hand_init_pose, "right", attach_obj=False)

@@ -1,0 +1,103 @@
+"""The corpus of plans we did not write (bench/foreign_plans/): every plan parses and passes the static checker,
+and a sample runs end to end through the real episode entry point without breaking the harness.
+
+Success is not asserted: the planner is improved in parallel and `bench/foreign_plans.py` measures it.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import sys
+from pathlib import Path
+
+import pytest
+
+from humanoidgen.episodes.plans import PlanFormatError, load_plan
+from humanoidgen.episodes.runner import step_namespace
+from humanoidgen.sandbox.checker import CodeRejected, check_code
+from humanoidgen.tasks.registry import task_names
+
+ROOT = Path(__file__).resolve().parents[1]
+BENCH = ROOT / "bench" / "foreign_plans.py"
+
+
+def _bench():
+    spec = importlib.util.spec_from_file_location("foreign_plans_bench", BENCH)
+    mod = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = mod
+    spec.loader.exec_module(mod)
+    return mod
+
+
+bench = _bench()
+CORPUS = bench.discover()
+
+
+def test_corpus_covers_every_task():
+    by_task: dict[str, list[str]] = {}
+    for p in CORPUS:
+        by_task.setdefault(p.task, []).append(p.name)
+    missing = [t for t in task_names() if len(by_task.get(t, [])) < 2 or "paper" not in by_task.get(t, [])]
+    assert not missing, f"tasks without a paper.py and at least one alternative: {missing}"
+    unknown = sorted(set(by_task) - set(task_names()))
+    assert not unknown, f"corpus folders that are not tasks: {unknown}"
+    assert sum(p.path.is_dir() for p in CORPUS) >= 3, "at least 3 plans should be plan folders"
+
+
+def test_every_corpus_plan_parses_and_passes_the_checker():
+    names = set(step_namespace(None))  # type: ignore[arg-type]
+    problems = []
+    for p in CORPUS:
+        try:
+            plan = load_plan(p.path)
+        except PlanFormatError as exc:
+            problems.append(f"{p.key}: does not parse: {exc}")
+            continue
+        if not plan.steps:
+            problems.append(f"{p.key}: no steps")
+        known = set(names)
+        for i, s in enumerate(plan.steps):
+            try:
+                known |= check_code(s.code, known).bound_names  # names bound by earlier steps, as in the worker
+            except CodeRejected as exc:
+                problems.append(f"{p.key} step {i} ({s.title}): rejected: {exc}")
+    assert not problems, "corpus plans that do not load or are refused:\n" + "\n".join(problems)
+
+
+def test_seed_parsing_and_selection():
+    assert bench.parse_seeds("0-2,5,7-8") == [0, 1, 2, 5, 7, 8]
+    sel = bench.select(CORPUS, "open_drawer,close_drawer", "paper")
+    assert {p.key for p in sel} == {"open_drawer/paper", "close_drawer/paper"}
+    assert all(p.name.startswith("alt_") for p in bench.select(CORPUS, None, "alt_*"))
+
+
+SAMPLE = ["block_stack_single/paper", "open_drawer/alt_folder", "close_box_hard/alt_stepwise"]
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("key", SAMPLE)
+def test_sample_plans_run_end_to_end(key):
+    from humanoidgen.episodes.runner import EpisodeResult
+    from humanoidgen.episodes.task_episode import EpisodeRequest, run_task_episode
+
+    plan = next(p for p in CORPUS if p.key == key)
+    result, _ = run_task_episode(EpisodeRequest(plan.task, 0, plan_path=str(plan.path)))
+    assert isinstance(result, EpisodeResult)
+    assert result.task == plan.task and result.seed == 0
+    assert isinstance(result.success, bool)
+    assert result.steps, "the episode ran no step"
+    assert len(result.steps) <= len(load_plan(plan.path).steps)
+    for c in result.checks:
+        assert set(c) >= {"predicate", "ok", "detail"} and isinstance(c["ok"], bool)
+    for s in result.steps:
+        if not s.ok:
+            assert s.error.strip(), f"step {s.index} ({s.title}) failed without a message"
+    failed = [s for s in result.steps if not s.ok]
+    assert len(failed) <= 1 and (not failed or failed[0] is result.steps[-1]), "the episode goes on after a failure"
+    if result.success:
+        assert all(s.ok for s in result.steps) and all(c["ok"] for c in result.checks)
+    else:
+        assert bench.failure_message(result).strip()
+    # the bench's own wrapper reports the same thing without raising
+    out = bench.run_one(plan, 0, None)
+    assert out["success"] == result.success or out["message"]
