@@ -101,3 +101,24 @@ def test_sample_plans_run_end_to_end(key):
     # the bench's own wrapper reports the same thing without raising
     out = bench.run_one(plan, 0, None)
     assert out["success"] == result.success or out["message"]
+
+
+def test_upstream_corpus_lays_out_only_numbered_step_files(tmp_path):
+    spec = importlib.util.spec_from_file_location("upstream_corpus", ROOT / "bench" / "upstream_corpus.py")
+    up = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(up)
+    src = tmp_path / "clone" / up.GENERATED / "open_drawer"
+    src.mkdir(parents=True)
+    for name in ("step0.py", "step1.py", "step1 copy.py", "step10.py"):
+        (src / name).write_text("def step(planner):\n    planner.open_hand('left')\n")
+    (tmp_path / "clone" / up.GENERATED / "not_our_task").mkdir()
+    (tmp_path / "clone" / up.GENERATED / "not_our_task" / "step0.py").write_text("x = 1\n")
+    found = up.lay_out(tmp_path / "clone", tmp_path / "corpus")
+    assert found == {"open_drawer": 3}
+    assert sorted(p.name for p in (tmp_path / "corpus" / "open_drawer" / "upstream").iterdir()) == [
+        "step0.py", "step1.py", "step10.py"]
+    plans = bench.discover(tmp_path / "corpus")
+    assert [(p.task, p.name) for p in plans] == [("open_drawer", "upstream")]
+    assert len(load_plan(plans[0].path).steps) == 3
+    with pytest.raises(SystemExit, match="TeleHuman"):
+        up.lay_out(tmp_path / "nothing", tmp_path / "corpus2")
