@@ -138,7 +138,9 @@ def test_annotations_match_geometry(name, type_id):
             assert _surface_distance(model, geoms, p) > 0.0, f"{pname} inside material"
         else:
             d = _surface_distance(model, geoms, p)
-            assert abs(d) <= 0.01, f"{name}{type_id} point {pname} is {d:.4f} m from the surface"
+            # A long block's second end pinch sits 1.5 cm in, on its axis (rigid.END_PINCH_DEPTH): half its width.
+            limit = 0.0155 if pname == "pinch_bottom" else 0.01
+            assert abs(d) <= limit, f"{name}{type_id} point {pname} is {d:.4f} m from the surface"
     # every family has its expected operations and functions
     ops = {o.operation for o in ann.operations}
     fns = {f.function for f in ann.functions}

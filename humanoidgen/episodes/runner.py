@@ -63,6 +63,7 @@ def step_namespace(planner: HumanoidMotionPlanner) -> dict:
         "math": math,
         "Constraint": Constraint,
         "Const": Const,
+        "Cost": Const,  # upstream's name for the soft relation (its prompts say Const, its plans write Cost)
         "get_point_in_env": get_point_in_env,
         "get_axis_in_env": get_axis_in_env,
         "HumanoidMotionPlanner": HumanoidMotionPlanner,

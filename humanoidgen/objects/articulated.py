@@ -279,6 +279,7 @@ class DrawerFamily(_ArticulatedFamily):
 # -- laptop ---------------------------------------------------------------------------------------------------
 class LaptopFamily(_ArticulatedFamily):
     name = "laptop"
+    GRIP_DEPTH = 0.015
     _params = {
         0: dict(description="grey 13-inch laptop", depth=0.20, width=0.21, base_h=0.016, screen_t=0.008,
                 open_deg=110.0, rgba=(0.55, 0.57, 0.6, 1.0), screen_rgba=(0.2, 0.2, 0.22, 1.0)),
@@ -297,6 +298,8 @@ class LaptopFamily(_ArticulatedFamily):
         D, hb, ts = p["depth"], p["base_h"], p["screen_t"]
         points = [
             _pt("screen_edge", (-D, 0, ts / 2), "screen", "middle of the screen's top edge"),
+            # Where a grasp over the top edge centres: GRIP_DEPTH in from the edge, so the fingers wrap the faces.
+            _pt("screen_grip", (-D + self.GRIP_DEPTH, 0, ts / 2), "screen", "a grasp over the top edge holds it here"),
             _pt("screen_back", (-0.85 * D, 0, ts), "screen", "lid's outer face near the top edge"),
             _pt("screen_center", (-D / 2, 0, 0), "screen", "centre of the display"),
             _pt("keyboard", (0, 0, hb), None, "centre of the keyboard"),
@@ -308,6 +311,9 @@ class LaptopFamily(_ArticulatedFamily):
         ]
         ops = [
             _op("flip", "screen_edge", "edge_in", "lid_in", "hinge"),
+            # The hand over the top edge, palm on it, fingers down one face and the thumb down the other (as the
+            # box lid's tab is grasped).
+            _op("grasp", "screen_grip", "edge_in", "lid_in", "hinge"),
             _op("pinch", "screen_edge", "edge_in", "lid_in", "hinge"),
             _op("push", "screen_back", "lid_in", "edge_in", "hinge"),
         ]
@@ -323,8 +329,12 @@ class BoxFamily(_ArticulatedFamily):
     _params = {
         0: dict(description="small red box with a hinged lid", depth=0.14, width=0.16, height=0.08,
                 open_deg=100.0, rgba=(0.75, 0.22, 0.18, 1.0), lid_rgba=(0.85, 0.35, 0.25, 1.0)),
-        1: dict(description="blue storage box with a hinged lid", depth=0.16, width=0.20, height=0.10,
-                open_deg=100.0, rgba=(0.2, 0.35, 0.7, 1.0), lid_rgba=(0.3, 0.45, 0.8, 1.0)),
+        # A free-running hinge: the lid stays up from ~65 deg (openness 0.65) but falls shut by its own weight
+        # when let go lower (below ~0.6 within 1-5 s), as a storage box's light lid does; the small box's
+        # stiffer hinge holds the lid wherever it is left.
+        1: dict(description="blue storage box with a hinged lid that falls shut when let go low",
+                depth=0.16, width=0.20, height=0.10, open_deg=100.0, rgba=(0.2, 0.35, 0.7, 1.0),
+                lid_rgba=(0.3, 0.45, 0.8, 1.0), hinge_damping=0.05, hinge_friction=0.035),
     }
     _T, _TL, _TAB = 0.008, 0.01, 0.008  # wall, lid thickness, tab half length
 
@@ -340,7 +350,8 @@ class BoxFamily(_ArticulatedFamily):
         ]
         lid = [_Geom("lid", (D / 2, W / 2, tl / 2), (-D / 2, 0, tl / 2), lc, 0.1),
                _Geom("lid_tab", (tab, 0.02, tl / 2 * 0.6), (-D - tab, 0, tl / 2), lc, 0.005)]
-        hinge = _Joint("hinge", "hinge", (0, 1, 0), (0.0, p["open_deg"] * _DEG), damping=0.2, frictionloss=0.3)
+        hinge = _Joint("hinge", "hinge", (0, 1, 0), (0.0, p["open_deg"] * _DEG), damping=p.get("hinge_damping", 0.2),
+                       frictionloss=p.get("hinge_friction", 0.3))
         return _Design(walls, [_Part("lid", (D / 2, 0, H), hinge, lid)])
 
     def _annot(self, p: dict, design: _Design) -> _Annot:

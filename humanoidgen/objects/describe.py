@@ -36,7 +36,10 @@ def _targets(scene, obj: SceneObject) -> list:
 
 
 def _target_key(t) -> str:
-    # "target" for both hands; "target (right hand)" where a hand-over gives each hand its own.
+    # "target" for both hands; "target (right hand)" where a hand-over gives each hand its own; a push target
+    # (an articulated part) is both target1 and target2, where the push starts now.
+    if t.spec.push is not None:
+        return f"target1/target2 (push at {t.spec.push.point})"
     return t.spec.name + (f" ({t.spec.hand} hand)" if t.spec.hand else "")
 
 
@@ -57,7 +60,8 @@ def object_attributes(obj: SceneObject, scene=None) -> dict:
             "functions": sorted({f"{f.function}@{f.point}" for f in ann.functions}),
         }
     if scene is not None and (targets := _targets(scene, obj)):
-        out["targets"] = {_target_key(t): t.spec.label() for t in targets}
+        out["targets"] = {name + (f" ({t.spec.hand} hand)" if t.spec.hand else ""): label
+                          for t in targets for name, label in t.spec.labels().items()}
     return out
 
 

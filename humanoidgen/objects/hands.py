@@ -54,8 +54,11 @@ def hand_axes(side: Side) -> dict[str, np.ndarray]:
     s = PALM_SIGN[side]
     return {
         f"{side}_grasp_axis": np.array([0.0, s, 0.0]),  # back of the palm -> out of the palm
-        # As in the paper's prompts: pinch axis parallel to [0, 0, -1] means pinching with the palm facing down.
-        f"{side}_pinch_axis": np.array([0.0, s, 0.0]),
+        # The direction the pinch faces, out of the hand's index edge. The paper's prompts: "pinch axis parallel to
+        # [0, 0, -1] means pinching with the palm facing down", i.e. from above. This hand's thumb meets the index
+        # pad along the palm normal, so a pinch from above has the index edge down and the thumb beside the
+        # object (with the palm itself down the thumb would be under the object, in the table).
+        f"{side}_pinch_axis": np.array([0.0, 0.0, 1.0]),
         f"{side}_thumb_2_index": np.array([0.0, -s, 0.0]),  # thumb tip -> index tip when pinching
         f"{side}_ring_2_index": np.array([0.0, 0.0, 1.0]),
         f"{side}_grasp_wrist_2_palm_axis": np.array([1.0, 0.0, 0.0]),

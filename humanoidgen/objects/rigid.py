@@ -136,11 +136,25 @@ def _finish(prims: list[Prim], points: dict[str, Vec3], **container) -> Geometry
     return Geometry(prims, lo, hi, pts, **container)
 
 
+# A box this much longer along z than across is a block with two ends (see CubeFamily._semantics).
+ELONGATED_RATIO = 1.5
+# The other end's pinch sits deeper than the top's: a block held by one end lies across the hand (a hand-over),
+# and 1.5 cm in, thumb and index hold it level where nearer the end it droops out of the fingers (measured).
+END_PINCH_DEPTH = 0.015
+
+
+def _elongated(size: Vec3) -> bool:
+    return size[2] >= ELONGATED_RATIO * max(size[0], size[1])
+
+
 def _box_geometry(p: dict) -> Geometry:
     sx, sy, sz = p["size"]
     prims = [Prim("geom", "box", (sx / 2, sy / 2, sz / 2), (0, 0, 0), rgba=p["rgba"])]
     # Pinch just under 1 cm below the top face: the finger pads then squeeze the sides, not the top edge.
-    return _finish(prims, {"top": (0, 0, sz / 2 - 0.005), "pinch": (0, 0, sz / 2 - 0.0095), "support": (0, 0, sz / 2)})
+    points = {"top": (0, 0, sz / 2 - 0.005), "pinch": (0, 0, sz / 2 - 0.0095), "support": (0, 0, sz / 2)}
+    if _elongated(p["size"]):  # the other end, as far from the top's grip as the block allows
+        points |= {"pinch_bottom": (0, 0, -sz / 2 + END_PINCH_DEPTH), "base": (0, 0, -sz / 2)}
+    return _finish(prims, points)
 
 
 def _bottle_geometry(p: dict) -> Geometry:
@@ -324,8 +338,15 @@ class CubeFamily(RigidFamily):
     _geometry = staticmethod(_box_geometry)
 
     def _semantics(self, geo):
-        return ([("pinch", "pinch", "down", "x", "y"), ("grasp", "top", "down", "x", "y")],
-                [("support", "support", "z")])
+        ops = [("pinch", "pinch", "down", "x", "y"), ("grasp", "top", "down", "x", "y")]
+        fns = [("support", "support", "z")]
+        if "pinch_bottom" in geo.points:
+            # A long block has two ends: one hand holds it by one end while the other takes the other end (a
+            # hand-over in mid-air), and it stands on either end ("rest": the face it can stand on, the axis
+            # pointing out of that face, down when it stands there).
+            ops.insert(1, ("pinch", "pinch_bottom", "z", "x", "y"))
+            fns += [("rest", "base", "down"), ("rest", "support", "z")]
+        return ops, fns
 
 
 class BottleFamily(RigidFamily):

@@ -6,21 +6,21 @@ from __future__ import annotations
 import time
 from contextlib import nullcontext
 
-import mujoco
 import numpy as np
 
-from humanoidgen.objects.hands import HAND_POSTURES, hand_points
+from humanoidgen.objects.hands import HAND_POSTURES
 from humanoidgen.planning.approach import APPROACH_DISTANCES, WRAP_TOUCH, Approaches  # noqa: F401 (re-exported)
 from humanoidgen.objects.describe import openness as openness_of
 from humanoidgen.planning.feedback import motion_advice
+from humanoidgen.planning import placing
 from humanoidgen.planning.hand_ops import contents, finger_contacts, is_held
 from humanoidgen.planning.motion import (
     JointPath,
     MotionError,
     plan_arm_motion,
     time_dense_path,
-    track_poses,
 )
+from humanoidgen.planning.part_grip import FOLLOW_ENOUGH, PartFollowing  # noqa: F401 (FOLLOW_ENOUGH re-exported)
 from humanoidgen.planning.paths import time_parametrize
 from humanoidgen.planning.poses import Pose
 from humanoidgen.sim.action import ARM_SLICE, HAND_SLICE
@@ -28,10 +28,15 @@ from humanoidgen.sim.layout import SIDES, Side
 from humanoidgen.sim.scene import SceneObject
 
 RETREAT_DISTANCE = 0.10  # after letting go, the hand backs out along its approach axis this far
-FOLLOW_ENOUGH = 0.9  # a part followed this much of the way, where the arm's reach ends, is followed enough
+RELEASE_IN_PLACE_S = 0.3  # letting go of a part: the fingers first half open this long, the arm still
 FOLLOW_TOL = 0.05  # openness: a part this near the asked openness after a move got there
 FOLLOW_RETRY = 0.3  # a part that moved at least this share of the way but stopped short is pushed again, once
 HAND_MOTION_TIME = 0.5  # seconds to change the fingers' posture on the way (as planner.HAND_MOTION_TIME)
+# A carried object that stands on something (or is within this of it) and is to be turned more than this is first
+# lifted straight up this far: turned where it stands, its lower edge drags on the support and twists it out of a
+# pinch.
+LIFT_BEFORE_TURN_DEG = 20.0
+LIFT_BEFORE_TURN_M = 0.05
 
 
 def _with_hand(arm: np.ndarray, hand: np.ndarray) -> np.ndarray:
@@ -48,7 +53,7 @@ class PlanningError(RuntimeError):
         self.reason = reason
 
 
-class ArmMoves(Approaches):
+class ArmMoves(PartFollowing, Approaches):
     """Arm motion planning for HumanoidMotionPlanner (uses its env, kin, collisions, holding, log, seed).
 
     A planned move is an (n, 13) array per arm: 7 arm joint targets and the hand's 6 finger targets per
@@ -82,6 +87,13 @@ class ArmMoves(Approaches):
         samples = time_dense_path(path.waypoints, 1.0 / self.env.control_hz, v_max=0.3)
         if open_fingers:
             start, goal = self.action[HAND_SLICE[side]].copy(), np.array(HAND_POSTURES["open"])
+            # Unhook in place first (the fingers half open, the arm still): backing out with the fingers still
+            # around a handle drags the part after the hand (a shut drawer pulled open again by ~7 mm).
+            n = int(round(RELEASE_IN_PLACE_S * self.env.control_hz))
+            for k in range(1, n + 1):
+                self.action[HAND_SLICE[side]] = start + (goal - start) * 0.5 * k / n
+                self._step()
+            start = self.action[HAND_SLICE[side]].copy()
             for k, q in enumerate(samples, 1):
                 self.action[ARM_SLICE[side]] = q
                 self.action[HAND_SLICE[side]] = start + (goal - start) * min(1.0, 2.0 * k / len(samples))
@@ -135,6 +147,15 @@ class ArmMoves(Approaches):
         p_hand, R_hand = self.env.hand_pose(side)
         return R_hand.T @ (self.env.object_pose(obj.body)[0] - p_hand)
 
+    def _turns_standing_object(self, side: Side, target: Pose) -> bool:
+        """Whether the hand carries an object that rests on something and the move turns it by more than
+        LIFT_BEFORE_TURN_DEG."""
+        if not self._carries(side) or placing.height_above_support(self.env, self.holding[side]) > LIFT_BEFORE_TURN_M:
+            return False
+        _, R_now = self.kin.ee_pose(side)
+        cos = (np.trace(R_now.T @ target.R) - 1.0) / 2.0
+        return float(np.degrees(np.arccos(np.clip(cos, -1.0, 1.0)))) > LIFT_BEFORE_TURN_DEG
+
     def _plan_side(self, side: Side, target: Pose, path_constraints: list = ()) -> np.ndarray:
         t0 = time.perf_counter()
         try:
@@ -166,6 +187,15 @@ class ArmMoves(Approaches):
         try:
             legs: list[JointPath] = []
             posture = None
+            if target.follow is None and self._turns_standing_object(side, target):
+                try:
+                    p_now, R_now = self.kin.ee_pose(side)
+                    legs.append(plan_arm_motion(self.kin, self.collisions, side, q0,
+                                                (p_now + np.array([0.0, 0.0, LIFT_BEFORE_TURN_M]), R_now),
+                                                allow_sampling=False))
+                    q0 = legs[-1].waypoints[-1]
+                except MotionError:
+                    pass  # no room straight above: turn it from where it is
             if target.follow is not None:
                 try:
                     path = self._follow_part(side, q0, target)
@@ -211,73 +241,6 @@ class ArmMoves(Approaches):
                 hand = goal
             out.append(_with_hand(samples, hand))
         return np.vstack(out)
-
-    def _part_path_poses(self, side: Side, f: dict) -> tuple[list, np.ndarray, float]:
-        """The hand's poses along an articulated part's joint path to f["q_target"], keeping the hand where it
-        is on the part now: (poses, joint values of the part at each, the part's joint value now).
-
-        A hand holding the part turns with it. A fingertip pushing it (nothing held) only keeps its tip on the
-        same spot of the part and its orientation as it is: it presses, it has no grip to turn with, and a
-        wrist turned the whole way a lid swings soon runs out of its joint range."""
-        m, d = self.env.model, self.kin.data
-        jid = m.joint(f["joint"]).id
-        adr = m.jnt_qposadr[jid]
-        part_body = m.jnt_bodyid[jid]
-        q_now = float(self.env.data.qpos[adr])
-        slide = m.jnt_type[jid] == mujoco.mjtJoint.mjJNT_SLIDE
-        # Aim a little past the target along the joint, even past its end stop: the arm lags a loaded part by
-        # about that much, and the stop itself holds the part (forward kinematics ignores joint limits).
-        overshoot = 0.01 if slide else 0.05
-        q_end = float(f["q_target"] + np.sign(f["q_target"] - q_now) * overshoot)
-        p_hand, R_hand = self.kin.ee_pose(side)
-        part_p, part_R = d.xpos[part_body].copy(), d.xmat[part_body].reshape(3, 3).copy()
-        rel_p, rel_R = part_R.T @ (p_hand - part_p), part_R.T @ R_hand
-        poses = []
-        base = d.qpos.copy()
-        n = max(2, int(np.ceil(abs(f["q_target"] - q_now) / (0.01 if slide else 0.03))))
-        q_steps = np.linspace(q_now, q_end, n + 1)[1:]
-        pushing = self.holding[side] is None
-        tip_local = hand_points(side)[f"press_point_base_{side}_hand"]  # in the wrist frame
-        wrist = self.kin.arms[side].wrist
-        wp, wR = d.xpos[wrist].copy(), d.xmat[wrist].reshape(3, 3).copy()
-        tip = wp + wR @ tip_local
-        rel_tip = part_R.T @ (tip - part_p)
-        for qj in q_steps:
-            d.qpos[adr] = qj
-            mujoco.mj_kinematics(m, d)
-            pp, pR = d.xpos[part_body], d.xmat[part_body].reshape(3, 3)
-            if pushing:
-                poses.append((p_hand + (pp + pR @ rel_tip - tip), R_hand))
-            else:
-                poses.append((pp + pR @ rel_p, pR @ rel_R))
-        d.qpos[:] = base
-        self.kin.forward()
-        return poses, q_steps, q_now
-
-    def _follow_part(self, side: Side, q0: np.ndarray, target: Pose) -> np.ndarray:
-        """Track the hand along an articulated part's joint path (a drawer slides, a lid turns)."""
-        f = target.follow
-        poses, q_steps, q_now = self._part_path_poses(side, f)
-        path, reason = track_poses(self.kin, side, q0, poses)
-        if not reason:
-            return np.vstack([q0, path])
-        # Where the arm's reach ends within the last tenth of the way, go that far and say so: whether that is
-        # enough is for the task to judge.
-        way = abs(f["q_target"] - q_now)
-        reached = abs(q_steps[len(path) - 1] - q_now) if len(path) else 0.0
-        if len(path) and reached >= FOLLOW_ENOUGH * way:
-            if reached < 0.995 * way:
-                self.events.append(f"followed {f['obj'][0]} {f['obj'][1]} {100 * reached / way:.0f}% of the way: "
-                                   f"the {side} arm's reach ends there")
-            return np.vstack([q0, path])
-        if target.joint_q is not None:
-            # The solver's goal may sit in another arm posture family: track backward from it to the start and
-            # use that path if it ends where the arm is now.
-            start = (self.kin.ee_pose(side),)
-            back, back_reason = track_poses(self.kin, side, target.joint_q, poses[-2::-1] + [start[0]])
-            if not back_reason and np.max(np.abs(back[-1] - q0)) < 0.15:
-                return np.vstack([q0, back[::-1][1:], target.joint_q])
-        raise MotionError(f"following {f['body']}'s joint: {reason}")
 
     def _part_openness(self, target: Pose) -> float | None:
         if target.follow is None:

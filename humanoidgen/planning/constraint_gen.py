@@ -1,16 +1,18 @@
 """Constraints for the planner API's actions, built from the asset annotations and the task's targets.
 
 - "grasp" / "pinch": the hand's grasp (pinch) point on the operation point, the hand turned to the operation's
-  axes; with `openness`, the same at the part's pose for that openness (pulling a drawer, lifting a lid). An
-  object without that operation but with the other (a laptop screen is pinched at its edge) uses the other.
+  axes (an object the other hand holds: at the point farthest from that hand's grip, a hand-over); with `openness`, the same at the part's pose for that openness (pulling a drawer, lifting a lid). An
+  object without that operation but with the other (an object annotated only for pinching is pinched when grasped) uses the other.
 - "target": the object the hand holds (its centre) to the object's target pose in this task (listed in the scene
   as the object's "targets": a hand-over pose, the place above the bowl, the spot to stack on), keeping the
   hand's orientation and the object upright. Where the task defines none, it lifts the held object 10 cm.
 - "target1" / "target2": the held object to its target pose of that name, where the task defines one; on an
-  articulated object (drawer, laptop, box): the fingertip on its first / second push or flip point (with
+  articulated object (drawer, laptop, box) with a task push: the pre-push pose and the push to the task's
+  openness (push_actions); without one: the fingertip on its first / second push or flip point (with
   `openness`: pushing the part to that openness).
 - "move": the held object's centre (or the grasp point) to `relative_p` (world offset) from another object's
-  centre (`relative_obj_name`, `relative_obj_id`).
+  centre (`relative_obj_name`, `relative_obj_id`); set down as `placing` says (let go just above what is under
+  it, a tilted block stood back on an end, come to from above).
 - "pour": the held cup beside and above a receptacle (relative_obj_name, else the nearest bowl or other
   container), tipped toward it so that its contents fall in.
 Objects may be named by type and obj_id ("cube", 1), as "cube1", or by an alias the scene lists.
@@ -25,6 +27,7 @@ import numpy as np
 from humanoidgen.objects.hands import hand_axes, wrap_point
 from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env, wrist_point_in_env
 from humanoidgen.objects.schema import OperationAnnotation
+from humanoidgen.planning import placing
 from humanoidgen.planning.constraints import Const, Constraint
 from humanoidgen.sim.geometry import axis_angle_mat
 from humanoidgen.sim.layout import HAND_BASE_FRAME, Side
@@ -36,7 +39,13 @@ PUSH_ACTIONS = ("push", "flip", "press")
 # turns (degrees), nearest first, are tried where the annotated direction is out of reach.
 WRAP_TURNS_DEG = (0, 20, -20, 40, -40)
 PUSH_CONE_DEG = 30
+# How far a hand holding a part may turn about the part's parallel axis (a bar, a tab, a screen's edge) while it
+# moves the part: a grasp around a bar or tab lets the part turn in the fingers; a fingertip pinch does not
+# (measured: a pinched screen edge let go within 0.2 s of a 30 deg roll).
+GRASP_ROLL_DEG = 90.0
+PINCH_ROLL_DEG = 0.0
 LIFT = np.array([0.0, 0.0, 0.10])
+TURNED_WITHIN_DEG = 20.0  # a move's quarter-turned hand (placing.py) keeps its palm this near the turned direction
 
 
 class ConstraintGenerationError(ValueError):
@@ -63,6 +72,9 @@ class Generated:
     # natural first: Generated objects the goal solver tries in turn when the first cannot be reached.
     alternatives: list = field(default_factory=list)
     notes: list[str] = field(default_factory=list)  # for the planner's events: a fallback or mapping that was made
+    # A grip on an articulated part with no openness asked (yet): the part and the grip's roll axis, so that the
+    # goal search can prefer the arm posture that keeps the most reach along the part's arc (the next move).
+    grip_part: dict | None = None
 
 
 def _frame_from_two(l1: np.ndarray, w1: np.ndarray, l2: np.ndarray, w2: np.ndarray) -> np.ndarray | None:
@@ -116,9 +128,22 @@ def _posture_score(side: Side, palm_world: np.ndarray, fingers_world: np.ndarray
     return float(fingers_world @ np.array([1.0, 0.0, 0.0]) + 0.5 * palm_world @ INWARD[side])
 
 
+# Ranking a grip on an object the other hand holds: each metre of clearance from that hand's grip counts this much
+# more than posture (up to OTHER_GRIP_CLEAR_M), so the far end of a held block comes first. A grip approached from
+# below an object that rests on something is blocked by its support: it goes last.
+OTHER_GRIP_WEIGHT = 30.0
+OTHER_GRIP_CLEAR_M = 0.10
+FROM_BELOW_PENALTY = 5.0
+
+
 def _rank_operations(env, side: Side, obj_name: str, obj_id: int, operation: str,
-                     openness: float | None, point: str | None = None) -> list[OperationAnnotation]:
-    """The object's annotations for this operation, the ones the hand can take most naturally first."""
+                     openness: float | None, point: str | None = None,
+                     other_grip: list[np.ndarray] | None = None) -> list[OperationAnnotation]:
+    """The object's annotations for this operation, the ones the hand can take most naturally first.
+
+    `other_grip`: where the other hand holds this object (its grip points), or None when no hand holds it. A
+    hand-over then takes the point farthest from the other hand (a block's free end); an object no hand holds
+    is not taken from below."""
     ops = _operations(env, obj_name, obj_id, operation)
     if point is not None:
         chosen = [o for o in ops if o.point == point]
@@ -129,6 +154,7 @@ def _rank_operations(env, side: Side, obj_name: str, obj_id: int, operation: str
     if len(ops) == 1:
         return ops
     loc = hand_axes_local(side)
+    rigid = env.scene.object(obj_name, obj_id).annotations.articulation is None
     first_local = loc["palm"] if operation == "grasp" else loc["ring_2_index"]
     second_local = loc["ring_2_index"] if operation == "grasp" else loc["pinch"]
 
@@ -141,15 +167,33 @@ def _rank_operations(env, side: Side, obj_name: str, obj_id: int, operation: str
                 R = _frame_from_two(first_local, ax(op.approach_axis), second_local, sign * c)
                 if R is not None:
                     best = max(best, _posture_score(side, R @ loc["palm"], R @ loc["fingers"]))
+        if other_grip:
+            where = get_point_in_env(env, op.point, obj_name, obj_id, openness=openness)
+            clear = min(float(np.linalg.norm(where - g)) for g in other_grip)
+            best += OTHER_GRIP_WEIGHT * min(clear, OTHER_GRIP_CLEAR_M)
+        elif rigid and float(ax(op.approach_axis)[2]) > 0.5:
+            best -= FROM_BELOW_PENALTY
         return best
 
     return sorted(ops, key=score, reverse=True)
 
 
+def other_hand_grip(env, holding: dict, side: Side, obj_name: str, obj_id: int) -> list[np.ndarray] | None:
+    """Where the other hand holds this object (its pinch and grasp points), or None if it does not hold it."""
+    other: Side = "left" if side == "right" else "right"
+    held = holding.get(other)
+    if held is None or (held.type_name, held.obj_id) != (obj_name, obj_id):
+        return None
+    return [get_point_in_env(env, f"{kind}_point_base_{other}_hand") for kind in ("pinch", "grasp")]
+
+
 def grasp_or_pinch(env, side: Side, obj_name: str, obj_id: int, operation: str,
-                   openness: float | None, point: str | None = None, finger_offset: float = 0.0) -> Generated:
-    """Every way to take the grip, most natural first: the first, with the others as its alternatives."""
-    ops = _rank_operations(env, side, obj_name, obj_id, operation, openness, point)
+                   openness: float | None, point: str | None = None, finger_offset: float = 0.0,
+                   holding: dict | None = None) -> Generated:
+    """Every way to take the grip, most natural first: the first, with the others as its alternatives. An object
+    the other hand holds (`holding`) is taken as far from that hand's grip as its annotations allow."""
+    other_grip = other_hand_grip(env, holding or {}, side, obj_name, obj_id)
+    ops = _rank_operations(env, side, obj_name, obj_id, operation, openness, point, other_grip)
     turns = WRAP_TURNS_DEG if operation == "grasp" and all(op.width is not None for op in ops) else (0,)
     ways = [g for turn in turns for op in ops
             for g in _grip_variants(env, side, obj_name, obj_id, operation, op, openness, turn, finger_offset)]
@@ -198,7 +242,12 @@ def _grip_variants(env, side: Side, obj_name: str, obj_id: int, operation: str, 
         pinch = get_axis_in_env(env, f"{side}_thumb_2_index")
         r2i = get_axis_in_env(env, f"{side}_ring_2_index")
         loc = hand_axes_local(side)
-        options = _natural_choices(side, loc["ring_2_index"], approach, loc["pinch"], [attach, parallel], fingers_now)
+        # A moving part's edge (a screen's, a lid's tab) is a plate: it is pinched across its thickness (the
+        # attach axis) only; a compact body also along its parallel axis (a cube from either pair of sides).
+        ann = env.scene.object(obj_name, obj_id).annotations
+        on_part = ann is not None and ann.articulation is not None and ann.point(op.point).part is not None
+        options = _natural_choices(side, loc["ring_2_index"], approach, loc["pinch"],
+                                   [attach] if on_part else [attach, parallel], fingers_now)
         fingers_forward = Const(env, "parallel", frame, hand_axis=get_axis_in_env(env, f"{side}_pinch_wrist_2_palm_axis"),
                                 object_axis=np.array([1.0, 0.0, 0.0]), weight=0.1, name="fingers forward (preferred)")
         variants = [cons + [
@@ -210,36 +259,62 @@ def _grip_variants(env, side: Side, obj_name: str, obj_id: int, operation: str, 
     out = []
     for cons in variants:
         gen = Generated(cons, approach_axis=approach, approach_object=body, posture="wrap" if wrap else None)
-        _ride_with_part(env, gen, obj_name, obj_id, op.point, openness)  # the hand is already on the part
+        # The hand is already on the part; a grasp around a bar or tab may roll about the part's parallel axis.
+        _ride_with_part(env, gen, obj_name, obj_id, op.point, openness, grip_axis=op.parallel_axis,
+                        roll_deg=GRASP_ROLL_DEG if kind == "grasp" else PINCH_ROLL_DEG)
         out.append(gen)
     return out
 
 
-def _ride_with_part(env, gen: Generated, obj_name: str, obj_id: int, point: str, openness: float | None) -> None:
+def _ride_with_part(env, gen: Generated, obj_name: str, obj_id: int, point: str, openness: float | None,
+                    grip_axis: str | None = None, roll_deg: float = 0.0) -> None:
     """Moving an articulated part to `openness` with the hand on it: the hand follows the part's joint path from
-    where it touches it now (the solved goal is a fallback) and comes in along no approach axis."""
+    where it touches it now (the solved goal is a fallback) and comes in along no approach axis. `grip_axis`:
+    the part's axis a holding grip may roll about on the way, up to `roll_deg` (part_grip.track_rolling)."""
     obj = env.scene.object(obj_name, obj_id)
     art = obj.annotations.articulation if obj.annotations is not None else None
-    if openness is None or art is None:
+    if art is None:
+        return
+    if openness is None:
+        gen.grip_part = {"body": obj.body, "joint": f"{obj.body}_{art.joint}", "obj": (obj_name, obj_id),
+                         "grip_axis": grip_axis, "roll_deg": roll_deg}
         return
     gen.follow = {"body": obj.body, "joint": f"{obj.body}_{art.joint}", "q_target": art.joint_position(openness),
-                  "part_point": point, "obj": (obj_name, obj_id)}
+                  "part_point": point, "obj": (obj_name, obj_id), "grip_axis": grip_axis,
+                  "roll_deg": roll_deg}
     gen.approach_axis = None
 
 
-def keep_orientation(env, side: Side, held: tuple[str, int] | None = None) -> list[Constraint]:
-    """Prefer the hand's present orientation (soft); a held object's up axis stays within 10 deg of now (hard)."""
+def keep_orientation(env, side: Side, held: tuple[str, int] | None = None, up: np.ndarray | None = None,
+                     quarter_turns: int = 0) -> list[Constraint]:
+    """Prefer the hand's present orientation (soft; turned `quarter_turns` quarter turns about the vertical); a held
+    object's up axis stays within 10 deg of now (hard). With `up` (a world direction), the held object's own z
+    axis turns to within 10 deg of it instead, the hand preferring its fingers forward (how a hand presents what
+    it turns)."""
     frame = HAND_BASE_FRAME[side]
+    if held is not None and up is not None:
+        z = get_axis_in_env(env, "z", obj_type=held[0], obj_id=held[1])
+        to = np.asarray(up, float) / np.linalg.norm(up)
+        return [Constraint(env, "angle", frame, hand_axis=z, object_axis=to, lower=0.0, upper=np.radians(10),
+                           name=f"{held[0]} {held[1]}'s z axis toward {np.round(to, 2).tolist()}"),
+                Const(env, "parallel", frame, hand_axis=get_axis_in_env(env, f"{side}_grasp_wrist_2_palm_axis"),
+                      object_axis=np.array([1.0, 0.0, 0.0]), weight=0.1, name="fingers forward (preferred)")]
+    palm = get_axis_in_env(env, f"{side}_grasp_axis")
+    r2i = get_axis_in_env(env, f"{side}_ring_2_index")
+    turned = f" turned {quarter_turns * 90:+d} deg about the vertical" if quarter_turns else ""
     out: list[Constraint] = [
-        Const(env, "parallel", frame, hand_axis=get_axis_in_env(env, f"{side}_grasp_axis"),
-              object_axis=get_axis_in_env(env, f"{side}_grasp_axis"), weight=0.5, name="keep the palm's direction"),
-        Const(env, "parallel", frame, hand_axis=get_axis_in_env(env, f"{side}_ring_2_index"),
-              object_axis=get_axis_in_env(env, f"{side}_ring_2_index"), weight=0.5, name="keep the fingers' direction"),
+        Const(env, "parallel", frame, hand_axis=palm, object_axis=placing.turned_about_vertical(palm, quarter_turns),
+              weight=0.5, name=f"keep the palm's direction{turned}"),
+        Const(env, "parallel", frame, hand_axis=r2i, object_axis=placing.turned_about_vertical(r2i, quarter_turns),
+              weight=0.5, name=f"keep the fingers' direction{turned}"),
     ]
+    if quarter_turns:  # a turned hand is a way of its own, not a preference the solver may give up near the start
+        out.append(Constraint(env, "angle", frame, hand_axis=palm, object_axis=out[0].object_axis, lower=0.0,
+                              upper=np.radians(TURNED_WITHIN_DEG), name=f"the palm{turned}"))
     if held is not None:
-        up = get_axis_in_env(env, "z", obj_type=held[0], obj_id=held[1])
-        out.append(Constraint(env, "angle", frame, hand_axis=up, object_axis=up, lower=0.0, upper=np.radians(10),
-                              name=f"keep {held[0]} {held[1]} upright"))
+        up_now = get_axis_in_env(env, "z", obj_type=held[0], obj_id=held[1])
+        out.append(Constraint(env, "angle", frame, hand_axis=up_now, object_axis=up_now, lower=0.0,
+                              upper=np.radians(10), name=f"keep {held[0]} {held[1]} upright"))
     return out
 
 
@@ -257,7 +332,7 @@ def generate(env, holding: dict, obj_name: str, obj_id: int, action: str, side: 
         relative_obj_name, relative_obj_id = rel.type_name, rel.obj_id
     if action in ("grasp", "pinch"):
         operation, note = ta.operation_for(obj, action)
-        gen = grasp_or_pinch(env, side, obj_name, obj_id, operation, openness, point, finger_offset)
+        gen = grasp_or_pinch(env, side, obj_name, obj_id, operation, openness, point, finger_offset, holding)
         if note is not None:
             for g in [gen, *gen.alternatives]:
                 g.posture = g.posture or ("pinch" if operation == "pinch" else None)  # hand_grasp closes as a pinch
@@ -271,9 +346,14 @@ def generate(env, holding: dict, obj_name: str, obj_id: int, action: str, side: 
         if not articulated:
             raise ConstraintGenerationError(f"{obj_name} has no push/flip/press annotation; actions for it: "
                                             f"{', '.join(ta.actions_of(obj))}")
+        # The task's push (pre-push pose, then the staged push to its openness), where it defines one.
+        if (gen := ta.task_push(env, holding, obj, action, side, openness)) is not None:
+            return gen
         k, note = ta.push_index(obj, action)
         gen = _push(env, side, obj_name, obj_id, k, openness)
         gen.notes += [note] if note else []
+        if action in ("target1", "target2"):
+            gen.notes.append(ta.annotated_push_note(obj, action, k))
         return gen
     if action == "pour":
         return ta.pour(env, holding, obj, side, rel)
@@ -307,7 +387,9 @@ def _push(env, side: Side, obj_name: str, obj_id: int, k: int, openness: float |
 
 
 def _move(env, holding: dict, obj_name: str, obj_id: int, side: Side, rel, relative_p) -> Generated:
-    """The held object's centre (or, holding nothing, the grasp point) at `relative_p` from `rel`'s centre."""
+    """The held object's centre (or, holding nothing, the grasp point) at `relative_p` from `rel`'s centre. A held
+    object is set down as `placing` says: stood back up if it is tilted, let go just above what is under it, and,
+    for a cube, with the hand also tried a quarter turn about the vertical (the move's alternatives)."""
     if rel is None:
         raise ConstraintGenerationError("'move' needs relative_obj_name (and relative_obj_id, relative_p: the world "
                                         "offset from that object's centre)")
@@ -316,11 +398,42 @@ def _move(env, holding: dict, obj_name: str, obj_id: int, side: Side, rel, relat
     held_here = held is not None and (held.type_name, held.obj_id) == (obj_name, obj_id)
     base = get_point_in_env(env, "center", rel.type_name, rel.obj_id)
     offset = np.zeros(3) if relative_p is None else np.asarray(relative_p, float)
-    hand_point = (get_point_in_env(env, "center", obj_name, obj_id) if held_here
-                  else get_point_in_env(env, f"grasp_point_base_{side}_hand"))
-    return Generated([Constraint(env, "point2point", frame, hand_key_point=hand_point, object_key_point=base + offset,
-                                 name=f"{obj_name} {obj_id} at {rel.type_name} {rel.obj_id} + {offset.round(3).tolist()}"),
-                      *keep_orientation(env, side, (obj_name, obj_id) if held_here else None)])
+    label = f"{obj_name} {obj_id} at {rel.type_name} {rel.obj_id} + {offset.round(3).tolist()}"
+    if not held_here:
+        hand_point = get_point_in_env(env, f"grasp_point_base_{side}_hand")
+        return Generated([Constraint(env, "point2point", frame, hand_key_point=hand_point, object_key_point=base + offset,
+                                     name=label), *keep_orientation(env, side)])
+    obj = env.scene.object(obj_name, obj_id)
+    centre = get_point_in_env(env, "center", obj_name, obj_id)
+    R_now = env.data.xmat[env.model.body(obj.body).id].reshape(3, 3).copy()
+    ups = placing.stand_up_directions(env, side, obj, rel)
+    turns = (0, 1, -1) if not ups and placing.quarter_turn_symmetric(obj) else (0,)
+    ways: list[Generated] = []
+    notes: list[str] = []
+    for up in ups or [None]:
+        R_goal = R_now if up is None else placing.turning(R_now[:, 2], up) @ R_now
+        goal, lifted = placing.release_lift(env, obj, base + offset, R_goal)
+        notes += [lifted] if lifted and not notes else []
+        above = placing.height_above(env, obj, goal, R_goal)
+        low = above < placing.RAISED_RELEASE_M[0]
+        # Set down on or beside something, the fingers may be in a neighbour's way: let go higher (last resort).
+        for raise_by in (0.0, *(placing.RAISED_RELEASE_M if low else ())):
+            for t in turns if not raise_by else (0,):
+                gen = Generated([Constraint(env, "point2point", frame, hand_key_point=centre, name=label,
+                                            object_key_point=goal + np.array([0.0, 0.0, raise_by])),
+                                 *keep_orientation(env, side, (obj_name, obj_id), up, t)])
+                if above + raise_by < placing.SET_DOWN_M:  # set down: come from above, back out upward
+                    gen.approach_axis = placing.DOWN
+                if raise_by:
+                    gen.notes.append(f"{obj_name} {obj_id} is let go {raise_by * 100:.1f} cm higher than asked: lower "
+                                     f"down the {side} hand would be in something's way")
+                ways.append(gen)
+    if ups:
+        notes.append(f"{obj_name} {obj_id} is tilted in the {side} hand: 'move' stands it on an end to set it down "
+                     f"(its z axis {'up' if ups[0][2] > 0 else 'down'}, the end the hand holds on top)")
+    ways[0].notes += notes
+    ways[0].alternatives = ways[1:]
+    return ways[0]
 
 
 # Imported last: target_actions builds on this module's Generated and keep_orientation (and is imported with it

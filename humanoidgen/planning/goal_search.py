@@ -25,7 +25,7 @@ from contextlib import nullcontext
 import numpy as np
 
 from humanoidgen.objects.describe import openness as openness_of
-from humanoidgen.planning.arm_moves import FOLLOW_ENOUGH, PlanningError
+from humanoidgen.planning.arm_moves import PlanningError
 from humanoidgen.planning.feedback import body_label, contact_advice, push_advice, range_advice
 from humanoidgen.planning.goal_solver import GoalResult
 from humanoidgen.planning.goal_targets import AxisWithin
@@ -41,6 +41,8 @@ RELAX_BUDGET_S = 6.0  # seconds for rungs 3 and 4 together
 RELAX_SOLVE_S = 2.0  # no new solver seed after this long in one of their solves
 RELAX_MAX_MISS = 0.08  # m: grips missing by more than this are not tried with the wrist's freedom
 RELAX_SEEDS = 4  # and at most this many seeds each (the current and nominal postures, two random)
+ARC_GOOD = 1.8  # a grasp posture that can move its part this far (of 2: both ways to the ends) is kept as is
+ARC_MARGIN = 0.1  # another posture is taken only if it reaches this much more of the arc
 ON_POINT = 0.025  # a fingertip this near a push point is on it: a push from there rides with the part
 PUSH_MIN_COS = 0.3  # a fingertip drives a part only where the part gives way within ~70 deg of the push
 
@@ -71,6 +73,8 @@ class GoalSearch:
                     result = first_try  # the part's own path says best why not
             if not result.success and not riding and getattr(self, "wider_search", True):
                 result, gen, slack = self._wider_goal(side, gen, tried, ignored_before, result)
+            if result.success and not riding and getattr(gen, "grip_part", None) is not None:
+                result, gen = self._prefer_arc(side, gen, result, ignored_before)
         finally:
             self.collisions.ignored_bodies = ignored_before
             self.kin.sync(self.env.data.qpos)
@@ -120,11 +124,10 @@ class GoalSearch:
         self._use_ignores(side, None, set(self.collisions.ignored_bodies))
         arm = self.kin.arms[side]
         q0 = np.clip(self.kin.arm_q(side), arm.lo, arm.hi)
-        poses, q_steps, q_now = self._part_path_poses(side, follow)
-        path, reason = track_poses(self.kin, side, q0, poses)
+        path, q_steps, q_now, reason = self._track_part(side, q0, follow)
         way = abs(follow["q_target"] - q_now)
         reached = abs(q_steps[len(path) - 1] - q_now) if len(path) else 0.0
-        if not reason or (len(path) and reached >= FOLLOW_ENOUGH * way):
+        if not reason or (len(path) and reached >= self._follow_enough(side) * way):
             q = path[-1]
             self.kin.set_arm(side, q)
             self.kin.forward()
@@ -164,6 +167,7 @@ class GoalSearch:
             # A grip whose goal solves but whose straight approach does not fit is kept only as a last resort.
             if retry.success and self._approach_fits(side, retry, alternative):
                 result, gen = retry, alternative
+                self.events.extend(getattr(alternative, "notes", []))  # what this way does differently
                 break
             if retry.success and not result.success:
                 result, gen = retry, alternative
@@ -175,6 +179,37 @@ class GoalSearch:
         if not result.success:
             gen = first_gen
         return result, gen, tried
+
+    # -- a grip on an articulated part: the arm posture that keeps the part's arc in reach ----------------
+    def _prefer_arc(self, side: Side, gen, result: GoalResult, ignored_before: set[int]) -> tuple[GoalResult, object]:
+        """A grasp of a drawer handle or a lid's tab is nearly always followed by moving the part, and the arm
+        cannot change its posture family while it holds it: where the solved posture reaches little of the
+        part's arc (`ArmMoves._arc_span`), try the grip with the wrist's freedom (CONE_DEG) and keep the posture
+        that reaches the most (an event says so)."""
+        t0 = time.perf_counter()
+        kind = "pinch" if gen.posture == "pinch" else "grasp"
+        best_span = self._arc_span(side, gen.grip_part, result.q, kind)
+        if best_span >= ARC_GOOD:
+            return result, gen
+        first_span, best = best_span, (result, gen)
+        for g in [gen] + [a for a in gen.alternatives if a.grip_part is not None][:RELAXED_WAYS - 1]:
+            relaxed = _relax(side, g)
+            if not relaxed or time.perf_counter() - t0 > RELAX_BUDGET_S:
+                continue
+            self._use_ignores(side, g, ignored_before)
+            retry = self.solver.solve(side, relaxed, self.kin.arm_q(side), self.nominal[side],
+                                      time_limit=RELAX_SOLVE_S, max_seeds=RELAX_SEEDS)
+            if not retry.success or not self._approach_fits(side, retry, g):
+                continue
+            span = self._arc_span(side, g.grip_part, retry.q, kind)
+            if span > best_span + ARC_MARGIN:
+                best_span, best = span, (retry, g)
+        if best[0] is not result:
+            obj = "{} {}".format(*gen.grip_part["obj"])
+            self.events.append(f"the {side} hand takes {obj} with the wrist turned a little, in an arm posture that "
+                               f"can move it over {50 * best_span:.0f}% of its arc (the exact grip: "
+                               f"{50 * first_span:.0f}%)")
+        return best
 
     # -- rungs 3 and 4: closer to the table, the wrist's freedom -------------------------------------------
     def _wider_goal(self, side: Side, gen, tried: list, ignored_before: set[int], failed: GoalResult):

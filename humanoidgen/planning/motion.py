@@ -76,9 +76,10 @@ def track_poses(kin: Kinematics, side: Side, q_start: np.ndarray, poses: list[tu
         kin.forward()
         p, R = kin.ee_pose(side)
         pos_err = np.linalg.norm(p_t - p)
-        if pos_err > 5e-3 or np.linalg.norm(rotation_error(R, R_t)) > np.radians(3):
+        rot_err = np.linalg.norm(rotation_error(R, R_t))
+        if pos_err > 5e-3 or rot_err > np.radians(3):
             reason = (f"the straight motion leaves the arm's reach or joint limits at {100 * (k + 1) / len(poses):.0f}% "
-                      f"of the way ({pos_err * 1000:.0f} mm off)")
+                      f"of the way ({pos_err * 1000:.0f} mm, {np.degrees(rot_err):.0f} deg off)")
             break
         bad = [c.describe(kin) for c in path_constraints if c.violation(kin) >= 2e-3]
         if bad:
@@ -102,6 +103,12 @@ def plan_arm_motion(kin: Kinematics, cw: CollisionWorld, side: Side, q_start: np
     p0, R0 = kin.ee_pose(side)
     poses = screw_interpolate(p0, R0, target[0], target[1])
     waypoints, reason = track_poses(kin, side, q_start, poses, path_constraints)
+    if reason and q_goal is not None and len(waypoints) >= len(poses) - 1:
+        # Only the very end could not be tracked (the damped steps stall a hair short of a goal boxed in by the path
+        # constraints or the joint limits); the goal solver's configuration is that end: land on it in joint space.
+        landing = joint_landing(kin, side, waypoints[-1] if len(waypoints) else q_start, q_goal, path_constraints)
+        if landing is not None:
+            waypoints, reason = np.vstack([waypoints.reshape(-1, 7), landing]), ""
     if not reason and q_goal is None:
         q_goal = waypoints[-1]  # the tracked end is a valid goal for the sampling planner too
     if not reason:
@@ -122,6 +129,39 @@ def plan_arm_motion(kin: Kinematics, cw: CollisionWorld, side: Side, q_start: np
     if not result.ok:
         raise MotionError(f"{reason}; the sampling planner found no path either: {result.reason}")
     return JointPath(result.path, "rrt_connect", reason)
+
+
+LANDING_MAX_RAD = 0.3  # a joint-space landing on the goal covers at most this much per joint
+LANDING_STEPS = 6
+LANDING_AXIS_TOL = np.radians(1.0)  # an axis path constraint may sag this much on the short landing (tracking: 0.1 deg)
+LANDING_AXIS_MAX = np.radians(5.0)
+
+
+def joint_landing(kin: Kinematics, side: Side, q_from: np.ndarray, q_goal: np.ndarray,
+                  path_constraints: list[Constraint] = ()) -> np.ndarray | None:
+    """Joint-space waypoints from `q_from` to `q_goal` (a short way) that keep the path constraints, or None.
+
+    An axis constraint may sag LANDING_AXIS_TOL on the way, or as far as the goal itself misses it (up to
+    LANDING_AXIS_MAX): a held object that turned a little in the hand since the plan read its axis makes the goal
+    and the path constraint disagree by that much, and the goal is where the plan asked to go."""
+    if np.max(np.abs(np.asarray(q_goal) - q_from)) > LANDING_MAX_RAD:
+        return None
+    base = kin.data.qpos.copy()
+    steps = [q_from + (q_goal - q_from) * t for t in np.linspace(0.0, 1.0, LANDING_STEPS + 1)[1:]]
+    try:
+        kin.set_arm(side, q_goal)
+        kin.forward()
+        tols = [max(LANDING_AXIS_TOL, min(c.violation(kin) + 1e-3, LANDING_AXIS_MAX))
+                if c.type in ("parallel", "angle") else 2e-3 for c in path_constraints]
+        for q in steps:
+            kin.set_arm(side, q)
+            kin.forward()
+            if any(c.violation(kin) > tol for c, tol in zip(path_constraints, tols)):
+                return None
+    finally:
+        kin.data.qpos[:] = base
+        kin.forward()
+    return np.array(steps)
 
 
 # The arm keeps this far from obstacles along a path (the simulated arm cuts corners a little); a held object

@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from humanoidgen.objects.hands import HAND_POSTURES
-from humanoidgen.planning import constraint_gen
+from humanoidgen.planning import constraint_gen, grip_intent, push_actions
 from humanoidgen.planning.collision import CollisionWorld
 from humanoidgen.planning.constraints import Const, Constraint, ConstraintError
 from humanoidgen.planning.goal_solver import GoalResult, GoalSolver
@@ -302,7 +302,31 @@ class HumanoidMotionPlanner(GoalSearch, ArmMoves):
         (side,) = _sides(hand_name)
         if not constraints:
             raise PlanningError("generate_end_effector_pose", "no constraints given")
-        return self._solve_goal(list(constraints), side)
+        result, pose = self._solve_grip_or_goal(list(constraints), side)
+        push_actions.mark(pose, constraints)  # target1/target2 on a part: the move does the push
+        return result, pose
+
+    def _solve_grip_or_goal(self, constraints: list, side: Side) -> tuple[GoalResult, Pose]:
+        """A goal; for plan-written constraints that put a grip point on an object, solved as that grip
+        (the object may be touched, the hand comes in along the grip's axis; see grip_intent)."""
+        self.kin.sync(self.env.data.qpos)
+        intent = grip_intent.infer(self.env, side, constraints, self.holding)
+        if intent is None:
+            return self._solve_goal(constraints, side)
+        ways = [intent.first, *intent.first.alternatives]
+        mine = {id(c): c for g in ways for c in g.constraints}
+        try:
+            for c in intent.first.constraints:  # the goal search reads the grip from the first constraint
+                c.meta = intent.first
+            result, pose = self._solve_goal(list(intent.first.constraints), side)
+        finally:  # the plan's Constraint objects stay as the plan made them (it may use them again)
+            for c in mine.values():
+                c.__dict__.pop("meta", None)
+        if (dz := intent.raised_by(result)) > 0.002:
+            self.events.append(f"the {intent.operation} of {intent.obj.type_name} {intent.obj.obj_id} is taken "
+                               f"{dz * 1000:.0f} mm higher than asked, at its annotated {intent.operation} height: at "
+                               "the height asked the fingers would go into the table")
+        return result, pose
 
     def _touched_by(self, gen) -> set[int]:
         """The body a grip, pinch or push is meant to touch (none for other constraints)."""
@@ -325,6 +349,14 @@ class HumanoidMotionPlanner(GoalSearch, ArmMoves):
         return msg + (": the arm could not keep to the planned motion (a heavy load or a joint at its limit): "
                       "try a shorter move or a target nearer the robot")
 
+    def _turned_approach(self, side: Side, target: Pose) -> np.ndarray | None:
+        """The last approach axis turned as the hand turns on this move: the way out of a grip stays the way in
+        relative to the hand (a block turned on its side for a hand-over is let go sideways, not up)."""
+        axis = self.last_approach.get(side)
+        if axis is None:
+            return None
+        return target.R @ self._current_pose(side).R.T @ axis
+
     def _attach_held(self, side: Side) -> None:
         held = self.holding[side]
         self.kin.detach(side)
@@ -342,6 +374,8 @@ class HumanoidMotionPlanner(GoalSearch, ArmMoves):
         poses = list(pose) if hand_name == "all" else [pose]
         if len(poses) != len(sides):
             raise PlanningError("move_to_pose_with_screw", "with hand_name='all', give a list of two poses [left, right]")
+        if len(sides) == 1 and getattr(poses[0], "push", None) is not None:
+            return push_actions.execute(self, sides[0], poses[0])  # a task's push on a part (target1/target2)
         samples: dict[Side, np.ndarray] = {}
         targets: dict[Side, Pose] = {}
         for side, target in zip(sides, poses):
@@ -349,7 +383,7 @@ class HumanoidMotionPlanner(GoalSearch, ArmMoves):
                 raise PlanningError("move_to_pose_with_screw", f"pose must be a Pose (from generate_end_effector_pose), got {type(target).__name__}")
             mine = [c for c in (path_constraints or []) if c.side == side]
             samples[side] = self._plan_side(side, target, mine)
-            self.last_approach[side] = target.approach_axis if target.approach_axis is not None else self.last_approach.get(side)
+            self.last_approach[side] = target.approach_axis if target.approach_axis is not None else self._turned_approach(side, target)
             self.closing[side] = target.posture
             targets[side] = target
         if len(sides) == 2:

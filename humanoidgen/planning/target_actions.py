@@ -5,6 +5,9 @@ to one it has. (Grasp, pinch, push and move constraints are in `constraint_gen`.
   (`tasks/targets.py`), the hand keeping its orientation (a cost) and the object its tilt (within 10 deg). A task
   without that target for the object: "target" lifts the object 10 cm (and says so in the events); the others are
   an error that lists what the object has.
+- "target1" / "target2" on an articulated object with a task push target: the pre-push pose and the staged push
+  to the task's openness (`push_actions`). Without one: the fingertip on the object's first / second annotated
+  push/flip/press point (`constraint_gen._push`), which the events say.
 - "pour": the held cup tipped over a receptacle (the one named by relative_obj_name, else the nearest object with
   a "storage" annotation), its pour lip leading.
 """
@@ -14,6 +17,8 @@ from __future__ import annotations
 import numpy as np
 
 from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env
+from humanoidgen.planning import push_actions
+from humanoidgen.planning import placing
 from humanoidgen.planning.constraint_gen import LIFT, ConstraintGenerationError, Generated, keep_orientation
 from humanoidgen.planning.constraints import Const, Constraint
 from humanoidgen.sim.layout import HAND_BASE_FRAME, Side
@@ -46,8 +51,28 @@ def scene_targets(env):
 
 
 def has_task_target(env, obj: SceneObject, name: str, side: Side) -> bool:
+    """A target pose for the held object (a push target is not one: the fingertip pushes the part)."""
     targets = scene_targets(env)
-    return targets is not None and targets.find(obj.type_name, obj.obj_id, name, side) is not None
+    t = targets.find(obj.type_name, obj.obj_id, name, side) if targets is not None else None
+    return t is not None and t.spec.push is None
+
+
+def task_push(env, holding: dict, obj: SceneObject, action: str, side: Side,
+              openness: float | None) -> Generated | None:
+    """target1/target2 on an articulated object as the task defines its push (None where it defines none)."""
+    targets = scene_targets(env)
+    push = targets.push(obj.type_name, obj.obj_id) if targets is not None else None
+    if push is None or action not in ("target1", "target2"):
+        return None
+    return push_actions.generate(env, holding, obj, side, action, push.spec.push, openness)
+
+
+def annotated_push_note(obj: SceneObject, action: str, k: int) -> str:
+    """Said where target1/target2 fall back to the object's annotated push points (the task defines no push)."""
+    ops = [o for o in obj.annotations.operations if o.operation in PUSH_OPERATIONS]
+    at = f"its {ops[k].operation!r} at {ops[k].point}" if k < len(ops) else f"push point {k + 1}"
+    return (f"this task defines no push for {_label(obj)}: {action} is {at} (its annotated push points, in order); "
+            "give openness= to push the part along")
 
 
 def require_held(holding: dict, obj: SceneObject, side: Side, action: str) -> SceneObject:
@@ -81,7 +106,10 @@ def to_target(env, holding: dict, obj: SceneObject, action: str, side: Side) -> 
     require_held(holding, obj, side, action)
     frame = HAND_BASE_FRAME[side]
     centre = get_point_in_env(env, "center", obj.type_name, obj.obj_id)
-    keep = keep_orientation(env, side, None if art is not None else (obj.type_name, obj.obj_id))
+    up = getattr(target.spec, "up", None) if target is not None and art is None else None  # the target turns it
+    if target is not None and art is None and up is None:  # a tilted object is stood back up to be set down
+        up = next(iter(placing.stand_up_directions(env, side, obj, None) or []), None)
+    keep = keep_orientation(env, side, None if art is not None else (obj.type_name, obj.obj_id), up)
     if target is not None:
         goal = target.position(env)
         gen = Generated([Constraint(env, "point2point", frame, hand_key_point=centre, object_key_point=goal,

@@ -294,12 +294,14 @@ class Upright(_Strict):
     type: Literal["upright"] = "upright"
     obj: Ref
     max_tilt_deg: float = Field(default=15.0, gt=0, le=180)
+    either_end: bool = False  # an object alike at both ends (a block) stands upright on either of them
 
     def refs(self) -> list[ObjRef]:
         return [self.obj]
 
     def evaluate(self, env) -> PredicateResult:
         t = _tilt_deg(_pose(env, self.obj)[1])
+        t = min(t, 180.0 - t) if self.either_end else t
         return PredicateResult(ok=t <= self.max_tilt_deg,
                                detail=f"{_name(self.obj)} tilted {t:.1f}° (max {self.max_tilt_deg:.1f}°)")
 

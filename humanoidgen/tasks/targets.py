@@ -16,6 +16,21 @@ the bowl, a stacking spot, the hand-over pose). A task lists them under `targets
   cm above where the bottle stood"). `point` uses a key point of the reference instead of its centre.
 - `hand` limits a target to the hand holding the object (a hand-over: the right hand's "target" is the hand-over
   pose, the left hand's the final place); a target without `hand` applies to both.
+- `push` (articulated objects: a lid, a laptop screen, a drawer front) defines the paper's push pair at once:
+  "target1" is the pre-push pose (the index fingertip just off the part at the push point) and "target2" the
+  push itself, which moves the part along its joint to openness `to` (planning/push_actions.py executes it):
+
+    targets:
+      - {object: "box[0]", push: {point: lid_front, face: inner, to: 0.97, aim: forward, inset: [[0.3, 0.01], [0.97, 0.06]]}}
+      - {object: "laptop[0]", push: {point: screen_edge, face: outer, to: 0.0, aim: [0.5, 0, -0.866]}}
+
+  The fingertip's contact point is `point` + inset * axes[0] (in along the part, e.g. "edge_in") + depth * axes[1]
+  (the part's normal, e.g. "lid_in": into it from its outer face); `face: inner` puts the fingertip on the part's
+  inner side (under a lid: lifting it), `outer` on its outer face (pressing it shut). `inset` is a number or
+  [openness, metres] pairs (linear between them: the contact moves in along a rising lid). The fingertip points
+  within `aim_cone_deg` of `aim` (an object axis name, or a world direction); `palm_across` keeps the palm across
+  an object axis (70-110 deg). The push goes in stages of at most `step` openness; target1 stands `standoff` off
+  the contact (inner: back against `aim`, to slide in under the edge; outer: out of the outer face).
 
 Positions are those of the object's centre, at the height where the plan should let go (the paper: "release it
 slightly above the target position").
@@ -50,6 +65,60 @@ def _as_list(v: Any) -> Any:
     return [v] if isinstance(v, (str, dict)) else v
 
 
+PUSH_NAMES = ("target1", "target2")  # a push target defines both: the pre-push pose and the push
+MAX_PUSH_OFFSET_M = 0.2  # insets, depths and standoffs: a fingertip's contact on a part is centimetres off its point
+
+
+class PushSpec(Strict):
+    """How a fingertip pushes an articulated object's part to an openness (see the module docstring)."""
+
+    point: str  # a key point on the moving part
+    to: float = Field(ge=0.0, le=1.0)  # the openness the push brings the part to
+    face: Literal["inner", "outer"]
+    axes: tuple[str, str] = ("edge_in", "lid_in")  # (in along the part, into the part from its outer face)
+    inset: float | list[tuple[float, float]] = 0.0  # metres along axes[0]; or [openness, metres] pairs
+    depth: float = Field(default=0.012, ge=0.0, le=0.05)  # fingertip centre from the point, along axes[1]
+    aim: str | tuple[float, float, float]  # the fingertip points this way: an object axis, or a world direction
+    aim_cone_deg: float = Field(default=40.0, gt=0.0, le=90.0)
+    palm_across: str | None = None  # an object axis the palm stays across (70-110 deg), e.g. "up"
+    step: float = Field(default=0.15, ge=0.02, le=0.5)  # openness per stage
+    standoff: float = Field(default=0.05, ge=0.0, le=0.15)  # target1: metres off the contact point
+
+    @field_validator("inset")
+    @classmethod
+    def _inset_table(cls, v: Any) -> Any:
+        pairs = [(0.0, v)] if isinstance(v, (int, float)) else v
+        if not pairs:
+            raise bad("inset: give a number (metres) or [openness, metres] pairs")
+        for o, m in pairs:
+            if not 0.0 <= o <= 1.0:
+                raise bad(f"inset: openness {o:g} is not in [0, 1]")
+            check_number("inset", m, MAX_PUSH_OFFSET_M, "m")
+        if not isinstance(v, (int, float)):
+            return sorted(v)
+        return v
+
+    @field_validator("aim")
+    @classmethod
+    def _aim_direction(cls, v: Any) -> Any:
+        if isinstance(v, tuple):
+            if not all(math.isfinite(x) for x in v) or math.hypot(*v) < 1e-6:
+                raise bad(f"aim: {list(v)} is not a direction (give a non-zero world vector or an object axis name)")
+        return v
+
+    def inset_at(self, openness: float) -> float:
+        """The contact's inset (m along axes[0]) with the part at `openness`: linear between the table's pairs."""
+        if isinstance(self.inset, (int, float)):
+            return float(self.inset)
+        os_, ms = zip(*self.inset)
+        return float(np.interp(openness, os_, ms))
+
+    def label(self) -> str:
+        how = (f"under {self.point} (the part's inner face) lifts" if self.face == "inner"
+               else f"on the outer face at {self.point} presses")
+        return f"push: the index fingertip {how} it to openness {self.to:g}, in stages"
+
+
 class TargetSpec(Strict):
     """One named target pose of one object (see the module docstring)."""
 
@@ -62,12 +131,31 @@ class TargetSpec(Strict):
     point: str | None = None  # a key point of each reference object (default: its centre)
     offset: tuple[float, float, float] = (0.0, 0.0, 0.0)  # world frame, with `relative_to` only
     anchor: Literal["current", "initial"] = "current"
+    push: PushSpec | None = None  # an articulated part pushed by a fingertip: defines target1 and target2
+    # Where the held object's own z axis points at the target (a world direction, e.g. [0, -1, 0]: a block laid along
+    # y for a hand-over); the hand turns it there. Default: the object keeps its tilt.
+    up: tuple[float, float, float] | None = None
     note: str | None = Field(default=None, max_length=200)  # what the target is for, shown in the prompts
 
     @field_validator("pos", "offset", mode="before")
     @classmethod
     def _finite_vectors(cls, v: Any, info) -> Any:
         return check_vector("", v, MAX_POSITION_M if info.field_name == "pos" else MAX_OFFSET_M)
+
+    @field_validator("up", mode="before")
+    @classmethod
+    def _finite_up(cls, v: Any) -> Any:
+        return check_vector("", v, MAX_POSITION_M)
+
+    @field_validator("up")
+    @classmethod
+    def _unit_up(cls, v: tuple[float, float, float] | None) -> tuple[float, float, float] | None:
+        if v is None:
+            return v
+        n = math.sqrt(sum(x * x for x in v))
+        if n < 1e-6:
+            raise bad("up: give a direction (e.g. [0, -1, 0]), not the zero vector")
+        return (v[0] / n, v[1] / n, v[2] / n)
 
     @field_validator("random")
     @classmethod
@@ -88,8 +176,17 @@ class TargetSpec(Strict):
 
     @model_validator(mode="after")
     def _one_kind(self) -> TargetSpec:
+        if self.push is not None:
+            others = [f for f in ("pos", "random", "relative_to", "point", "hand", "up") if getattr(self, f) is not None]
+            if others or any(self.offset) or self.anchor != "current":
+                raise bad(f"a push target takes only object, push and note, not {', '.join(others or ['offset/anchor'])}")
+            if self.name == "target2":  # (a dumped spec carries the default "target")
+                raise bad("a push target defines target1 (the pre-push pose) and target2 (the push) together: "
+                          "leave out name")
+            return self
         if (self.pos is None) == (self.relative_to is None):
-            raise bad("give either pos (a world position) or relative_to (+ offset), not both or neither")
+            raise bad("give either pos (a world position) or relative_to (+ offset), not both or neither "
+                      "(or push, for an articulated part)")
         if self.pos is not None:
             for field, set_ in (("point", self.point is not None), ("anchor", self.anchor != "current"),
                                 ("offset", any(self.offset))):
@@ -103,8 +200,22 @@ class TargetSpec(Strict):
                           "it stood at the start), or the target would move with the object")
         return self
 
+    def names(self) -> tuple[str, ...]:
+        """The action names this target answers: a push target both target1 and target2."""
+        return PUSH_NAMES if self.push is not None else (self.name,)
+
+    def labels(self) -> dict[str, str]:
+        """How the prompts show the target's definition, by action name."""
+        if self.push is None:
+            return {self.name: self.label()}
+        note = f" ({self.note})" if self.note else ""
+        return {"target1": f"pre-push pose: the index fingertip just off {self.push.point}, finger extended{note}",
+                "target2": self.push.label() + note}
+
     def label(self) -> str:
         """How the prompts show the target's definition."""
+        if self.push is not None:
+            return self.push.label() + (f" ({self.note})" if self.note else "")
         if self.pos is not None:
             text = f"world {list(self.pos)}" + (f" + random offset in {list(self.random)}" if self.random else "")
         else:
@@ -113,6 +224,8 @@ class TargetSpec(Strict):
             mid = "the middle of " if len(self.relative_to) > 1 else ""
             when = " where it stood at the start" if self.anchor == "initial" else ""
             text = f"{mid}{of}{refs}{when} + {list(self.offset)}"
+        if self.up is not None:
+            text += f", its z axis turned to {[round(x, 3) for x in self.up]}"
         return text + (f" ({self.note})" if self.note else "")
 
 
@@ -161,12 +274,16 @@ def check_targets(targets: list[TargetSpec], objects: list[ObjectSpec], present:
         for field, ref in zip(["object"] + ["relative_to"] * (len(refs) - 1), refs):
             if str(ref) not in by_ref:
                 raise bad(f"{where}.{field}: no object {ref}; the task has {present}")
-        key = (str(t.object), t.name, t.hand)
-        if key in seen:
-            hand = f" for the {t.hand} hand" if t.hand else ""
-            raise bad(f"{where}: {t.object} has two '{t.name}' targets{hand}; give them different names "
-                      f"({', '.join(TARGET_NAMES)}) or hands")
-        seen.add(key)
+        for name in t.names():
+            key = (str(t.object), name, t.hand)
+            if key in seen:
+                hand = f" for the {t.hand} hand" if t.hand else ""
+                raise bad(f"{where}: {t.object} has two '{name}' targets{hand} (a push target is both target1 and "
+                          f"target2); give them different names ({', '.join(TARGET_NAMES)}) or hands")
+            seen.add(key)
+        if t.push is not None:
+            _check_push(t.push, by_ref[str(t.object)], f"{where}.push")
+            continue
         if t.pos is not None:
             x1, x2, y1, y2 = t.random or (0.0, 0.0, 0.0, 0.0)
             for dx, dy in ((x1, y1), (x1, y2), (x2, y1), (x2, y2)):
@@ -189,6 +306,24 @@ def check_targets(targets: list[TargetSpec], objects: list[ObjectSpec], present:
             raise bad(f"{where}.offset: at the default layout the target {why}")
 
 
+def _check_push(push: PushSpec, obj: ObjectSpec, where: str) -> None:
+    """The push's point is on the object's moving part and its axes exist."""
+    ann = library.annotations(obj.type, obj.type_id)
+    if ann.articulation is None:
+        raise bad(f"{where}: {obj.type} has no moving part to push; push targets are for lids, screens, drawers")
+    points = {p.name: p for p in ann.points}
+    if push.point not in points or points[push.point].part is None:
+        on_part = [n for n, p in points.items() if p.part is not None]
+        raise bad(f"{where}.point: {obj.type} has no key point {push.point!r} on its moving part; those: "
+                  f"{', '.join(on_part)}")
+    axes = [a.name for a in ann.axes]
+    named = [("axes", a) for a in push.axes] + [("aim", push.aim)] * isinstance(push.aim, str)
+    named += [("palm_across", push.palm_across)] * (push.palm_across is not None)
+    for field, name in named:
+        if name not in axes:
+            raise bad(f"{where}.{field}: {obj.type} has no axis {name!r}; its axes: {', '.join(axes)}")
+
+
 # -- an episode's targets ------------------------------------------------------------------------------------------
 @dataclass
 class Target:
@@ -203,6 +338,8 @@ class Target:
         from humanoidgen.objects.queries import get_point_in_env
 
         s = self.spec
+        if s.push is not None:  # where the push starts: its point on the part, now
+            return get_point_in_env(env, s.push.point, s.object.type, s.object.id)
         if s.pos is not None:
             return np.asarray(s.pos, float) + self.random_offset
         if s.anchor == "initial" and self.initial is not None:
@@ -235,10 +372,15 @@ class SceneTargets:
 
     def find(self, type_name: str, obj_id: int, name: str, side: str) -> Target | None:
         """The object's target `name` for the hand `side`: one given for that hand first, else one for both."""
-        mine = [t for t in self.of(type_name, obj_id) if t.spec.name == name and t.spec.hand in (side, None)]
+        mine = [t for t in self.of(type_name, obj_id) if name in t.spec.names() and t.spec.hand in (side, None)]
         mine.sort(key=lambda t: t.spec.hand is None)
         return mine[0] if mine else None
 
     def names(self, type_name: str, obj_id: int, side: str | None = None) -> list[str]:
         """The target names defined for the object (for the hand `side`, if given), for error messages."""
-        return sorted({t.spec.name for t in self.of(type_name, obj_id) if side is None or t.spec.hand in (side, None)})
+        return sorted({n for t in self.of(type_name, obj_id) if side is None or t.spec.hand in (side, None)
+                       for n in t.spec.names()})
+
+    def push(self, type_name: str, obj_id: int) -> Target | None:
+        """The object's push target (target1/target2 on an articulated part), if the task defines one."""
+        return next((t for t in self.of(type_name, obj_id) if t.spec.push is not None), None)
