@@ -103,6 +103,23 @@ def test_sample_plans_run_end_to_end(key):
     assert out["success"] == result.success or out["message"]
 
 
+# Plans that succeed on seeds 0-2 in bench/results/foreign_plans_s0-2.json, one per mechanism they rest on: the
+# explicit-constraint pinch (grip_intent), a mid-air hand-over, a push target, a handle moved by a rolling grip, and
+# a placement with a path constraint whose hand then rises clear of the cup before going home.
+MUST_SUCCEED = ["block_stack_single/alt_constraints", "block_handover/paper", "close_box_easy/paper",
+                "close_drawer/paper", "empty_cup_place/alt_upright_explicit"]
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("key", MUST_SUCCEED)
+def test_sample_plans_succeed(key):
+    from humanoidgen.episodes.task_episode import EpisodeRequest, run_task_episode
+
+    plan = next(p for p in CORPUS if p.key == key)
+    result, _ = run_task_episode(EpisodeRequest(plan.task, 0, plan_path=str(plan.path)))
+    assert result.success, bench.failure_message(result)
+
+
 def test_upstream_corpus_lays_out_only_numbered_step_files(tmp_path):
     spec = importlib.util.spec_from_file_location("upstream_corpus", ROOT / "bench" / "upstream_corpus.py")
     up = importlib.util.module_from_spec(spec)

@@ -37,6 +37,7 @@ HAND_MOTION_TIME = 0.5  # seconds to change the fingers' posture on the way (as 
 # pinch.
 LIFT_BEFORE_TURN_DEG = 20.0
 LIFT_BEFORE_TURN_M = 0.05
+RISE_FIRST_M = 0.06  # an empty hand boxed in beside an object rises this much before planning its way out
 
 
 def _with_hand(arm: np.ndarray, hand: np.ndarray) -> np.ndarray:
@@ -213,9 +214,7 @@ class ArmMoves(PartFollowing, Approaches):
                     self.events.append(f"the {side} hand came in {plan.label}"
                                        + (f" with the fingers {posture}" if posture else ""))
             else:
-                legs.append(plan_arm_motion(self.kin, self.collisions, side, q0, (target.p, target.R),
-                                            q_goal=target.joint_q, path_constraints=path_constraints,
-                                            seed=self.seed))
+                legs += self._plain_move(side, q0, target, path_constraints)
         except MotionError as exc:
             advice = "" if "Suggestion" in str(exc) else motion_advice(str(exc))
             raise PlanningError("move_to_pose_with_screw",
@@ -241,6 +240,31 @@ class ArmMoves(PartFollowing, Approaches):
                 hand = goal
             out.append(_with_hand(samples, hand))
         return np.vstack(out)
+
+    def _plain_move(self, side: Side, q0: np.ndarray, target: Pose, path_constraints: list) -> list[JointPath]:
+        """A screw motion (or a sampled path) to the target; an empty hand boxed in where it is (just let go
+        beside an object) rises straight up first and plans from there."""
+        def plan(q: np.ndarray) -> JointPath:
+            return plan_arm_motion(self.kin, self.collisions, side, q, (target.p, target.R), q_goal=target.joint_q,
+                                   path_constraints=path_constraints, seed=self.seed)
+        try:
+            return [plan(q0)]
+        except MotionError as exc:
+            if self.holding[side] is not None or path_constraints:
+                raise
+            first = exc
+        self.kin.set_arm(side, q0)
+        self.kin.forward()
+        p_now, R_now = self.kin.ee_pose(side)
+        try:
+            rise = plan_arm_motion(self.kin, self.collisions, side, q0,
+                                   (p_now + np.array([0.0, 0.0, RISE_FIRST_M]), R_now), allow_sampling=False)
+            legs = [rise, plan(rise.waypoints[-1])]
+        except MotionError:
+            raise first from None
+        self.events.append(f"the {side} hand rose {RISE_FIRST_M * 100:.0f} cm first: the way from where it was "
+                           "is blocked")
+        return legs
 
     def _part_openness(self, target: Pose) -> float | None:
         if target.follow is None:
