@@ -24,6 +24,7 @@ import numpy as np
 from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env
 from humanoidgen.planning.constraint_gen import Generated
 from humanoidgen.planning.constraints import Constraint
+from humanoidgen.sim.geometry import quat_to_mat
 from humanoidgen.sim.layout import Side
 
 SAME_POINT_M = 1e-3  # a constraint's hand point this near a hand key point now is that key point
@@ -58,7 +59,7 @@ def _object_at(env, point: np.ndarray, holding: dict):
         if ann is None or id(obj) in held:
             continue
         p, q = env.object_pose(obj.body)
-        R = _quat_mat(q)
+        R = quat_to_mat(q)
         local = R.T @ (point - p)
         lo, hi = np.array(ann.bbox_min) - INSIDE_MARGIN_M, np.array(ann.bbox_max) + INSIDE_MARGIN_M
         if np.all(local >= lo) and np.all(local <= hi):
@@ -66,13 +67,6 @@ def _object_at(env, point: np.ndarray, holding: dict):
             if vol < best_vol:
                 best, best_vol = obj, vol
     return best
-
-
-def _quat_mat(q: np.ndarray) -> np.ndarray:
-    w, x, y, z = q
-    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-                     [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-                     [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
 
 
 def infer(env, side: Side, constraints: list, holding: dict) -> GripIntent | None:

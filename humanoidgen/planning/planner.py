@@ -309,7 +309,6 @@ class HumanoidMotionPlanner(GoalSearch, ArmMoves):
     def _solve_grip_or_goal(self, constraints: list, side: Side) -> tuple[GoalResult, Pose]:
         """A goal; for plan-written constraints that put a grip point on an object, solved as that grip
         (the object may be touched, the hand comes in along the grip's axis; see grip_intent)."""
-        self.kin.sync(self.env.data.qpos)
         intent = grip_intent.infer(self.env, side, constraints, self.holding)
         if intent is None:
             return self._solve_goal(constraints, side)
