@@ -263,6 +263,9 @@ class DrawerFamily(_ArticulatedFamily):
             _pt("handle_lower", (bx, 0, bz - h), "drawer", "bottom of the handle bar (fingers from below)"),
             _pt("front", (-q["D"] / 2, q["wy"] / 2, zc), "drawer", "front face beside the handle"),
             _pt("storage", (q["xc"], 0, q["zb"] + q["dt"] + 0.005), "drawer", "inside the drawer"),
+            # The paper's "articulated_object_head": where its plans measure a drawer from ('move' with
+            # relative_obj_name="drawer" puts things at head + relative_p, e.g. 8 cm in and 10 cm up to drop in).
+            _pt("head", (-q["D"] / 2, 0, bz), "drawer", "front of the drawer at the handle's height"),
         ]
         axes = _BASIC_AXES + [_ax("opening", (0, 0, 1), "drawer", "out of the drawer's opening")]
         ops = [

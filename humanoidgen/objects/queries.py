@@ -51,6 +51,10 @@ def wrist_point_in_env(env, side: str, local: np.ndarray) -> np.ndarray:
     return pos + R @ np.asarray(local, float)
 
 
+# Object point names the paper's plans use, for ours.
+PAPER_POINT_NAMES = {"articulated_object_head": "head"}
+
+
 def get_point_in_env(env, point_name: str = "center", type_name: str | None = None, obj_id: int = 0,
                      related_point: np.ndarray | None = None, openness: float | None = None) -> np.ndarray:
     """World position of a key point.
@@ -62,6 +66,7 @@ def get_point_in_env(env, point_name: str = "center", type_name: str | None = No
       "10 cm along the cube's z axis" is `get_point_in_env(env, "center", "cube", 0, related_point=[0, 0, 0.1])`.
     """
     offset = np.zeros(3) if related_point is None else np.asarray(related_point, float)
+    point_name = PAPER_POINT_NAMES.get(point_name, point_name)
     if point_name in HAND_POINT_NAMES:
         side = side_of(point_name)
         p = wrist_point_in_env(env, side, hand_points(side)[point_name]) + offset

@@ -32,6 +32,7 @@ RELEASE_IN_PLACE_S = 0.3  # letting go of a part: the fingers first half open th
 FOLLOW_TOL = 0.05  # openness: a part this near the asked openness after a move got there
 FOLLOW_RETRY = 0.3  # a part that moved at least this share of the way but stopped short is pushed again, once
 HAND_MOTION_TIME = 0.5  # seconds to change the fingers' posture on the way (as planner.HAND_MOTION_TIME)
+CARRY_LIMITS = {"v_max": 0.6, "a_max": 1.5}  # joint speed (rad/s) and acceleration with an object in the hand
 # A carried object that stands on something (or is within this of it) and is to be turned more than this is first
 # lifted straight up this far: turned where it stands, its lower edge drags on the support and twists it out of a
 # pinch.
@@ -224,11 +225,13 @@ class ArmMoves(PartFollowing, Approaches):
             self.kin.sync(self.env.data.qpos)
         out = []
         for k, leg in enumerate(legs):
+            # Gentler with something in the hand: a pinched object slips under hard accelerations (on a planned
+            # path too: there the fastest profile swings a block held by its end out of the fingers).
+            carrying = self._carries(side)
             if leg.method == "rrt_connect":
-                samples = time_parametrize(leg.waypoints, dt=dt)[1]
+                samples = time_parametrize(leg.waypoints, dt=dt, **(CARRY_LIMITS if carrying else {}))[1]
             else:
-                # Gentler with something in the hand: a pinched object slips under hard accelerations.
-                v, a = (0.6, 1.5) if self._carries(side) else (1.0, 3.0)
+                v, a = (CARRY_LIMITS["v_max"], CARRY_LIMITS["a_max"]) if carrying else (1.0, 3.0)
                 samples = time_dense_path(leg.waypoints, dt, v_max=v, a_max=a)
             if k == len(legs) - 1 and posture is not None and len(legs) > 1:
                 # Change the fingers at the pre-pose, arm still, before the last (straight) leg.

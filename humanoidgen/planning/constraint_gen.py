@@ -38,6 +38,8 @@ PUSH_ACTIONS = ("push", "flip", "press")
 # A round body can be wrapped from a range of directions around its axis, not only the annotated one: these
 # turns (degrees), nearest first, are tried where the annotated direction is out of reach.
 WRAP_TURNS_DEG = (0, 20, -20, 40, -40)
+# A pinch this far (horizontally) from the object's centre of mass squeezes top and bottom where it can.
+OFF_CENTRE_PINCH_M = 0.015
 PUSH_CONE_DEG = 30
 # How far a hand holding a part may turn about the part's parallel axis (a bar, a tab, a screen's edge) while it
 # moves the part: a grasp around a bar or tab lets the part turn in the fingers; a fingertip pinch does not
@@ -84,6 +86,12 @@ def _frame_from_two(l1: np.ndarray, w1: np.ndarray, l2: np.ndarray, w2: np.ndarr
     L = np.column_stack([l1, l2, np.cross(l1, l2)])
     W = np.column_stack([w1, w2, np.cross(w1, w2)])
     return W @ L.T
+
+
+def _off_centre(env, obj_name: str, obj_id: int, point: np.ndarray) -> float:
+    """How far (horizontally) a grip point is from the object's centre of mass."""
+    body = env.model.body(env.scene.object(obj_name, obj_id).body).id
+    return float(np.linalg.norm((point - env.data.xipos[body])[:2]))
 
 
 def _natural_choices(side: Side, fixed_local: np.ndarray, fixed_world: np.ndarray, free_local: np.ndarray,
@@ -248,6 +256,11 @@ def _grip_variants(env, side: Side, obj_name: str, obj_id: int, operation: str, 
         on_part = ann is not None and ann.articulation is not None and ann.point(op.point).part is not None
         options = _natural_choices(side, loc["ring_2_index"], approach, loc["pinch"],
                                    [attach] if on_part else [attach, parallel], fingers_now)
+        if not on_part and _off_centre(env, obj_name, obj_id, target) > OFF_CENTRE_PINCH_M:
+            # Pinched away from its centre of mass (the free end of a block held level), the object's weight
+            # turns it about the squeeze axis, which only the pads' torsional friction resists: squeeze top
+            # and bottom instead, so that the pads' pressure carries that moment.
+            options = sorted(options, key=lambda sq: -abs(float(sq[2])))
         fingers_forward = Const(env, "parallel", frame, hand_axis=get_axis_in_env(env, f"{side}_pinch_wrist_2_palm_axis"),
                                 object_axis=np.array([1.0, 0.0, 0.0]), weight=0.1, name="fingers forward (preferred)")
         variants = [cons + [
@@ -386,23 +399,50 @@ def _push(env, side: Side, obj_name: str, obj_id: int, k: int, openness: float |
     return gen
 
 
+def _move_origins(env, rel) -> list[tuple[np.ndarray, str]]:
+    """Where 'move' measures `relative_p` from: the reference's annotated "head" (the paper's
+    articulated_object_head, a drawer's front) where it has one, as the paper's planner does, then its centre (what
+    a plan that took "relative to the drawer" to mean its centre needs; tried when the head's way fails)."""
+    centre = (get_point_in_env(env, "center", rel.type_name, rel.obj_id), "centre")
+    ann = env.scene.object(rel.type_name, rel.obj_id).annotations
+    if ann is None or "head" not in {p.name for p in ann.points}:
+        return [centre]
+    return [(get_point_in_env(env, "head", rel.type_name, rel.obj_id), "head"), centre]
+
+
 def _move(env, holding: dict, obj_name: str, obj_id: int, side: Side, rel, relative_p) -> Generated:
-    """The held object's centre (or, holding nothing, the grasp point) at `relative_p` from `rel`'s centre. A held
-    object is set down as `placing` says: stood back up if it is tilted, let go just above what is under it, and,
-    for a cube, with the hand also tried a quarter turn about the vertical (the move's alternatives)."""
+    """The held object's centre (or, holding nothing, the grasp point) at `relative_p` from `rel` (its head, else
+    its centre: `_move_origins`). A held object is set down as `placing` says: stood back up if it is tilted, let go
+    just above what is under it, and, for a cube, with the hand also tried a quarter turn about the vertical (the
+    move's alternatives)."""
     if rel is None:
         raise ConstraintGenerationError("'move' needs relative_obj_name (and relative_obj_id, relative_p: the world "
                                         "offset from that object's centre)")
     frame = HAND_BASE_FRAME[side]
     held = holding.get(side)
     held_here = held is not None and (held.type_name, held.obj_id) == (obj_name, obj_id)
-    base = get_point_in_env(env, "center", rel.type_name, rel.obj_id)
     offset = np.zeros(3) if relative_p is None else np.asarray(relative_p, float)
-    label = f"{obj_name} {obj_id} at {rel.type_name} {rel.obj_id} + {offset.round(3).tolist()}"
-    if not held_here:
-        hand_point = get_point_in_env(env, f"grasp_point_base_{side}_hand")
-        return Generated([Constraint(env, "point2point", frame, hand_key_point=hand_point, object_key_point=base + offset,
-                                     name=label), *keep_orientation(env, side)])
+    origins = _move_origins(env, rel)
+    ways: list[Generated] = []
+    for base, origin in origins:
+        label = f"{obj_name} {obj_id} at {rel.type_name} {rel.obj_id}{'' if origin == 'centre' else ' ' + origin}" \
+                f" + {offset.round(3).tolist()}"
+        more = _held_move(env, obj_name, obj_id, side, rel, base + offset, label) if held_here else [
+            Generated([Constraint(env, "point2point", frame, name=label, object_key_point=base + offset,
+                                  hand_key_point=get_point_in_env(env, f"grasp_point_base_{side}_hand")),
+                       *keep_orientation(env, side)])]
+        if origin == "centre" and len(origins) > 1:
+            for g in more:
+                g.notes.append(f"relative_p measured from {rel.type_name} {rel.obj_id}'s centre: from its head "
+                               f"(front, as the paper's planner measures a {rel.type_name}) the point cannot be reached")
+        ways += more
+    ways[0].alternatives = ways[1:]
+    return ways[0]
+
+
+def _held_move(env, obj_name: str, obj_id: int, side: Side, rel, point: np.ndarray, label: str) -> list[Generated]:
+    """The ways to bring the held object's centre to `point` and set it down there, most natural first."""
+    frame = HAND_BASE_FRAME[side]
     obj = env.scene.object(obj_name, obj_id)
     centre = get_point_in_env(env, "center", obj_name, obj_id)
     R_now = env.data.xmat[env.model.body(obj.body).id].reshape(3, 3).copy()
@@ -412,7 +452,7 @@ def _move(env, holding: dict, obj_name: str, obj_id: int, side: Side, rel, relat
     notes: list[str] = []
     for up in ups or [None]:
         R_goal = R_now if up is None else placing.turning(R_now[:, 2], up) @ R_now
-        goal, lifted = placing.release_lift(env, obj, base + offset, R_goal)
+        goal, lifted = placing.release_lift(env, obj, point, R_goal)
         notes += [lifted] if lifted and not notes else []
         above = placing.height_above(env, obj, goal, R_goal)
         low = above < placing.RAISED_RELEASE_M[0]
@@ -432,8 +472,7 @@ def _move(env, holding: dict, obj_name: str, obj_id: int, side: Side, rel, relat
         notes.append(f"{obj_name} {obj_id} is tilted in the {side} hand: 'move' stands it on an end to set it down "
                      f"(its z axis {'up' if ups[0][2] > 0 else 'down'}, the end the hand holds on top)")
     ways[0].notes += notes
-    ways[0].alternatives = ways[1:]
-    return ways[0]
+    return ways
 
 
 # Imported last: target_actions builds on this module's Generated and keep_orientation (and is imported with it

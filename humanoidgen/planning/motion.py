@@ -123,12 +123,52 @@ def plan_arm_motion(kin: Kinematics, cw: CollisionWorld, side: Side, q_start: np
         raise MotionError(f"{reason}; no sampled path is tried because the move has path constraints")
     if not allow_sampling or q_goal is None:
         raise MotionError(reason)
-    result = plan_rrt_connect(kin, cw, side, q_start, q_goal, time_limit=time_limit, seed=seed,
-                              clearance=min(start_clearance(kin, cw, side, q_start),
-                                            start_clearance(kin, cw, side, q_goal)))
+    clearance = min(start_clearance(kin, cw, side, q_start), start_clearance(kin, cw, side, q_goal))
+    result = None
+    if (carry := carried_turn_check(kin, side, q_start, q_goal)) is not None:
+        result = plan_rrt_connect(kin, cw, side, q_start, q_goal, time_limit=time_limit / 2, seed=seed,
+                                  clearance=clearance, state_ok=carry)
+    if result is None or not result.ok:  # no way that keeps it so: any collision-free way
+        result = plan_rrt_connect(kin, cw, side, q_start, q_goal, time_limit=time_limit, seed=seed,
+                                  clearance=clearance)
     if not result.ok:
         raise MotionError(f"{reason}; the sampling planner found no path either: {result.reason}")
     return JointPath(result.path, "rrt_connect", reason)
+
+
+# A carried object's orientation on a sampled path stays this near the shortest turn from its start to its goal
+# orientation: swung about freely, a block held by one end slides out of the fingers.
+CARRY_TURN_SLACK = np.radians(15.0)
+
+
+def _rotation_angle(Ra: np.ndarray, Rb: np.ndarray) -> float:
+    return float(np.arccos(np.clip((np.trace(Ra.T @ Rb) - 1.0) / 2.0, -1.0, 1.0)))
+
+
+def carried_turn_check(kin: Kinematics, side: Side, q_start: np.ndarray, q_goal: np.ndarray):
+    """A state check for the sampling planner: the object `side` carries turns at most CARRY_TURN_SLACK more than
+    the way from its start to its goal orientation (angle to start + angle to goal <= their angle + 2 slack);
+    None when the hand carries nothing."""
+    if side not in kin.attached:
+        return None
+    body = kin.attached[side][0]
+    saved = kin.arm_q(side)
+
+    def orientation(q: np.ndarray) -> np.ndarray:
+        kin.set_arm(side, q)
+        kin.forward()
+        return kin.data.xmat[body].reshape(3, 3).copy()
+
+    R0, R1 = orientation(q_start), orientation(q_goal)
+    kin.set_arm(side, saved)
+    kin.forward()
+    budget = _rotation_angle(R0, R1) + 2 * CARRY_TURN_SLACK
+
+    def ok(k: Kinematics) -> bool:
+        R = k.data.xmat[body].reshape(3, 3)
+        return bool(_rotation_angle(R, R0) + _rotation_angle(R, R1) <= budget)
+
+    return ok
 
 
 LANDING_MAX_RAD = 0.3  # a joint-space landing on the goal covers at most this much per joint

@@ -22,6 +22,7 @@ from humanoidgen.planning.kinematics import Kinematics
 from humanoidgen.sim.layout import SIDES, Side
 
 Which = Literal["left", "right", "all"]
+StateCheck = Callable[[Kinematics], bool]  # a further condition on a state, read from the kinematics set to it
 ARM_DOF = 7
 
 # H1-2 arm joint limits used for timing (rad/s, rad/s^2); conservative against the motors' ratings.
@@ -84,15 +85,18 @@ def _set(kin: Kinematics, space: JointSpace, q: np.ndarray) -> None:
 
 
 def is_valid(kin: Kinematics, cw: CollisionWorld, sides: Which | JointSpace, q: np.ndarray,
-             clearance: float = 0.0) -> bool:
-    """True when `q` is within the joint limits and every moving geom of the planned arm(s) keeps more than
-    `clearance` from its obstacles. Leaves the scratch kinematics at `q`.
+             clearance: float = 0.0, state_ok: StateCheck | None = None) -> bool:
+    """True when `q` is within the joint limits, every moving geom of the planned arm(s) keeps more than
+    `clearance` from its obstacles and `state_ok` (if given) accepts the kinematics at `q`. Leaves the scratch
+    kinematics at `q`.
 
     For "all" both sides are measured; each side's obstacles include the other arm, so arm-arm is covered."""
     space = _space(kin, sides)
     if not space.within_limits(q):
         return False
     _set(kin, space, q)
+    if state_ok is not None and not state_ok(kin):
+        return False
     return cw.min_distance(space.sides)[0] > clearance
 
 
@@ -126,14 +130,15 @@ def _coarse_to_fine(n: int) -> list[int]:
 
 
 def segment_valid(kin: Kinematics, cw: CollisionWorld, sides: Which | JointSpace, q0: np.ndarray,
-                  q1: np.ndarray, resolution: float = DEFAULT_RESOLUTION, clearance: float = 0.0) -> bool:
+                  q1: np.ndarray, resolution: float = DEFAULT_RESOLUTION, clearance: float = 0.0,
+                  state_ok: StateCheck | None = None) -> bool:
     """True when every state on the straight joint-space segment q0 -> q1, sampled so that no joint moves
     more than `resolution` between checks (both ends included), is valid."""
     space = _space(kin, sides)
     q0, q1 = np.asarray(q0, float), np.asarray(q1, float)
     n = max(1, int(np.ceil(np.max(np.abs(q1 - q0)) / resolution - 1e-9)))
     for i in _coarse_to_fine(n):
-        if not is_valid(kin, cw, space, q0 + (i / n) * (q1 - q0), clearance):
+        if not is_valid(kin, cw, space, q0 + (i / n) * (q1 - q0), clearance, state_ok):
             return False
     return True
 
@@ -230,11 +235,12 @@ def _seed_ompl(seed: int) -> None:
 def plan_rrt_connect(kin: Kinematics, cw: CollisionWorld, sides: Which | JointSpace, q_start: np.ndarray,
                      q_goal: np.ndarray, time_limit: float = 2.0, seed: int = 0, clearance: float = 0.0,
                      resolution: float = DEFAULT_RESOLUTION, shortcut_iters: int = 100,
-                     try_direct: bool = True) -> PathResult:
+                     try_direct: bool = True, state_ok: StateCheck | None = None) -> PathResult:
     """A collision-free joint path q_start -> q_goal for the arm(s) `sides`.
 
     The rest of the scene (the other arm when planning one, hands, objects, attached objects) stays as last
     synced into `kin`; the planned joints are restored to their values on entry before returning.
+    `state_ok` is a further condition on every state (e.g. how far a carried object may turn on the way).
     Same inputs and seed give the same path as long as the search finishes within `time_limit`."""
     from ompl import base as ob
     from ompl import geometric as og
@@ -250,10 +256,10 @@ def plan_rrt_connect(kin: Kinematics, cw: CollisionWorld, sides: Which | JointSp
         return PathResult(path, reason, time.perf_counter() - t_begin)
 
     def valid(q: np.ndarray) -> bool:
-        return is_valid(kin, cw, space, q, clearance)
+        return is_valid(kin, cw, space, q, clearance, state_ok)
 
     def valid_segment(a: np.ndarray, b: np.ndarray) -> bool:
-        return segment_valid(kin, cw, space, a, b, resolution, clearance)
+        return segment_valid(kin, cw, space, a, b, resolution, clearance, state_ok)
 
     try:
         for name, q in (("start", q_start), ("goal", q_goal)):

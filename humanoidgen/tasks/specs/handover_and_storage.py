@@ -14,7 +14,7 @@ planner.open_hand("left")
 # lift the hand (and back it off a little) well clear of the open drawer, so that it does not drag it on the next moves
 up = get_point_in_env(planner.env, "grasp_point_base_left_hand") + np.array([-0.03, 0, 0.10])
 c = planner.generate_constraints(obj_name="drawer", obj_id=0, action="move", hand_name="left", relative_obj_name="drawer",
-                                 relative_obj_id=0, relative_p=up - get_point_in_env(planner.env, "center", "drawer", 0))
+                                 relative_obj_id=0, relative_p=up - get_point_in_env(planner.env, "head", "drawer", 0))
 _, pose = planner.generate_end_effector_pose(c, hand_name="left")
 planner.move_to_pose_with_screw(pose, "left")
 
@@ -61,7 +61,7 @@ planner.move_to_pose_with_screw(pose, "left", attach_obj=True, object_name="cube
 drop = get_point_in_env(planner.env, "storage", "drawer", 0) * np.array([1, 1, 0]) + np.array([-0.025, 0, 0.31])
 c = planner.generate_constraints(obj_name="cube", obj_id=0, action="move", hand_name="left",
                                  relative_obj_name="drawer", relative_obj_id=0,
-                                 relative_p=drop - get_point_in_env(planner.env, "center", "drawer", 0))
+                                 relative_p=drop - get_point_in_env(planner.env, "head", "drawer", 0))
 _, pose = planner.generate_end_effector_pose(c, hand_name="left")
 planner.move_to_pose_with_screw(pose, "left", attach_obj=True, object_name="cube", object_id=0)
 planner.open_hand("left")
