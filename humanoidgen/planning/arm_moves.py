@@ -291,7 +291,7 @@ class ArmMoves(PartFollowing, Approaches):
             self._settle(0.2)
             got = self._part_openness(target)
             if abs(got - wanted) <= FOLLOW_TOL:
-                self.events.append(f"pushed {obj.type_name} {obj.obj_id} a second time to reach openness {wanted:g}")
+                self.events.append(f"pushed {obj.type_name} {obj.obj_id} a second time to reach openness {wanted:.2f}")
                 return
         share = (got - start) / way
         label = f"{obj.type_name} {obj.obj_id}"

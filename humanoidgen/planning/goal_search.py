@@ -22,6 +22,7 @@ from __future__ import annotations
 import time
 from contextlib import nullcontext
 
+import mujoco
 import numpy as np
 
 from humanoidgen.objects.describe import openness as openness_of
@@ -43,8 +44,23 @@ RELAX_MAX_MISS = 0.08  # m: grips missing by more than this are not tried with t
 RELAX_SEEDS = 4  # and at most this many seeds each (the current and nominal postures, two random)
 ARC_GOOD = 1.8  # a grasp posture that can move its part this far (of 2: both ways to the ends) is kept as is
 ARC_MARGIN = 0.1  # another posture is taken only if it reaches this much more of the arc
+# A held part the arm can move at least this share of the way is moved that far, gripped again and moved on.
+REGRIP_MIN_SHARE = 0.25
+PARTIAL_ENOUGH = 0.5  # from this share of the way on, it is moved that far only (as a part that stops short: arm_moves)
 ON_POINT = 0.025  # a fingertip this near a push point is on it: a push from there rides with the part
 PUSH_MIN_COS = 0.3  # a fingertip drives a part only where the part gives way within ~70 deg of the push
+
+
+def part_stays(env, joint: str, q: float) -> bool:
+    """Would an articulated part left alone at joint value `q` stay there (its joint friction holds its weight)?"""
+    m = env.model
+    jid = m.joint(joint).id
+    d = mujoco.MjData(m)
+    d.qpos[:] = env.data.qpos
+    d.qpos[m.jnt_qposadr[jid]] = q
+    mujoco.mj_forward(m, d)
+    dof = m.jnt_dofadr[jid]
+    return bool(abs(d.qfrc_bias[dof]) <= m.dof_frictionloss[dof])
 
 
 class GoalSearch:
@@ -79,6 +95,9 @@ class GoalSearch:
             self.collisions.ignored_bodies = ignored_before
             self.kin.sync(self.env.data.qpos)
         self.goal_results.append(result)
+        regrip = None
+        if not result.success and riding and result.partial is not None and self.regrips_left > 0:
+            result, regrip = self._partial_goal(side, follow, result)
         if not result.success:
             raise PlanningError("generate_end_effector_pose", self._goal_failure(side, constraints, gen, result))
         pose = Pose.from_mat(result.ee_pos, result.ee_mat, joint_q=result.q, side=side)
@@ -88,7 +107,35 @@ class GoalSearch:
             pose.approach_object = gen.approach_object
             pose.follow = gen.follow
             pose.posture = gen.posture
+        if regrip is not None:
+            q_reached = regrip.pop("q_reached")
+            pose.follow = dict(gen.follow, q_target=q_reached)
+            obj = self.env.scene.object(*regrip["obj"])
+            if regrip["share"] >= PARTIAL_ENOUGH and part_stays(self.env, follow["joint"], q_reached):
+                # Most of the way, and the part stays where the hand leaves it: go that far (the plan's next steps
+                # may push it on); a part that would swing away from there is gripped again and taken on.
+                self.events.append(f"{obj.type_name} {obj.obj_id} goes only to openness {regrip['reached']:.2f} of "
+                                   f"the {regrip['openness']:g} asked: the {side} arm's reach ends there holding it")
+            else:
+                pose.regrip = regrip
         return result, pose
+
+    def _partial_goal(self, side: Side, follow: dict, failed: GoalResult) -> tuple[GoalResult, dict]:
+        """A held part the arm can move only partway: the goal there, and what the move does after it. Short of
+        PARTIAL_ENOUGH of the way, it lets go, grips the part again where it is and moves it on to the openness
+        asked (planning/regrip.py); from there on it stops there (an event says so)."""
+        q, q_reached = failed.partial
+        self.kin.set_arm(side, q)
+        self.kin.forward()
+        p, R = self.kin.ee_pose(side)
+        self.kin.sync(self.env.data.qpos)
+        obj = self.env.scene.object(*follow["obj"])
+        art = obj.annotations.articulation
+        now, reached, wanted = (openness_of(self.env.model, self.env.data, obj), art.openness_of(q_reached),
+                                art.openness_of(follow["q_target"]))
+        return (GoalResult(True, q, p, R, 0.0, [], None, 0, failed.solve_time),
+                {"obj": follow["obj"], "openness": wanted, "verb": self.grip[side], "q_reached": q_reached,
+                 "reached": reached, "share": (reached - now) / (wanted - now) if wanted != now else 1.0})
 
     # -- ignore lists ----------------------------------------------------------------------------------
     def _use_ignores(self, side: Side, gen, ignored_before: set[int]) -> None:
@@ -142,7 +189,9 @@ class GoalSearch:
         wanted = art.openness_of(follow["q_target"])
         pushes = self._pushes_toward(side, obj, wanted, skip_point=None if held else follow["part_point"])
         self.kin.sync(self.env.data.qpos)
-        return GoalResult(False, None, violations=[
+        partial = (path[-1], float(q_steps[len(path) - 1])) if held and len(path) and reached >= REGRIP_MIN_SHARE * way \
+            else None
+        return GoalResult(False, None, partial=partial, violations=[
             f"the {side} hand {'holding' if held else 'pushing'} {obj.type_name} {obj.obj_id} can move it only "
             f"from openness {now:.2f} to {got:.2f} of the {wanted:.2f} asked ({reason}): the hand would have to go "
             f"where the {side} arm does not reach. " + (

@@ -48,6 +48,9 @@ class GoalResult:
     # On a failure caused by collisions: (moving body, obstacle body, distance) of the contacts the goal needs.
     contacts: list[tuple[int, int, float]] = field(default_factory=list)
     miss: float | None = None  # on a failure: how far (m) the closest solution's hand points are from their targets
+    # A held part followed only partway (the arm's reach ends): the arm configuration and the part's joint value
+    # there, for a move that goes that far and grips the part again to go on (planning/regrip.py).
+    partial: tuple[np.ndarray, float] | None = None
 
     def message(self) -> str:
         if self.success:

@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from humanoidgen.objects.hands import HAND_POSTURES
-from humanoidgen.planning import constraint_gen, grip_intent, push_actions
+from humanoidgen.planning import constraint_gen, grip_intent, push_actions, regrip
 from humanoidgen.planning.collision import CollisionWorld
 from humanoidgen.planning.constraints import Const, Constraint, ConstraintError
 from humanoidgen.planning.goal_solver import GoalResult, GoalSolver
@@ -30,6 +30,7 @@ from humanoidgen.planning.arm_moves import ArmMoves, PlanningError
 from humanoidgen.planning.goal_search import GoalSearch
 from humanoidgen.planning.kinematics import Kinematics
 from humanoidgen.planning.poses import Pose
+from humanoidgen.planning.regrip import MAX_REGRIPS
 from humanoidgen.sim.action import ARM_SLICE, HAND_SLICE
 from humanoidgen.sim.env import HumanoidEnv
 from humanoidgen.sim.layout import SIDES, Side
@@ -106,6 +107,7 @@ class HumanoidMotionPlanner(GoalSearch, ArmMoves):
     grip: dict = field(default_factory=dict)  # side -> "grasp" or "pinch": how the held object is held
     closing: dict = field(default_factory=dict)  # side -> finger posture the next hand_grasp closes with
     wider_search: bool = True  # goal_search rungs 3-4 (fingers near the table, the wrist's freedom); off to compare
+    regrips_left: int = MAX_REGRIPS  # how many more times a held part may be let go and gripped again on one move
 
     def __post_init__(self) -> None:
         self.kin = Kinematics(self.env.model)
@@ -393,6 +395,9 @@ class HumanoidMotionPlanner(GoalSearch, ArmMoves):
         self._settle(0.2)
         for side, start in part_start.items():
             self._check_part_followed(side, targets[side], start)
+        for side, target in targets.items():
+            if target.regrip is not None:
+                regrip.go_on(self, side, target.regrip)
         for side, target in targets.items():
             err = np.linalg.norm(self._current_pose(side).p - target.p)
             if err <= 0.02 or target.follow is not None:

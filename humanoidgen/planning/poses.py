@@ -28,6 +28,9 @@ class Pose:
     # The fingers may come this much closer to the table than the general clearance on the way to this pose
     # (a goal that needs a fingertip at a low edge; goal_search.FINGER_TABLE_CLEARANCE).
     finger_table_slack: float = 0.0
+    # A held part moved only partway by this pose (the arm's reach ends): what the move does next, gripping it
+    # again to move it on (planning/regrip.py).
+    regrip: dict | None = field(default=None, repr=False)
 
     def __post_init__(self) -> None:
         self.p = np.asarray(self.p, float).reshape(3)

@@ -1,0 +1,61 @@
+"""Moving a held part on where the arm runs out of reach: let go, grip it again where it is, go on.
+
+A lid or screen swung far with one grip turns the wrist with it until the arm's reach or joint range ends (a
+screen that starts nearly upright and is to be closed to 0.3). A person lets go there and takes the part again
+from a posture that suits the rest of the way. The goal search (`GoalSearch._partial_goal`) returns the goal as
+far as the arm gets, with `Pose.regrip` saying where the plan asked to go; after that move, `go_on` does the rest
+with the plan's own verb (grasp or pinch) through the planner's API, so every call is logged as the plan's are.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from humanoidgen.sim.layout import Side
+
+if TYPE_CHECKING:
+    from humanoidgen.planning.planner import HumanoidMotionPlanner
+
+MAX_REGRIPS = 2  # a part is gripped again at most this many times on one move
+
+
+def go_on(planner: HumanoidMotionPlanner, side: Side, regrip: dict) -> None:
+    """Let go of the part, grip it again at its present openness (the plan's verb, else the other) and move it on
+    to `regrip["openness"]`. Where that fails, the move fails with both reasons."""
+    from humanoidgen.planning.arm_moves import PlanningError
+
+    obj = planner.env.scene.object(*regrip["obj"])
+    verb = regrip["verb"] or "grasp"
+    label = f"{obj.type_name} {obj.obj_id}"
+    planner.events.append(
+        f"the {side} arm reaches only openness {regrip['reached']:.2f} holding {label}: it lets go there, "
+        f"grips it again and moves it on to {regrip['openness']:g}")
+    planner.regrips_left -= 1
+    try:
+        planner.open_hand(side)
+        why = []
+        for v in (verb, "pinch" if verb == "grasp" else "grasp"):
+            try:
+                _grip(planner, side, obj, v)
+                break
+            except PlanningError as exc:
+                why.append(f"{v}: {exc.reason}")
+                planner.open_hand(side)
+        else:
+            raise PlanningError("move_to_pose_with_screw",
+                                f"{label} reached only openness {regrip['reached']:.2f} of the {regrip['openness']:g} "
+                                f"asked (the {side} arm's reach ends there holding it), and gripping it again there "
+                                f"failed ({'; '.join(why)}): move it there, let go and push it the rest of the way")
+        cons = planner.generate_constraints(obj.type_name, obj.obj_id, v, side, openness=regrip["openness"])
+        _, pose = planner.generate_end_effector_pose(cons, side)
+        planner.move_to_pose_with_screw(pose, side, attach_obj=True, object_name=obj.type_name, object_id=obj.obj_id)
+    finally:
+        planner.regrips_left += 1
+
+
+def _grip(planner: HumanoidMotionPlanner, side: Side, obj, verb: str) -> None:
+    (planner.hand_pre_grasp if verb == "grasp" else planner.hand_pre_pinch)(side)
+    cons = planner.generate_constraints(obj.type_name, obj.obj_id, verb, side)
+    _, pose = planner.generate_end_effector_pose(cons, side)
+    planner.move_to_pose_with_screw(pose, side)
+    (planner.hand_grasp if verb == "grasp" else planner.hand_pinch)(side, obj.type_name, obj.obj_id)
