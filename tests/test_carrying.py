@@ -4,6 +4,7 @@
   to a drawer measures `relative_p` from it, as the paper's planner does, with the drawer's centre as the
   alternative (plans that took "relative to the drawer" to mean its centre).
 - A pinch far from the object's centre of mass (the free end of a block held level) squeezes top and bottom first.
+- A cube set down beside another is turned to line up with it and put just clear of it (`move_action.beside`).
 - A sampled path keeps a carried object near the shortest turn between its start and goal orientations
   (`motion.carried_turn_check`, through `paths.plan_rrt_connect(state_ok=...)`).
 """
@@ -113,3 +114,27 @@ def test_a_carried_object_keeps_near_its_shortest_turn(storage):
         kin.detach("right")
         kin.sync(env.data.qpos)
     assert carried_turn_check(kin, "right", q0, q1) is None  # nothing carried: no condition
+
+
+def test_a_cube_set_down_beside_another_lines_up_with_it_just_clear():
+    from humanoidgen.planning import move_action
+
+    _, env = build_scene(load_task("pyramid_stack"), 0)
+    HumanoidMotionPlanner(env, seed=0)
+    cube0, cube1 = env.scene.object("cube", 0), env.scene.object("cube", 1)
+    gen = move_action.move(env, {"right": cube1, "left": None}, "cube", 1, "right", cube0, np.array([0.0, -0.04, 0.0]))
+    first = gen.constraints
+    assert "lined up with cube 0" in first[0].name and any("square to cube 0" in c.name for c in first)
+    goal = first[0].object_key_point
+    c0 = get_point_in_env(env, "center", "cube", 0)
+    assert goal[1] < c0[1] - 0.04  # moved further from cube 0 along the plan's line (the cubes' yaws differ)
+    assert abs(goal[0] - c0[0]) < 1e-6 and c0[1] - goal[1] - 0.04 <= move_action.MAX_NUDGE_M
+    # Lined up: the turn makes cube 1's x axis parallel to one of cube 0's faces' axes (mod 90 deg).
+    align = [c for c in first if "square to" in c.name][0]
+    R0 = env.data.xmat[env.model.body(cube0.body).id].reshape(3, 3)
+    cos = max(abs(float(align.object_axis @ R0[:, k])) for k in (0, 1))
+    assert cos > np.cos(np.radians(1.0))
+    assert any("turned" in n and "line up" in n for n in gen.notes)
+    # Nothing beside: the plain set-down ways, no lining up.
+    far = move_action.move(env, {"right": cube1, "left": None}, "cube", 1, "right", cube0, np.array([0.0, -0.15, 0.0]))
+    assert not any("lined up" in c.name for g in [far, *far.alternatives] for c in g.constraints)

@@ -20,7 +20,7 @@ from pydantic import ValidationError
 from humanoidgen.episodes.task_episode import EpisodeRequest, run_task_episode
 from humanoidgen.objects import library
 from humanoidgen.objects.queries import get_point_in_env
-from humanoidgen.planning import constraint_gen, placing
+from humanoidgen.planning import constraint_gen, move_action, placing
 from humanoidgen.tasks.predicates import Upright
 from humanoidgen.tasks.registry import load_task
 from humanoidgen.tasks.scene import build_scene
@@ -122,8 +122,8 @@ def test_a_tilted_block_is_stood_back_on_an_end(handover_env):
 def test_the_move_sets_a_cube_down_with_alternatives(handover_env):
     env = handover_env
     cube = env.scene.object("cube", 1)
-    gen = constraint_gen._move(env, {"left": cube, "right": None}, "cube", 1, "left", env.scene.object("cube", 0),
-                               np.array([0.0, 0.05, -0.02]))  # on the table beside the block
+    gen = move_action.move(env, {"left": cube, "right": None}, "cube", 1, "left", env.scene.object("cube", 0),
+                           np.array([0.0, 0.05, -0.02]))  # on the table beside the block
     names = [c.name for g in [gen, *gen.alternatives] for c in g.constraints]
     assert any("raised" in n for n in gen.notes)  # the release clearance
     assert any("turned +90 deg" in n for n in names) and any("turned -90 deg" in n for n in names)

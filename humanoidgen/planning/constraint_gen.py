@@ -10,9 +10,9 @@
   articulated object (drawer, laptop, box) with a task push: the pre-push pose and the push to the task's
   openness (push_actions); without one: the fingertip on its first / second push or flip point (with
   `openness`: pushing the part to that openness).
-- "move": the held object's centre (or the grasp point) to `relative_p` (world offset) from another object's
-  centre (`relative_obj_name`, `relative_obj_id`); set down as `placing` says (let go just above what is under
-  it, a tilted block stood back on an end, come to from above).
+- "move": the held object's centre (or the grasp point) to `relative_p` (world offset) from another object
+  (`relative_obj_name`, `relative_obj_id`): from its "head" where it has one, else its centre; set down as
+  `placing` says, a cube beside another lined up with it (`move_action`).
 - "pour": the held cup beside and above a receptacle (relative_obj_name, else the nearest bowl or other
   container), tipped toward it so that its contents fall in.
 Objects may be named by type and obj_id ("cube", 1), as "cube1", or by an alias the scene lists.
@@ -299,8 +299,8 @@ def _ride_with_part(env, gen: Generated, obj_name: str, obj_id: int, point: str,
 
 
 def keep_orientation(env, side: Side, held: tuple[str, int] | None = None, up: np.ndarray | None = None,
-                     quarter_turns: int = 0) -> list[Constraint]:
-    """Prefer the hand's present orientation (soft; turned `quarter_turns` quarter turns about the vertical); a held
+                     turn_deg: float = 0.0) -> list[Constraint]:
+    """Prefer the hand's present orientation (soft; turned `turn_deg` about the vertical); a held
     object's up axis stays within 10 deg of now (hard). With `up` (a world direction), the held object's own z
     axis turns to within 10 deg of it instead, the hand preferring its fingers forward (how a hand presents what
     it turns)."""
@@ -314,14 +314,14 @@ def keep_orientation(env, side: Side, held: tuple[str, int] | None = None, up: n
                       object_axis=np.array([1.0, 0.0, 0.0]), weight=0.1, name="fingers forward (preferred)")]
     palm = get_axis_in_env(env, f"{side}_grasp_axis")
     r2i = get_axis_in_env(env, f"{side}_ring_2_index")
-    turned = f" turned {quarter_turns * 90:+d} deg about the vertical" if quarter_turns else ""
+    turned = f" turned {turn_deg:+.0f} deg about the vertical" if turn_deg else ""
     out: list[Constraint] = [
-        Const(env, "parallel", frame, hand_axis=palm, object_axis=placing.turned_about_vertical(palm, quarter_turns),
+        Const(env, "parallel", frame, hand_axis=palm, object_axis=placing.turned_about_vertical(palm, turn_deg),
               weight=0.5, name=f"keep the palm's direction{turned}"),
-        Const(env, "parallel", frame, hand_axis=r2i, object_axis=placing.turned_about_vertical(r2i, quarter_turns),
+        Const(env, "parallel", frame, hand_axis=r2i, object_axis=placing.turned_about_vertical(r2i, turn_deg),
               weight=0.5, name=f"keep the fingers' direction{turned}"),
     ]
-    if quarter_turns:  # a turned hand is a way of its own, not a preference the solver may give up near the start
+    if turn_deg:  # a turned hand is a way of its own, not a preference the solver may give up near the start
         out.append(Constraint(env, "angle", frame, hand_axis=palm, object_axis=out[0].object_axis, lower=0.0,
                               upper=np.radians(TURNED_WITHIN_DEG), name=f"the palm{turned}"))
     if held is not None:
@@ -370,7 +370,7 @@ def generate(env, holding: dict, obj_name: str, obj_id: int, action: str, side: 
         return gen
     if action == "pour":
         return ta.pour(env, holding, obj, side, rel)
-    return _move(env, holding, obj_name, obj_id, side, rel, relative_p)
+    return _move_action.move(env, holding, obj_name, obj_id, side, rel, relative_p)
 
 
 def _push(env, side: Side, obj_name: str, obj_id: int, k: int, openness: float | None) -> Generated:
@@ -399,82 +399,7 @@ def _push(env, side: Side, obj_name: str, obj_id: int, k: int, openness: float |
     return gen
 
 
-def _move_origins(env, rel) -> list[tuple[np.ndarray, str]]:
-    """Where 'move' measures `relative_p` from: the reference's annotated "head" (the paper's
-    articulated_object_head, a drawer's front) where it has one, as the paper's planner does, then its centre (what
-    a plan that took "relative to the drawer" to mean its centre needs; tried when the head's way fails)."""
-    centre = (get_point_in_env(env, "center", rel.type_name, rel.obj_id), "centre")
-    ann = env.scene.object(rel.type_name, rel.obj_id).annotations
-    if ann is None or "head" not in {p.name for p in ann.points}:
-        return [centre]
-    return [(get_point_in_env(env, "head", rel.type_name, rel.obj_id), "head"), centre]
-
-
-def _move(env, holding: dict, obj_name: str, obj_id: int, side: Side, rel, relative_p) -> Generated:
-    """The held object's centre (or, holding nothing, the grasp point) at `relative_p` from `rel` (its head, else
-    its centre: `_move_origins`). A held object is set down as `placing` says: stood back up if it is tilted, let go
-    just above what is under it, and, for a cube, with the hand also tried a quarter turn about the vertical (the
-    move's alternatives)."""
-    if rel is None:
-        raise ConstraintGenerationError("'move' needs relative_obj_name (and relative_obj_id, relative_p: the world "
-                                        "offset from that object's centre)")
-    frame = HAND_BASE_FRAME[side]
-    held = holding.get(side)
-    held_here = held is not None and (held.type_name, held.obj_id) == (obj_name, obj_id)
-    offset = np.zeros(3) if relative_p is None else np.asarray(relative_p, float)
-    origins = _move_origins(env, rel)
-    ways: list[Generated] = []
-    for base, origin in origins:
-        label = f"{obj_name} {obj_id} at {rel.type_name} {rel.obj_id}{'' if origin == 'centre' else ' ' + origin}" \
-                f" + {offset.round(3).tolist()}"
-        more = _held_move(env, obj_name, obj_id, side, rel, base + offset, label) if held_here else [
-            Generated([Constraint(env, "point2point", frame, name=label, object_key_point=base + offset,
-                                  hand_key_point=get_point_in_env(env, f"grasp_point_base_{side}_hand")),
-                       *keep_orientation(env, side)])]
-        if origin == "centre" and len(origins) > 1:
-            for g in more:
-                g.notes.append(f"relative_p measured from {rel.type_name} {rel.obj_id}'s centre: from its head "
-                               f"(front, as the paper's planner measures a {rel.type_name}) the point cannot be reached")
-        ways += more
-    ways[0].alternatives = ways[1:]
-    return ways[0]
-
-
-def _held_move(env, obj_name: str, obj_id: int, side: Side, rel, point: np.ndarray, label: str) -> list[Generated]:
-    """The ways to bring the held object's centre to `point` and set it down there, most natural first."""
-    frame = HAND_BASE_FRAME[side]
-    obj = env.scene.object(obj_name, obj_id)
-    centre = get_point_in_env(env, "center", obj_name, obj_id)
-    R_now = env.data.xmat[env.model.body(obj.body).id].reshape(3, 3).copy()
-    ups = placing.stand_up_directions(env, side, obj, rel)
-    turns = (0, 1, -1) if not ups and placing.quarter_turn_symmetric(obj) else (0,)
-    ways: list[Generated] = []
-    notes: list[str] = []
-    for up in ups or [None]:
-        R_goal = R_now if up is None else placing.turning(R_now[:, 2], up) @ R_now
-        goal, lifted = placing.release_lift(env, obj, point, R_goal)
-        notes += [lifted] if lifted and not notes else []
-        above = placing.height_above(env, obj, goal, R_goal)
-        low = above < placing.RAISED_RELEASE_M[0]
-        # Set down on or beside something, the fingers may be in a neighbour's way: let go higher (last resort).
-        for raise_by in (0.0, *(placing.RAISED_RELEASE_M if low else ())):
-            for t in turns if not raise_by else (0,):
-                gen = Generated([Constraint(env, "point2point", frame, hand_key_point=centre, name=label,
-                                            object_key_point=goal + np.array([0.0, 0.0, raise_by])),
-                                 *keep_orientation(env, side, (obj_name, obj_id), up, t)])
-                if above + raise_by < placing.SET_DOWN_M:  # set down: come from above, back out upward
-                    gen.approach_axis = placing.DOWN
-                if raise_by:
-                    gen.notes.append(f"{obj_name} {obj_id} is let go {raise_by * 100:.1f} cm higher than asked: lower "
-                                     f"down the {side} hand would be in something's way")
-                ways.append(gen)
-    if ups:
-        notes.append(f"{obj_name} {obj_id} is tilted in the {side} hand: 'move' stands it on an end to set it down "
-                     f"(its z axis {'up' if ups[0][2] > 0 else 'down'}, the end the hand holds on top)")
-    ways[0].notes += notes
-    return ways
-
-
 # Imported last: target_actions builds on this module's Generated and keep_orientation (and is imported with it
 # wherever the planner is, e.g. in the plan worker before its lockdown).
+from humanoidgen.planning import move_action as _move_action  # noqa: E402
 from humanoidgen.planning import target_actions as _target_actions  # noqa: E402

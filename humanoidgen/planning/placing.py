@@ -133,9 +133,9 @@ def quarter_turn_symmetric(obj: SceneObject) -> bool:
     return abs(size[0] - size[1]) <= SQUARE_TOL_M
 
 
-def turned_about_vertical(axis_now: np.ndarray, quarter_turns: int) -> np.ndarray:
-    """A hand axis as it would be after the hand turned `quarter_turns` quarter turns about the vertical."""
-    return axis_angle_mat(UP, quarter_turns * np.pi / 2) @ axis_now
+def turned_about_vertical(axis_now: np.ndarray, turn_deg: float) -> np.ndarray:
+    """A hand axis as it would be after the hand turned `turn_deg` about the vertical."""
+    return axis_angle_mat(UP, np.radians(turn_deg)) @ axis_now
 
 
 def turning(a: np.ndarray, b: np.ndarray) -> np.ndarray:
