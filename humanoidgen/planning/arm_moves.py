@@ -306,7 +306,7 @@ class ArmMoves(PartFollowing, Approaches):
                    "has to give way (for a flip: under the edge, e.g. offset along the part's inner axis), push in "
                    "smaller steps with explicit Constraints, or grasp it and move it with openness=")
         raise PlanningError("move_to_pose_with_screw",
-                            f"{label} is at openness {got:.2f} after the move, not the {wanted:g} asked (it moved "
+                            f"{label} is at openness {got:.2f} after the move, not the {wanted:.2f} asked (it moved "
                             f"{max(share, 0.0) * 100:.0f}% of the way from {start:.2f}): {why}")
 
     def _holds(self, side: Side, obj: SceneObject) -> bool:
