@@ -1,48 +1,93 @@
-"""Data-collection time per successful episode: without cameras, and recording the six cameras at 320x240
-(RGB + depth) plus the 1024-point cloud, at 10 Hz and at the full 50 Hz control rate.
+"""Data-collection cost per kept episode, through `collect` itself (plan workers, rendering, writing the
+dataset): without cameras, and with the default recording (six 320x240 RGB-D cameras and the 1024-point
+cloud) at 10 Hz and at the full 50 Hz control rate; the ratio to the camera-less time and MB per episode.
 
-Usage: python bench/collection.py [--task block_stack_single] [--episodes 3]
+Usage: python bench/collection.py [--tasks block_stack_single,handover_and_storage] [--episodes 1]
+                                  [--rates 10,50] [--json bench/results/collection.json]
 """
 
 from __future__ import annotations
 
 import argparse
+import json
 import os
+import platform
+import tempfile
 import time
+from pathlib import Path
 
 os.environ.setdefault("MUJOCO_GL", "egl")
+for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_var, "1")
 
-import numpy as np  # noqa: E402
-
+from humanoidgen.episodes.collect import collect  # noqa: E402
 from humanoidgen.episodes.recorder import RecorderConfig  # noqa: E402
-from humanoidgen.episodes.task_episode import EpisodeRequest, run_task_episode  # noqa: E402
 from humanoidgen.sim.cameras import CAMERA_NAMES  # noqa: E402
+
+CONTROL_HZ = 50
+
+
+def run(task: str, n: int, recorder: RecorderConfig | None, max_attempts: int) -> dict:
+    from humanoidgen.episodes.dataset import EpisodeStore
+
+    with tempfile.TemporaryDirectory(prefix="hgen-bench-") as tmp:
+        out = Path(tmp) / "ds"
+        stats = collect(task, n, out, recorder=recorder or RecorderConfig(every=CONTROL_HZ // 10),
+                        max_attempts=max_attempts)
+        size = sum(p.stat().st_size for p in (out / "episodes").glob("*.npz"))
+        errors = [a.get("error", "") for a in EpisodeStore(out).attempts() if not a["success"]]
+    kept = stats.kept
+    row = {"kept": kept, "tried": stats.tried, "seconds_per_kept": round(stats.wall_seconds / kept, 2) if kept else None,
+           "mb_per_episode": round(size / kept / 1e6, 2) if kept else None}
+    if errors:
+        row["failures"] = [e[:200] for e in errors]
+    return row
 
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__)
-    ap.add_argument("--task", default="block_stack_single")
-    ap.add_argument("--episodes", type=int, default=3)
+    ap.add_argument("--tasks", default="block_stack_single,handover_and_storage")
+    ap.add_argument("--episodes", type=int, default=1, help="kept episodes per recording configuration")
+    ap.add_argument("--baseline-episodes", type=int, default=3, help="kept episodes without cameras")
+    ap.add_argument("--rates", default="10,50", help="recording rates in Hz (divisors of 50)")
+    ap.add_argument("--max-attempts", type=int, default=3, help="attempts per configuration at most")
+    ap.add_argument("--json", type=Path, default=None, help="written after every row")
     args = ap.parse_args()
-    configs = {
-        "no cameras": None,
-        "6 cameras 320x240 + point cloud, 10 Hz": RecorderConfig(every=5, cameras=CAMERA_NAMES, point_cloud=True),
-        "6 cameras 320x240 + point cloud, 50 Hz": RecorderConfig(every=1, cameras=CAMERA_NAMES, point_cloud=True),
-    }
-    for name, rec in configs.items():
-        walls, sims, frames = [], [], []
-        for i in range(args.episodes):
-            t0 = time.perf_counter()
-            result, arrays = run_task_episode(EpisodeRequest(args.task, seed=i, recorder=rec))
-            if result.success:
-                walls.append(time.perf_counter() - t0)
-                sims.append(result.sim_seconds)
-                frames.append(len(arrays["action"]) if arrays else 0)
-        if walls:
-            print(f"{name}: {np.mean(walls):.1f} s per successful episode ({len(walls)}/{args.episodes} ok; "
-                  f"{np.mean(sims):.1f} s simulated, {np.mean(frames):.0f} frames)")
-        else:
-            print(f"{name}: no successful episode")
+    from humanoidgen.episodes.task_episode import EpisodeRequest, run_task_episode
+
+    # The plan workers' fork server starts and imports everything on the first attempt: not timed.
+    run_task_episode(EpisodeRequest("block_stack_single", seed=0))
+    results = {"machine": f"{platform.machine()}, {os.cpu_count()} CPUs", "episodes": args.episodes,
+               "baseline_episodes": args.baseline_episodes, "tasks": {}}
+    for task in [t.strip() for t in args.tasks.split(",") if t.strip()]:
+        t0 = time.perf_counter()
+        base = run(task, args.baseline_episodes, None, args.max_attempts + args.baseline_episodes)
+        rows = results["tasks"][task] = {"no cameras": base}
+        print(f"{task}: no cameras: {base['seconds_per_kept']:.1f} s per kept episode "
+              f"({base['kept']}/{base['tried']} kept), {base['mb_per_episode']:.2f} MB", flush=True)
+        for hz in [int(r) for r in args.rates.split(",")]:
+            rec = RecorderConfig(every=CONTROL_HZ // hz, cameras=CAMERA_NAMES, point_cloud=True)
+            row = run(task, args.episodes, rec, args.max_attempts)
+            rows[f"6 cameras 320x240 + point cloud, {hz} Hz"] = row
+            save(args.json, results)
+            if not row["kept"] or not base["kept"]:
+                print(f"{task}: {hz} Hz: no episode kept in {row['tried']} attempts: {row.get('failures')}")
+                continue
+            row["ratio"] = round(row["seconds_per_kept"] / base["seconds_per_kept"], 2)
+            print(f"{task}: 6 cameras 320x240 + point cloud, {hz} Hz: {row['seconds_per_kept']:.1f} s per kept "
+                  f"episode ({row['kept']}/{row['tried']} kept), {row['ratio']:.1f}x the camera-less time, "
+                  f"{row['mb_per_episode']:.1f} MB per episode", flush=True)
+        rows["load_average_1min_after"] = round(os.getloadavg()[0], 2)  # other work on the machine skews times
+        save(args.json, results)
+        print(f"({task}: {time.perf_counter() - t0:.0f} s)", flush=True)
+    if args.json is not None:
+        print(f"wrote {args.json}")
+
+
+def save(path: Path | None, results: dict) -> None:
+    if path is not None:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(json.dumps(results, indent=2) + "\n")
 
 
 if __name__ == "__main__":

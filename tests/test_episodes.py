@@ -60,6 +60,17 @@ def test_a_failing_step_is_reported_with_its_call_and_reason(tmp_path):
     assert "mm from its target" in result.failed_step.error
 
 
+def test_a_failed_attempt_renders_no_images(tmp_path):
+    plan = tmp_path / "half.py"
+    plan.write_text("# step: open\nplanner.open_hand('right')\n# step: fail\nraise ValueError('no')\n")
+    rec = RecorderConfig(every=5, cameras=("head",), width=64, height=48, point_cloud=True, num_points=64)
+    result, arrays = run_task_episode(EpisodeRequest("block_stack_single", seed=0, plan_path=str(plan),
+                                                     recorder=rec))
+    assert not result.success
+    assert arrays is not None and "action" in arrays
+    assert not any(k.startswith(("rgb/", "depth/", "point_cloud")) for k in arrays)
+
+
 def test_forbidden_code_in_a_plan_is_rejected_as_data(tmp_path):
     plan = tmp_path / "evil.py"
     plan.write_text("# step: look around\nimport os\nos.listdir('/')\n")
@@ -85,9 +96,12 @@ def test_collection_is_the_same_with_one_or_two_workers(collected):
     assert [k["seed"] for k in a.kept()] == [k["seed"] for k in b.kept()]
     for i in range(2):
         ea, eb = a.load(i), b.load(i)
-        assert np.array_equal(ea["action"], eb["action"])
-        assert np.allclose(ea["qpos"], eb["qpos"])
+        assert set(ea) == set(eb)
+        for key in ea:  # state, images, depth and point clouds: the same with any number of workers
+            assert np.array_equal(ea[key], eb[key]), key
         assert ea["point_cloud"].shape == (len(ea["action"]), 256, 3)
+        assert ea["rgb/head"].shape == (len(ea["action"]), 48, 64, 3)
+        assert ea["depth/head"].dtype == np.float32  # stored in millimetres, read back in metres
 
 
 def test_interrupted_collection_resumes_without_duplicates_or_loss(collected, tmp_path):

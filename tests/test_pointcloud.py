@@ -7,6 +7,7 @@ import time
 import numpy as np
 import pytest
 
+from humanoidgen.sim.fps import reference_fps
 from humanoidgen.sim.pointcloud import (
     DepthView,
     PointCloudConfig,
@@ -141,8 +142,57 @@ def test_fps_speed():
     farthest_point_sampling(pts, 1024)  # warm-up
     t0 = time.perf_counter()
     farthest_point_sampling(pts, 1024)
-    # Loose bound to stay robust on loaded CI; typical is a few tens of ms.
+    # Loose bound to stay robust on loaded CI; typical is a few ms (the plain loop: ~30 ms).
     assert time.perf_counter() - t0 < 0.3
+
+
+@pytest.mark.parametrize("cloud", ["uniform", "surfaces", "ties", "duplicates", "small"])
+@pytest.mark.parametrize("oversample", [8, None])
+def test_fps_is_the_plain_greedy_loop_index_for_index(cloud, oversample):
+    """Tolerance: none. The pruned, compiled FPS returns exactly the indices, in order, of the plain greedy
+    loop the recorder used before (same candidates, same start, first index on equal distances)."""
+    rng = np.random.default_rng(3)
+    pts = {
+        "uniform": rng.random((30_000, 3)),
+        "surfaces": np.concatenate([np.c_[rng.random((20_000, 2)), np.zeros(20_000)],
+                                    np.c_[np.full(5000, 0.3), rng.random((5000, 2)) * 0.2]]),
+        "ties": np.round(rng.random((12_000, 3)) * 12) / 12,  # a coarse grid: many equal distances
+        "duplicates": np.concatenate([rng.random((300, 3)), np.zeros((5000, 3))]),
+        "small": rng.random((1500, 3)),
+    }[cloud]
+    for seed in (0, 7):
+        fast = farthest_point_sampling(pts, 512, seed=seed, oversample=oversample)
+        assert np.array_equal(fast, reference_fps(pts, 512, seed=seed, oversample=oversample))
+
+
+def test_fused_cloud_equals_back_projection_crop_and_plain_fps():
+    """fuse_point_cloud's own fast path (valid pixels only, cropped axis by axis) gives the cloud of the
+    documented steps, value for value."""
+    views = _two_views()
+    for v in views:
+        v.depth[::7, ::5] = np.inf  # some background
+    cfg = PointCloudConfig(num_points=300)
+    chunks = []
+    for depth, fovy, pos, mat, _ in views:
+        pts, valid = depth_to_points(depth, fovy, pos, mat)
+        chunks.append(pts[valid & crop_box(pts, cfg.crop_lo, cfg.crop_hi)])
+    cloud = np.concatenate(chunks)
+    expected = cloud[reference_fps(cloud, 300)].astype(np.float32)
+    assert np.array_equal(fuse_point_cloud(views, cfg), expected)
+
+
+def test_back_projection_matches_the_matrix_product_form():
+    """Tolerance 1e-12 m: points written out per axis equal cam_pos + cam_mat @ p_cam up to rounding."""
+    w, h, fovy = 80, 60, 50.0
+    pos = np.array([-0.9, 0.2, 0.7])
+    mat = look_at(pos, [-0.3, 0.0, 0.0])
+    depth = plane_depth(w, h, fovy, pos, mat)
+    pts, _ = depth_to_points(depth, fovy, pos, mat)
+    k = intrinsics(w, h, fovy)
+    u, v = np.meshgrid(np.arange(w) + 0.5, np.arange(h) + 0.5)
+    d = depth.astype(np.float64).ravel()
+    p_cam = np.stack([(u.ravel() - k[0, 2]) / k[0, 0] * d, -(v.ravel() - k[1, 2]) / k[1, 1] * d, -d], axis=1)
+    assert np.abs(pts - (p_cam @ mat.T + pos)).max() < 1e-12
 
 
 def _two_views(rgb=False):

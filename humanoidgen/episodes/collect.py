@@ -7,7 +7,7 @@ first N successful seeds in seed order, so the dataset is the same whatever the 
 from __future__ import annotations
 
 import time
-from concurrent.futures import ThreadPoolExecutor
+from concurrent.futures import Future, ThreadPoolExecutor
 from collections.abc import Callable
 from dataclasses import asdict, dataclass
 from pathlib import Path
@@ -67,19 +67,26 @@ def collect(task: str, n: int, out: Path, workers: int = 1, seed: int = 0, resum
     limit = max_attempts if max_attempts is not None else max(20, 10 * n)
     t0 = time.perf_counter()
     pool = ThreadPoolExecutor(workers) if workers > 1 else None
+    # Episode files are compressed and written by one thread while the next attempts run, in seed order;
+    # one batch at most waits, so a slow disk holds back collection instead of filling memory.
+    writer = ThreadPoolExecutor(1, thread_name_prefix="hgen-write")
+    writing: list[Future] = []
     try:
         while kept < n and tried < limit:
             batch = [EpisodeRequest(task, s, plan_path, recorder) for s in range(next_seed, next_seed + max(workers, 1))]
             next_seed += len(batch)
             results = list(pool.map(_attempt, batch)) if pool is not None else [_attempt(r) for r in batch]
+            for done in writing:
+                done.result()  # the previous batch is on disk (or its error is raised here)
+            writing = []
             for record, arrays in results:  # in seed order
                 if kept >= n:
                     break  # attempts past the n-th success are not part of the dataset
-                store.add(record, arrays if record["success"] else None)
                 tried += 1
                 kept += bool(record["success"])
-                if progress is not None:
-                    progress(kept, tried)
+                writing.append(writer.submit(_write, store, record, arrays, progress, kept, tried))
+        for done in writing:
+            done.result()
     except BaseException:
         from humanoidgen.sandbox.runner import kill_all
 
@@ -88,7 +95,15 @@ def collect(task: str, n: int, out: Path, workers: int = 1, seed: int = 0, resum
     finally:
         if pool is not None:
             pool.shutdown(wait=True, cancel_futures=True)  # each attempt's worker ends with its attempt
+        writer.shutdown(wait=True)  # an episode being written is finished, never left half-written
     return CollectStats(kept, tried, time.perf_counter() - t0)
+
+
+def _write(store: EpisodeStore, record: dict, arrays: dict | None, progress: Callable[[int, int], None] | None,
+           kept: int, tried: int) -> None:
+    store.add(record, arrays if record["success"] else None)
+    if progress is not None:
+        progress(kept, tried)
 
 
 __all__ = ["collect", "CollectStats", "CAMERA_NAMES"]

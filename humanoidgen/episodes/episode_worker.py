@@ -67,10 +67,16 @@ class EpisodeSetup:
             """The clock and the planner's events so far (the parent asks after each step)."""
             return {"sim_time": env.time, "events": list(planner.events)}
 
-        def finish() -> dict:
-            """Judge the task, close the recorders and hand back everything the parent keeps."""
+        def finish(render: bool = True) -> dict:
+            """Judge the task, close the recorders and hand back everything the parent keeps. Images are
+            rendered now, from the recorded configurations, and only when `render` (the parent: every step
+            succeeded) and every success check holds: a failed attempt is never kept."""
             checks = judge(spec, env)
-            arrays = recorder.arrays() if recorder is not None and recorder.frames else None
+            arrays = None
+            if recorder is not None and recorder.frames:
+                images = render is True and all(c["ok"] for c in checks)
+                model = self._render_model(spec, env) if images and recorder.config.renders else None
+                arrays = recorder.arrays(images=images, model=model)
             if recorder is not None:
                 recorder.close()
             if frames is not None:
@@ -82,6 +88,20 @@ class EpisodeSetup:
         ns = step_namespace(planner)
         ns[PLAN], ns[PROGRESS], ns[FINISH] = plan, progress, finish
         return ns
+
+    def _render_model(self, spec, env):
+        """The model the recording's images are drawn with: the simulator's own at full detail, else the
+        same layout built again with the recording's visual meshes (no settling: only poses are replayed)."""
+        from humanoidgen.episodes.recorder import matching_render_model
+        from humanoidgen.sim.meshes import visual_detail, visual_faces
+        from humanoidgen.tasks.scene import build_layout
+
+        faces = self.recorder.faces
+        if faces == visual_faces():
+            return env.model
+        with visual_detail(faces):
+            scene, _ = build_layout(spec.sample_layout(self.seed), settle_s=0.0, aliases=spec.aliases())
+        return matching_render_model(env.model, scene.model)
 
 
 class _FrameStream:

@@ -1,17 +1,25 @@
-"""Recording an episode while it runs: every `every`-th control step, the 26-D action, the driven joints,
-both end-effector poses, every object's pose, the full simulator configuration (for exact replay), and
-optionally images from the six cameras and a fused, cropped, downsampled point cloud."""
+"""Recording an episode: while it runs, every `every`-th control step, the 26-D action, the driven joints,
+both end-effector poses, every object's pose and the full simulator configuration (for exact replay); after
+it, for an attempt worth keeping, images from the cameras and a fused, cropped, downsampled point cloud,
+rendered from the configurations recorded (`episodes.render_replay`): failed attempts cost no rendering.
+
+Images are drawn with robot visual meshes of a level of detail chosen for the camera resolution
+(`sim.meshes.recording_faces`); `visual_faces=sim.meshes.DEFAULT_MAX_FACES` draws them at the full detail
+of `hgen render`, which is also the detail the simulator's own model has. Depth is uint16 millimetres
+(`episodes.depth_units`).
+"""
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+import mujoco
 import numpy as np
 
-from humanoidgen.sim.cameras import CAMERA_NAMES, CameraRig
+from humanoidgen.sim.cameras import CAMERA_NAMES
 from humanoidgen.sim.env import HumanoidEnv
 from humanoidgen.sim.geometry import mat_to_quat
-from humanoidgen.sim.pointcloud import PointCloudConfig, fuse_point_cloud
+from humanoidgen.sim.meshes import DEFAULT_MAX_FACES, recording_faces
 
 
 @dataclass
@@ -24,13 +32,26 @@ class RecorderConfig:
     point_cloud: bool = False
     point_cloud_cameras: tuple[str, ...] = ("head", "front", "left", "right")
     num_points: int = 1024
+    # Faces per robot visual mesh in the images; None: chosen for the resolution (sim.meshes.recording_faces).
+    visual_faces: int | None = None
 
     def __post_init__(self) -> None:
-        unknown = set(self.cameras) - set(CAMERA_NAMES)
+        unknown = (set(self.cameras) | set(self.point_cloud_cameras)) - set(CAMERA_NAMES)
         if unknown:
             raise ValueError(f"unknown cameras {sorted(unknown)}; cameras: {', '.join(CAMERA_NAMES)}")
         if self.every < 1:
             raise ValueError("every must be >= 1")
+        if self.visual_faces is not None and not 4 <= self.visual_faces <= DEFAULT_MAX_FACES:
+            raise ValueError(f"visual_faces must be in [4, {DEFAULT_MAX_FACES}], got {self.visual_faces}")
+
+    @property
+    def renders(self) -> bool:
+        return bool(self.cameras) or self.point_cloud
+
+    @property
+    def faces(self) -> int:
+        """Faces per robot visual mesh the images are drawn with."""
+        return self.visual_faces if self.visual_faces is not None else recording_faces(self.width, self.height)
 
 
 @dataclass
@@ -41,15 +62,12 @@ class EpisodeRecorder:
     _count: int = 0
 
     def __post_init__(self) -> None:
-        cams = set(self.config.cameras) | (set(self.config.point_cloud_cameras) if self.config.point_cloud else set())
-        self._rig = CameraRig(self.env.model, self.config.width, self.config.height) if cams else None
-        self._cams = tuple(c for c in CAMERA_NAMES if c in cams)
-        self._pc = PointCloudConfig(num_points=self.config.num_points)
+        # Per recorded frame: the configuration its kinematics came from (see HumanoidEnv.kinematics_qpos),
+        # kept in memory only, for rendering.
+        self.configurations: list[np.ndarray] = []
 
     def close(self) -> None:
-        if self._rig is not None:
-            self._rig.close()
-            self._rig = None
+        """Nothing to release: the renderer lives only while `arrays` renders."""
 
     def __call__(self, action: np.ndarray) -> None:
         """Planner `on_step` hook: called after each control step with the action just applied."""
@@ -69,19 +87,30 @@ class EpisodeRecorder:
         rec.setdefault("ee_pose", []).append(np.concatenate(ee).astype(np.float32))
         objs = [np.concatenate(env.object_pose(o.body)) for o in env.scene.objects]
         rec.setdefault("object_pose", []).append(np.array(objs, np.float32).reshape(len(objs), 7))
-        if self._rig is None:
-            return
-        frames = {c: self._rig.render(env.data, c, rgb=c in self.config.cameras,
-                                      depth=self.config.depth or self.config.point_cloud, segmentation=False)
-                  for c in self._cams}
-        for c in self.config.cameras:
-            rec.setdefault(f"rgb/{c}", []).append(frames[c].rgb)
-            if self.config.depth:
-                rec.setdefault(f"depth/{c}", []).append(frames[c].depth)
-        if self.config.point_cloud:
-            views = [(frames[c].depth, frames[c].fovy, frames[c].cam_pos, frames[c].cam_mat, None)
-                     for c in self.config.point_cloud_cameras]
-            rec.setdefault("point_cloud", []).append(fuse_point_cloud(views, self._pc).astype(np.float32))
+        if self.config.renders:
+            self.configurations.append(env.kinematics_qpos())
 
-    def arrays(self) -> dict[str, np.ndarray]:
-        return {k: np.stack(v) for k, v in self.frames.items()}
+    def arrays(self, images: bool = True, model: mujoco.MjModel | None = None) -> dict[str, np.ndarray]:
+        """The recorded arrays; with `images` (and cameras configured), rendered ones too, drawn with `model`
+        (default: the simulator's own, full-detail model; see `render_model`)."""
+        out = {k: np.stack(v) for k, v in self.frames.items()}
+        if images and self.config.renders and self.configurations:
+            from humanoidgen.episodes.render_replay import render_recording
+
+            cfg = self.config
+            out.update(render_recording(model if model is not None else self.env.model, self.configurations,
+                                        cfg.cameras, cfg.width, cfg.height, cfg.depth,
+                                        cfg.point_cloud_cameras if cfg.point_cloud else (), cfg.num_points))
+        return out
+
+
+def matching_render_model(sim_model: mujoco.MjModel, render_model: mujoco.MjModel) -> mujoco.MjModel:
+    """`render_model` (the same scene built at another visual detail) checked against the simulator's model
+    and given its clipping planes, so that depth means the same in both."""
+    for name in ("nq", "nbody", "njnt", "ngeom", "ncam", "nlight", "nsite"):
+        if getattr(sim_model, name) != getattr(render_model, name):
+            raise RuntimeError(f"the render model differs from the simulated one in {name} "
+                               f"({getattr(render_model, name)} vs {getattr(sim_model, name)})")
+    render_model.stat.extent = sim_model.stat.extent
+    render_model.stat.center[:] = sim_model.stat.center
+    return render_model

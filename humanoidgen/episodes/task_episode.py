@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, replace
+from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
@@ -29,6 +30,7 @@ MEMORY_LIMIT_CAMERAS = 12 << 30  # renderer buffers and the frames of a long epi
 # is not. A worker cannot make the parent hold more than this at once.
 MESSAGE_LIMIT = 256 << 20
 MESSAGE_LIMIT_CAMERAS = 16 << 30
+RENDER_S_PER_IMAGE = 0.25  # allowed per 320x240 image (and per point cloud) rendered when a recording is kept
 MAX_VIDEO_S = 600.0  # frames past this much video are dropped (a worker cannot fill the disk)
 
 
@@ -91,6 +93,8 @@ def worker_for(req: EpisodeRequest, spec, plan_text: str, on_frame: Callable[[np
     """A (not yet started) locked-down worker that will hold this episode."""
     from humanoidgen.sandbox import SandboxWorker
 
+    if req.recorder is not None and req.recorder.renders:
+        _cache_visual_meshes(req.recorder.faces)
     setup = EpisodeSetup(spec.model_dump(mode="json"), plan_text, req.seed, req.recorder,
                          req.video if on_frame is not None else None, req.control_hz)
     cameras = req.recorder is not None and (req.recorder.cameras or req.recorder.point_cloud)
@@ -109,6 +113,15 @@ def worker_for(req: EpisodeRequest, spec, plan_text: str, on_frame: Callable[[np
 
     return SandboxWorker(setup, memory_limit=limit, on_stream=frames,
                          max_message_bytes=MESSAGE_LIMIT_CAMERAS if cameras else MESSAGE_LIMIT)
+
+
+@lru_cache(maxsize=8)
+def _cache_visual_meshes(faces: int) -> None:
+    """The recording's visual meshes, decimated here (once per process): the worker cannot write the cache."""
+    from humanoidgen.assets.robot_files import resolve_assets_root
+    from humanoidgen.sim.robot import cache_visual_meshes
+
+    cache_visual_meshes(resolve_assets_root(), faces)
 
 
 def run_task_episode(req: EpisodeRequest, on_frame: Callable[[np.ndarray], None] | None = None
@@ -152,7 +165,9 @@ def run_task_episode(req: EpisodeRequest, on_frame: Callable[[np.ndarray], None]
                     break
             if not worker.alive:  # killed by a timeout or died: nothing left to judge
                 return _lost(spec.name, req.seed, steps), None
-            return _finished(spec.name, req.seed, steps, len(plan), worker.call(FINISH, timeout_s=CONTROL_TIMEOUT_S))
+            ok = len(steps) == len(plan) and all(s.ok for s in steps)
+            return _finished(spec.name, req.seed, steps, len(plan),
+                             worker.call(FINISH, render=ok, timeout_s=_finish_timeout(req, sim)))
         except (SandboxError, TypeError, KeyError, ValueError, AttributeError) as exc:
             # The worker's own bookkeeping failed or answered nonsense (plan code can break it): a failed
             # episode that says so, not a crash of the caller.
@@ -173,6 +188,17 @@ def _finished(task: str, seed: int | None, steps: list[StepResult], n_plan: int,
     if isinstance(arrays, dict) and arrays and all(isinstance(v, np.ndarray) for v in arrays.values()):
         return result, arrays
     return result, None
+
+
+def _finish_timeout(req: EpisodeRequest, sim_seconds: float) -> float:
+    """Judging and handing back, plus rendering the recording's images (each frame, each camera) when the
+    episode is kept."""
+    rec = req.recorder
+    if rec is None or not rec.renders:
+        return CONTROL_TIMEOUT_S
+    frames = sim_seconds * req.control_hz / rec.every + 1
+    views = len(set(rec.cameras) | (set(rec.point_cloud_cameras) if rec.point_cloud else set()))
+    return CONTROL_TIMEOUT_S + frames * (views + 1) * RENDER_S_PER_IMAGE * rec.width * rec.height / (320 * 240)
 
 
 def _error(out) -> str:

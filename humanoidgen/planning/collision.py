@@ -50,6 +50,15 @@ class CollisionWorld:
                                   and _collidable(m, g)] for s in SIDES}
         self._floor = {g for g in range(m.ngeom) if m.geom_type[g] == mujoco.mjtGeom.mjGEOM_PLANE}
         self._fromto = np.zeros(6)
+        # Per-geom facts the geom lists are made of, and the lists themselves per (side, held body, ignored
+        # bodies): planning asks for them thousands of times per move and they change only at a grasp, a
+        # release or a change of the ignore list.
+        self._collidable = (m.geom_contype != 0) | (m.geom_conaffinity != 0)
+        self._geom_body = m.geom_bodyid.astype(np.int64)
+        self._geom_root = m.body_rootid[self._geom_body].astype(np.int64)
+        self._not_floor = np.ones(m.ngeom, bool)
+        self._not_floor[list(self._floor)] = False
+        self._lists: dict[tuple, tuple[np.ndarray, np.ndarray]] = {}
 
     # -- which geoms ---------------------------------------------------------------------------------
     def _moving_bodies(self, side: Side) -> set[int]:
@@ -59,22 +68,27 @@ class CollisionWorld:
         return bodies
 
     def movers(self, side: Side) -> list[int]:
-        m = self.kin.model
-        bodies = self._moving_bodies(side)
-        return [g for g in range(m.ngeom) if m.geom_bodyid[g] in bodies and _collidable(m, g)]
+        return self._geom_lists(side)[0].tolist()
 
     def obstacles(self, side: Side) -> list[int]:
-        m = self.kin.model
-        moving = self._moving_bodies(side)
-        out = []
-        for g in range(m.ngeom):
-            b = int(m.geom_bodyid[g])
-            if b in moving or g in self._floor or not _collidable(m, g):
-                continue
-            if int(m.body_rootid[b]) in self.ignored_bodies or b in self.ignored_bodies:
-                continue
-            out.append(g)
-        return out
+        return self._geom_lists(side)[1].tolist()
+
+    def _geom_lists(self, side: Side) -> tuple[np.ndarray, np.ndarray]:
+        """(movers, obstacles) of `side` as geom id arrays, cached; see `movers` and `obstacles`."""
+        held = self.kin.attached[side][0] if side in self.kin.attached else None
+        key = (side, held, frozenset(self.ignored_bodies))
+        lists = self._lists.get(key)
+        if lists is None:
+            if len(self._lists) > 256:  # a planner that keeps changing its ignore list: start over
+                self._lists.clear()
+            moving = np.isin(self._geom_body, sorted(self._moving_bodies(side)))
+            ignored = np.isin(self._geom_body, sorted(self.ignored_bodies)) | np.isin(self._geom_root,
+                                                                                        sorted(self.ignored_bodies))
+            movers = np.flatnonzero(moving & self._collidable)
+            obstacles = np.flatnonzero(~moving & self._not_floor & self._collidable & ~ignored)
+            movers.flags.writeable = obstacles.flags.writeable = False
+            lists = self._lists[key] = (movers, obstacles)
+        return lists
 
     def finger_geoms(self, side: Side) -> list[int]:
         """The collidable geoms of `side`'s fingers (thumb, index, ..., not the palm)."""
@@ -104,7 +118,7 @@ class CollisionWorld:
         return t[1] if t is not None and obstacle in t[0] else 0.0
 
     # -- queries --------------------------------------------------------------------------------------
-    def _near_pairs(self, movers: list[int], obstacles: list[int]) -> np.ndarray:
+    def _near_pairs(self, movers: list[int] | np.ndarray, obstacles: list[int] | np.ndarray) -> np.ndarray:
         """Index pairs (i, j) of movers[i], obstacles[j] whose bounding spheres are within `influence`."""
         m, d = self.kin.model, self.kin.data
         mv, ob = np.asarray(movers), np.asarray(obstacles)
@@ -146,24 +160,25 @@ class CollisionWorld:
         best, pair = FAR, None
         m, d = self.kin.model, self.kin.data
         for side in sides:
-            movers, obstacles = self.movers(side), self.obstacles(side)
-            if not movers or not obstacles:
+            movers, obstacles = self._geom_lists(side)
+            if not len(movers) or not len(obstacles):
                 continue
             held = self.kin.attached[side][0] if side in self.kin.attached else -1
             for i, j in self._near_pairs(movers, obstacles):
-                dd = mujoco.mj_geomDistance(m, d, movers[i], obstacles[j], self.influence, self._fromto)
-                if m.geom_bodyid[movers[i]] == held:
+                g1, g2 = int(movers[i]), int(obstacles[j])
+                dd = mujoco.mj_geomDistance(m, d, g1, g2, self.influence, self._fromto)
+                if self._geom_body[g1] == held:
                     dd += self.held_slack
                 if self.touch:
-                    dd += self._slack(movers[i], obstacles[j])
+                    dd += self._slack(g1, g2)
                 if dd < best:
-                    best, pair = dd, (movers[i], obstacles[j])
+                    best, pair = dd, (g1, g2)
         return best, pair
 
     def arm_arm_distance(self) -> float:
         """Smallest distance between anything moving with the left arm and anything moving with the right."""
         m, d = self.kin.model, self.kin.data
-        left, right = self.movers("left"), self.movers("right")
+        left, right = self._geom_lists("left")[0], self._geom_lists("right")[0]
         best = FAR
         for i, j in self._near_pairs(left, right):
             best = min(best, mujoco.mj_geomDistance(m, d, left[i], right[j], self.influence, self._fromto))
@@ -175,11 +190,11 @@ class CollisionWorld:
         m, d = self.kin.model, self.kin.data
         worst: dict[tuple[int, int], float] = {}
         for side in sides:
-            movers, obstacles = self.movers(side), self.obstacles(side)
-            if not movers or not obstacles:
+            movers, obstacles = self._geom_lists(side)
+            if not len(movers) or not len(obstacles):
                 continue
             for i, j in self._near_pairs(movers, obstacles):
-                g1, g2 = movers[i], obstacles[j]
+                g1, g2 = int(movers[i]), int(obstacles[j])
                 dd = mujoco.mj_geomDistance(m, d, g1, g2, self.influence, self._fromto) + self._slack(g1, g2)
                 if dd < clearance:
                     key = (self._owner(g1), self._owner(g2))

@@ -16,7 +16,7 @@ _MODULES = (
     "humanoidgen.planning.planner", "humanoidgen.tasks.registry", "humanoidgen.tasks.scene",
     "humanoidgen.episodes.recorder", "humanoidgen.episodes.plans", "humanoidgen.episodes.runner",
     "humanoidgen.episodes.episode_worker", "humanoidgen.episodes.task_episode", "humanoidgen.sim.cameras",
-    "humanoidgen.generation.worker", "humanoidgen.planning.snapshot",
+    "humanoidgen.generation.worker", "humanoidgen.planning.snapshot", "humanoidgen.episodes.render_replay",
 )
 for _name in _MODULES:
     with contextlib.suppress(Exception):
@@ -26,10 +26,17 @@ for _name in _MODULES:
 def _warm() -> None:
     """Build the robot's scene once: MuJoCo keeps processed meshes in a process-wide cache, which every
     forked worker then inherits (compiling a scene drops from about 2.3 s to 0.6 s here); the decimated
-    visual meshes are written to the user cache now, by a process that may still write."""
+    visual meshes (full and recording detail) are written to the user cache now, by a process that may
+    still write."""
+    from humanoidgen.sim.fps import warm_up
+    from humanoidgen.sim.meshes import recording_faces, visual_detail
     from humanoidgen.sim.scene import SceneBuilder
 
+    with contextlib.suppress(Exception):
+        warm_up()  # the point-cloud kernel, compiled once here rather than in every worker
     SceneBuilder().build()
+    with visual_detail(recording_faces(320, 240)):  # the default recording's level of detail
+        SceneBuilder().build()
 
 
 with contextlib.suppress(Exception):

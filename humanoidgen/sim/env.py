@@ -42,6 +42,7 @@ class HumanoidEnv:
             )
         self.n_substeps = int(round(substeps))
         self.data = mujoco.MjData(model)
+        self._kinematics_qpos = np.zeros(model.nq)
         self._act_ids = np.array([model.actuator(name).id for name in ACTION_JOINTS])
         self._qpos_adr = np.array([model.jnt_qposadr[model.joint(name).id] for name in ACTION_JOINTS])
         self._ctrl_lo = model.actuator_ctrlrange[self._act_ids, 0]
@@ -83,6 +84,7 @@ class HumanoidEnv:
             x = self.data.qpos[self.model.jnt_qposadr[driver]]
             self.data.qpos[self.model.jnt_qposadr[follower]] = c[0] + c[1] * x
         mujoco.mj_forward(self.model, self.data)
+        self._kinematics_qpos[:] = self.data.qpos
 
     def clip(self, action: np.ndarray) -> np.ndarray:
         return np.clip(action, self._ctrl_lo, self._ctrl_hi)
@@ -91,7 +93,18 @@ class HumanoidEnv:
         """Apply the 26-D joint-position target (clipped to joint limits) for one control period."""
         a = self.clip(validate_action(action))
         self.data.ctrl[self._act_ids] = a
-        mujoco.mj_step(self.model, self.data, nstep=self.n_substeps)
+        # The last substep runs on its own so that the configuration it started from, the one today's
+        # kinematics (body and camera poses, so any picture rendered now) were computed from, is known:
+        # recordings are rendered afterwards from it. nstep=k is a loop of single steps: the same physics.
+        if self.n_substeps > 1:
+            mujoco.mj_step(self.model, self.data, nstep=self.n_substeps - 1)
+        self._kinematics_qpos[:] = self.data.qpos
+        mujoco.mj_step(self.model, self.data)
+
+    def kinematics_qpos(self) -> np.ndarray:
+        """The configuration the current kinematics (`data.xpos`, `cam_xpos`, ...) were computed from: after
+        `step` that is the state before its last physics substep, not `data.qpos`."""
+        return self._kinematics_qpos.copy()
 
     # -- state queries -----------------------------------------------------------------------------------
     def joint_positions(self) -> np.ndarray:

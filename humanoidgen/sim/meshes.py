@@ -5,14 +5,47 @@ hulls anyway). Decimated meshes are cached on disk, keyed by the source file's h
 
 from __future__ import annotations
 
+import contextlib
+import contextvars
 import hashlib
+from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
 
 from humanoidgen.assets.robot_files import cache_dir
 
-DEFAULT_MAX_FACES = 1500
+DEFAULT_MAX_FACES = 1500  # full detail: pictures (`hgen render`), the physics model
+# Recording detail: faces per mesh for a 640x480 image, scaled with the pixel count (a link spans about the
+# same share of the image at any resolution, so the triangles per pixel stay the same) and never below a
+# floor that keeps fingers and joints recognisable. 320x240 gets 375 faces per mesh, about a quarter.
+_FACES_AT_VGA = DEFAULT_MAX_FACES
+_MIN_RECORDING_FACES = 200
+_visual_faces: contextvars.ContextVar[int] = contextvars.ContextVar("visual_faces", default=DEFAULT_MAX_FACES)
+
+
+def recording_faces(width: int, height: int) -> int:
+    """Faces per robot visual mesh for recording images of `width` x `height` pixels."""
+    scaled = round(_FACES_AT_VGA * width * height / (640 * 480))
+    return int(min(DEFAULT_MAX_FACES, max(_MIN_RECORDING_FACES, scaled)))
+
+
+def visual_faces() -> int:
+    """Faces per visual mesh the scenes built now get (see `visual_detail`)."""
+    return _visual_faces.get()
+
+
+@contextlib.contextmanager
+def visual_detail(max_faces: int) -> Iterator[None]:
+    """Scenes built inside the block get robot visual meshes of at most `max_faces` faces each (the physics
+    is the same: collision keeps the original meshes, visual geoms have no mass)."""
+    if max_faces < 4:
+        raise ValueError(f"a visual mesh needs at least 4 faces, got {max_faces}")
+    token = _visual_faces.set(int(max_faces))
+    try:
+        yield
+    finally:
+        _visual_faces.reset(token)
 _STL_RECORD = np.dtype([("normal", "<f4", 3), ("v", "<f4", (3, 3)), ("attr", "<u2")])
 
 
@@ -39,8 +72,42 @@ def simplify(verts: np.ndarray, faces: np.ndarray, max_faces: int) -> tuple[np.n
     return np.asarray(v, np.float64), np.asarray(f, np.int32)
 
 
+def cluster(verts: np.ndarray, faces: np.ndarray, max_faces: int) -> tuple[np.ndarray, np.ndarray]:
+    """Vertex clustering down to at most `max_faces` triangles: vertices in one cell of a grid become their
+    mean, collapsed and repeated triangles go. The finest grid (found by bisection) that fits is used.
+    Unlike quadric decimation it cannot stall: some upstream meshes are many small pieces that
+    `simplify` leaves at 3x the target."""
+    if len(faces) <= max_faces:
+        return verts, faces
+    lo_v = verts.min(axis=0)
+    size = float(np.ptp(verts, axis=0).max())
+
+    def at(cell: float) -> tuple[np.ndarray, np.ndarray]:
+        keys = np.floor((verts - lo_v) / cell).astype(np.int64)
+        _, inverse = np.unique(keys, axis=0, return_inverse=True)
+        inverse = inverse.reshape(-1)
+        counts = np.bincount(inverse)
+        new_v = np.stack([np.bincount(inverse, verts[:, k]) for k in range(3)], axis=1) / counts[:, None]
+        f = inverse[faces]
+        f = f[(f[:, 0] != f[:, 1]) & (f[:, 1] != f[:, 2]) & (f[:, 0] != f[:, 2])]
+        _, first = np.unique(np.sort(f, axis=1), axis=0, return_index=True)
+        return new_v, f[np.sort(first)].astype(np.int32)
+
+    fine, coarse = size / 4096, size  # face counts shrink as the cells grow
+    best = at(coarse)
+    for _ in range(14):
+        mid = np.sqrt(fine * coarse)
+        v, f = at(mid)
+        if len(f) <= max_faces:
+            coarse, best = mid, (v, f)
+        else:
+            fine = mid
+    return best
+
+
 def visual_mesh(path: Path, max_faces: int = DEFAULT_MAX_FACES, cache: Path | None = None) -> tuple[np.ndarray, np.ndarray]:
-    """The decimated mesh for `path`, from the cache when it is there."""
+    """The decimated mesh for `path`, from the cache when it is there. Full detail (`DEFAULT_MAX_FACES`) is
+    the quadric decimation pictures always had; lighter levels hold their face budget strictly."""
     cache = cache or cache_dir().parent / "meshes"
     digest = hashlib.sha256(Path(path).read_bytes()).hexdigest()[:16]
     cached = cache / f"{Path(path).stem}-{digest}-{max_faces}.npz"
@@ -48,6 +115,8 @@ def visual_mesh(path: Path, max_faces: int = DEFAULT_MAX_FACES, cache: Path | No
         with np.load(cached) as z:
             return z["verts"], z["faces"]
     verts, faces = simplify(*read_binary_stl(path), max_faces)
+    if max_faces < DEFAULT_MAX_FACES:
+        verts, faces = cluster(verts, faces, max_faces)
     try:
         cache.mkdir(parents=True, exist_ok=True)
         tmp = cached.with_name(cached.name + ".tmp.npz")

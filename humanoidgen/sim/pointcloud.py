@@ -16,9 +16,12 @@ World frame used by the defaults: +x forward, +y left, +z up, table top at z=0.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 from typing import NamedTuple, Sequence
 
 import numpy as np
+
+from humanoidgen.sim.fps import farthest_point_sampling
 
 __all__ = [
     "DepthView",
@@ -77,21 +80,32 @@ def depth_to_points(
 
     d = depth.astype(np.float64).reshape(-1)
     valid = np.isfinite(d) & (d < far)
+    xn, yn = _pixel_rays(h, w, fx, fy, cx, cy)
 
+    d_safe = np.where(valid, d, np.nan)
+    cam_mat = np.asarray(cam_mat, dtype=np.float64).reshape(3, 3)
+    cam_pos = np.asarray(cam_pos, dtype=np.float64).reshape(3)
+    # p_world = cam_pos + cam_mat @ (xn d, yn d, -d) (the camera looks along -z), written out per axis:
+    # a (H*W, 3) @ (3, 3) product goes through BLAS, whose threads cost ~70x more than the product here.
+    xd, yd = xn * d_safe, yn * d_safe
+    points = np.empty((h * w, 3))
+    for axis in range(3):
+        m = cam_mat[axis]
+        points[:, axis] = xd * m[0] + yd * m[1] - d_safe * m[2] + cam_pos[axis]
+    return points, valid
+
+
+@lru_cache(maxsize=16)
+def _pixel_rays(h: int, w: int, fx: float, fy: float, cx: float, cy: float) -> tuple[np.ndarray, np.ndarray]:
+    """Normalised image coordinates (x/z, y/z) of every pixel centre, row-major; read-only, cached per camera."""
     # +0.5: MuJoCo samples the ray through the pixel centre.
     u = np.arange(w, dtype=np.float64) + 0.5
     v = np.arange(h, dtype=np.float64) + 0.5
-    xn = np.broadcast_to((u - cx) / fx, (h, w)).reshape(-1)
+    xn = np.ascontiguousarray(np.broadcast_to((u - cx) / fx, (h, w)).reshape(-1))
     # Image rows grow downward while camera +y is up, hence the sign flip.
-    yn = np.broadcast_to((-(v - cy) / fy)[:, None], (h, w)).reshape(-1)
-
-    d_safe = np.where(valid, d, np.nan)
-    p_cam = np.stack([xn * d_safe, yn * d_safe, -d_safe], axis=1)  # looks along -z
-    cam_mat = np.asarray(cam_mat, dtype=np.float64).reshape(3, 3)
-    cam_pos = np.asarray(cam_pos, dtype=np.float64).reshape(3)
-    # Row-vector form of cam_pos + cam_mat @ p_cam.
-    points = p_cam @ cam_mat.T + cam_pos
-    return points, valid
+    yn = np.ascontiguousarray(np.broadcast_to((-(v - cy) / fy)[:, None], (h, w)).reshape(-1))
+    xn.flags.writeable = yn.flags.writeable = False
+    return xn, yn
 
 
 def crop_box(points: np.ndarray, lo: Sequence[float], hi: Sequence[float]) -> np.ndarray:
@@ -103,74 +117,6 @@ def crop_box(points: np.ndarray, lo: Sequence[float], hi: Sequence[float]) -> np
     lo_a = np.asarray(lo, dtype=np.float64)
     hi_a = np.asarray(hi, dtype=np.float64)
     return np.all((points >= lo_a) & (points <= hi_a), axis=-1)
-
-
-def farthest_point_sampling(
-    points: np.ndarray,
-    n: int,
-    seed: int = 0,
-    oversample: int | None = 8,
-) -> np.ndarray:
-    """Indices (n,) into ``points`` chosen by farthest point sampling.
-
-    Deterministic for a given ``seed`` (the seed picks the start point and the
-    candidate subset). Greedy FPS with a running min-distance array: O(M*n)
-    time, O(M) memory, where M is the number of candidates.
-
-    Speed: if ``oversample`` is not None and N > oversample*n, a uniform random
-    subset of ``oversample*n`` candidates is drawn first. FPS on a dense depth
-    cloud is dominated by N, and an 8x random pre-subsample barely changes the
-    coverage while cutting the cost ~N/(8n) times. Pass ``oversample=None``
-    for exact FPS over all points.
-
-    If N < n every index is returned once (in order), then the sequence is
-    repeated cyclically so the output always has exactly n entries.
-    Points must be finite (filter with the ``valid`` mask first).
-    """
-    pts = np.asarray(points, dtype=np.float64)
-    if pts.ndim != 2 or pts.shape[1] != 3:
-        raise ValueError(f"points must be (N, 3), got shape {pts.shape}")
-    n_pts = pts.shape[0]
-    if n <= 0:
-        raise ValueError(f"n must be positive, got {n}")
-    if n_pts == 0:
-        raise ValueError(
-            "farthest_point_sampling got 0 points (empty cloud: check depth "
-            "validity / crop box)"
-        )
-    if n_pts <= n:
-        # Not enough points: keep all, pad by cyclic repetition (deterministic).
-        return np.resize(np.arange(n_pts, dtype=np.int64), n)
-
-    rng = np.random.default_rng(seed)
-    if oversample is not None and n_pts > oversample * n:
-        cand = np.sort(rng.choice(n_pts, size=oversample * n, replace=False))
-    else:
-        cand = np.arange(n_pts, dtype=np.int64)
-    # Per-axis contiguous float64 arrays: plain elementwise ufuncs on 1-D
-    # arrays are ~4x faster here than einsum on an (M, 3) array.
-    cx, cy, cz = (np.ascontiguousarray(pts[cand, k]) for k in range(3))
-    m = cand.shape[0]
-
-    chosen = np.empty(n, dtype=np.int64)
-    min_d2 = np.full(m, np.inf)
-    d2 = np.empty(m)
-    tmp = np.empty(m)
-    cur = int(rng.integers(m))
-    for i in range(n):
-        chosen[i] = cur
-        # In-place ops: no allocations in the n-iteration loop.
-        np.subtract(cx, cx[cur], out=d2)
-        np.multiply(d2, d2, out=d2)
-        np.subtract(cy, cy[cur], out=tmp)
-        np.multiply(tmp, tmp, out=tmp)
-        d2 += tmp
-        np.subtract(cz, cz[cur], out=tmp)
-        np.multiply(tmp, tmp, out=tmp)
-        d2 += tmp
-        np.minimum(min_d2, d2, out=min_d2)
-        cur = int(np.argmax(min_d2))
-    return cand[chosen]
 
 
 @dataclass
@@ -198,6 +144,32 @@ class DepthView(NamedTuple):
     cam_pos: np.ndarray  # (3,)
     cam_mat: np.ndarray  # (3, 3), columns = camera axes in world
     rgb: np.ndarray | None = None  # (H, W, 3) uint8 or float in [0, 1]
+
+
+def _cropped_points(depth, fovy_deg, cam_pos, cam_mat, cfg: PointCloudConfig) -> tuple[np.ndarray, np.ndarray]:
+    """Pixel indices and world points of one view's pixels inside the crop box: `depth_to_points` followed
+    by `crop_box`, value for value, but computed only for valid pixels and cropped axis by axis (about 5x
+    faster on a 320x240 view, most of which is table or background)."""
+    depth = np.asarray(depth)
+    if depth.ndim != 2:
+        raise ValueError(f"depth must be (H, W), got shape {depth.shape}")
+    h, w = depth.shape
+    k = intrinsics(w, h, fovy_deg)
+    xn, yn = _pixel_rays(h, w, k[0, 0], k[1, 1], k[0, 2], k[1, 2])
+    d = depth.astype(np.float64).reshape(-1)
+    idx = np.flatnonzero(np.isfinite(d) & (d < cfg.far))
+    d = d[idx]
+    xd, yd = xn[idx] * d, yn[idx] * d
+    cam_mat = np.asarray(cam_mat, dtype=np.float64).reshape(3, 3)
+    cam_pos = np.asarray(cam_pos, dtype=np.float64).reshape(3)
+    axes = []
+    inside = np.ones(idx.shape[0], bool)
+    for axis in range(3):
+        m = cam_mat[axis]
+        c = xd * m[0] + yd * m[1] - d * m[2] + cam_pos[axis]  # the same expression as depth_to_points
+        inside &= (c >= cfg.crop_lo[axis]) & (c <= cfg.crop_hi[axis])
+        axes.append(c)
+    return idx[inside], np.stack([c[inside] for c in axes], axis=1)
 
 
 def _rgb_to_unit(rgb: np.ndarray, shape: tuple[int, int]) -> np.ndarray:
@@ -231,9 +203,7 @@ def fuse_point_cloud(
     for i, view in enumerate(views):
         depth, fovy, pos, mat, *rest = view
         rgb = rest[0] if rest else None
-        pts, valid = depth_to_points(depth, fovy, pos, mat, far=cfg.far)
-        keep = valid & crop_box(pts, cfg.crop_lo, cfg.crop_hi)
-        feats = pts[keep]
+        keep, feats = _cropped_points(depth, fovy, pos, mat, cfg)
         if cfg.use_rgb:
             if rgb is None:
                 raise ValueError(f"config.use_rgb is True but view {i} has no rgb")

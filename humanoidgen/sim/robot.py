@@ -211,6 +211,17 @@ def _split_visual_and_collision(spec: mujoco.MjSpec, robot_dir: Path, max_faces:
             geom.group = ROBOT_COLLISION_GROUP
 
 
+def cache_visual_meshes(assets_root: Path, max_faces: int) -> None:
+    """Decimate (and cache on disk) the robot's visual meshes at `max_faces`, so that a process that cannot
+    write, the locked plan worker, later finds them there instead of decimating them in memory each time."""
+    robot_dir = Path(assets_root) / "h1_2"
+    spec = mujoco.MjSpec.from_file(str(robot_dir / "h1_2.xml"))
+    files = {m.name: m.file for m in spec.meshes}
+    for name in sorted({g.meshname for g in spec.geoms if g.type == mujoco.mjtGeom.mjGEOM_MESH
+                        and g.contype == 0 and g.conaffinity == 0}):
+        visual_mesh(robot_dir / "meshes" / Path(files[name]).name, max_faces)
+
+
 def build_robot_spec(assets_root: Path, visual_max_faces: int = DEFAULT_MAX_FACES) -> mujoco.MjSpec:
     """Load the upstream H1-2 MJCF and turn it into the table-top robot described in the module docstring."""
     robot_dir = Path(assets_root) / "h1_2"

@@ -16,6 +16,7 @@ import numpy as np
 from humanoidgen.assets.robot_files import resolve_assets_root
 from humanoidgen.sim.cameras import add_cameras
 from humanoidgen.sim.layout import ROBOT_BASE_POS, TABLE_THICKNESS, TABLE_TOP_Z, TABLE_X, TABLE_Y
+from humanoidgen.sim.meshes import visual_faces
 from humanoidgen.sim.robot import build_robot_spec
 
 if TYPE_CHECKING:
@@ -74,7 +75,7 @@ class SceneBuilder:
 
     def __post_init__(self) -> None:
         root = Path(self.assets_root) if self.assets_root is not None else resolve_assets_root()
-        self.spec = build_robot_spec(root)
+        self.spec = build_robot_spec(root, visual_faces())
         self.spec.modelname = "humanoidgen_table"
         opt = self.spec.option
         opt.timestep = self.timestep
