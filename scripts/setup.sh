@@ -23,5 +23,14 @@ if ((${#missing[@]})); then
 fi
 
 PYTHON="${PYTHON:-python3}"
-"$PYTHON" -m pip install --disable-pip-version-check -q -e ".[dev]"
+# Policy learning needs torch + torchvision (+ diffusers, gymnasium): from PyPI that is the CUDA build, about
+# 5.6 GB. HGEN_TORCH_INDEX=https://download.pytorch.org/whl/cpu installs the CPU build (about 1.1 GB) of both
+# from that index first (one index for both keeps them a matching pair); HGEN_NO_POLICY=1 skips them.
+EXTRAS="dev,policy"
+if [ "${HGEN_NO_POLICY:-0}" = "1" ]; then
+  EXTRAS="dev"
+elif [ -n "${HGEN_TORCH_INDEX:-}" ]; then
+  "$PYTHON" -m pip install --disable-pip-version-check -q torch torchvision --index-url "$HGEN_TORCH_INDEX"
+fi
+"$PYTHON" -m pip install --disable-pip-version-check -q -e ".[$EXTRAS]"
 echo "humanoidgen is installed. Try: hgen render --out scene.png"

@@ -5,6 +5,14 @@ os.environ.setdefault("MUJOCO_GL", "egl")
 
 import pytest  # noqa: E402
 
+# torch's triton, imported (by diffusers) after an EGL context exists in the process, segfaults on this Mesa
+# (reproduced outside the project: create a MuJoCo GLContext, then `import diffusers.utils.torch_utils`). The
+# policy commands import it before they render; the test process renders first, so import it first here.
+try:
+    import diffusers.utils.torch_utils  # noqa: E402, F401
+except ImportError:  # the policy extra is not installed: its tests fail on their own imports
+    pass
+
 from humanoidgen.sim.scene import Scene, SceneBuilder  # noqa: E402
 
 

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import typer
 
-from humanoidgen.cli import assets_cmd, dataset_cmd, episodes_cmd, generate_cmd, sandbox_cmd
+from humanoidgen.cli import assets_cmd, dataset_cmd, episodes_cmd, generate_cmd, policy_cmd, sandbox_cmd
 
 app = typer.Typer(
     help=(
@@ -26,6 +26,7 @@ app.command()(episodes_cmd.bench)
 app.add_typer(dataset_cmd.app, name="dataset")
 app.add_typer(generate_cmd.app, name="generate")
 app.add_typer(sandbox_cmd.app, name="sandbox")
+app.add_typer(policy_cmd.app, name="policy")
 
 
 @app.command()

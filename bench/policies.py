@@ -1,0 +1,90 @@
+"""Policy study on this machine's CPU with a reduced recipe: DP3 on close_drawer, open_box_easy and
+dual_bottles_pick_easy, DP on close_drawer, 50 demonstrations each, evaluated closed-loop (3 seeds x 20
+episodes). Writes bench/results/policies_<name>.json (rows: task, policy, demos, success_mean, success_std,
+training time, time per epoch) and a plot of success vs demonstrations beside it.
+
+The reduced recipe (the paper's is 3,000 epochs of a 512/1024/2048 U-Net at batch 256, for a GPU):
+    U-Net 64/128/256, 2 observation steps, 7 action steps, horizon 8, batch 64, AdamW 3e-4 (200 warm-up
+    steps), DP3 512 points, DP images 84x112 cropped to 76x100, EPOCHS epochs (default 150).
+
+Data missing under --data-root is collected first (about 10 s per close_drawer episode here).
+
+    python bench/policies.py                              # the full reduced study (hours on 2 cores)
+    python bench/policies.py --tasks close_drawer --policies dp3 --epochs 30 --episodes 10 --name short
+    python bench/policies.py --paper --device cuda        # the paper's recipe and study, on a GPU
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+import time
+from pathlib import Path
+
+os.environ.setdefault("OMP_NUM_THREADS", "1")
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+os.environ.setdefault("MUJOCO_GL", "egl")
+
+ROOT = Path(__file__).resolve().parent
+REDUCED = {"unet": {"down_dims": [64, 128, 256]}, "n_obs_steps": 2, "n_action_steps": 7, "horizon": 8,
+           "train": {"batch_size": 64, "lr": 3e-4, "lr_warmup_steps": 200}}
+REDUCED_BY_POLICY = {"dp3": {**REDUCED, "num_points": 512},
+                     "dp": {**REDUCED, "image_size": [84, 112], "crop_size": [76, 100]}}
+# (task, policy) pairs of the reduced study, as the issue sizes it.
+REDUCED_RUNS = (("close_drawer", "dp3"), ("open_box_easy", "dp3"), ("dual_bottles_pick_easy", "dp3"),
+                ("close_drawer", "dp"))
+
+
+def main() -> int:
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--tasks", help="comma list (default: the reduced study's pairs)")
+    p.add_argument("--policies", default="dp,dp3")
+    p.add_argument("--demos", default="50")
+    p.add_argument("--epochs", type=int, default=150)
+    p.add_argument("--episodes", type=int, default=20, help="evaluation episodes per seed")
+    p.add_argument("--seeds", default="0,1,2")
+    p.add_argument("--data-root", type=Path, default=Path("data/policy_study"))
+    p.add_argument("--runs-root", type=Path, default=Path("runs/policy_study"))
+    p.add_argument("--name", default="cpu_reduced", help="results go to bench/results/policies_<name>.json")
+    p.add_argument("--threads", type=int, default=1, help="torch threads (1: on a shared 2-core machine a second "
+                                                          "thread made training ~10x slower)")
+    p.add_argument("--device", default="auto")
+    p.add_argument("--paper", action="store_true", help="the paper's recipe and study: 14 tasks x 20/50/100 x both")
+    args = p.parse_args()
+
+    import torch
+
+    from humanoidgen.policies.bench import PAPER_TASKS, StudyConfig, format_row, run_study, write_results
+
+    torch.set_num_threads(args.threads)
+    demos = tuple(int(d) for d in args.demos.split(","))
+    seeds = tuple(int(s) for s in args.seeds.split(","))
+    policies = [q.strip() for q in args.policies.split(",")]
+    if args.paper:
+        pairs = [(t, q) for t in PAPER_TASKS for q in ("dp", "dp3")]
+        demos = (20, 50, 100)
+        recipe = {q: {} for q in ("dp", "dp3")}
+    else:
+        tasks = [t.strip() for t in args.tasks.split(",")] if args.tasks else None
+        pairs = [(t, q) for t, q in REDUCED_RUNS if q in policies] if tasks is None else \
+            [(t, q) for t in tasks for q in policies]
+        recipe = {q: {**o, "train": {**o["train"], "epochs": args.epochs}} for q, o in REDUCED_BY_POLICY.items()}
+    rows, t0 = [], time.perf_counter()
+    for task, policy in pairs:
+        cfg = StudyConfig(tasks=(task,), demos=demos, policies=(policy,), data_root=args.data_root,
+                          runs_root=args.runs_root, overrides=recipe, eval_episodes=args.episodes, eval_seeds=seeds,
+                          device=args.device)
+        rows += run_study(cfg)
+    print("\n".join(format_row(r) for r in rows))
+    out = ROOT / "results" / f"policies_{args.name}.json"
+    settings = {"recipe": "paper" if args.paper else "reduced", "overrides": recipe, "pairs": pairs,
+                "torch_threads": args.threads, "torch": torch.__version__, "cpu_count": os.cpu_count(),
+                "total_minutes": round((time.perf_counter() - t0) / 60, 1)}
+    write_results(rows, cfg, out, out.with_suffix(".png"), settings)
+    print(f"wrote {out} and {out.with_suffix('.png')}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,188 @@
+"""`hgen policy ...`: train Diffusion Policy / DP3 on exported demonstrations and evaluate them closed-loop."""
+
+from __future__ import annotations
+
+import json
+import os
+from pathlib import Path
+
+import typer
+
+app = typer.Typer(help="Train and evaluate visuomotor policies (DP, DP3) on collected demonstrations.\n\n"
+                       "Example: hgen policy train --policy dp3 --data data/close_drawer.zarr --out runs/cd_dp3",
+                  no_args_is_help=True)
+
+
+def _fail(message: str) -> None:
+    typer.secho(message, fg=typer.colors.RED, err=True)
+    raise typer.Exit(1)
+
+
+def _overrides(epochs: int | None, batch_size: int | None, episodes: int | None, checkpoint_every: int | None,
+               config: str | None) -> dict:
+    over: dict = {}
+    if config:
+        text = config if config.lstrip().startswith("{") else None
+        if text is None:
+            if not Path(config).is_file():
+                _fail(f"--config: {config} is neither a JSON object nor a file")
+            text = Path(config).read_text()
+        try:
+            over = json.loads(text)
+        except ValueError as exc:
+            _fail(f"--config must be JSON (or a JSON file): {exc}")
+        if not isinstance(over, dict):
+            _fail("--config must be a JSON object, e.g. '{\"unet\": {\"down_dims\": [64, 128, 256]}}'")
+    train = dict(over.get("train", {}))
+    for key, value in (("epochs", epochs), ("batch_size", batch_size), ("episodes", episodes),
+                       ("checkpoint_every", checkpoint_every)):
+        if value is not None:
+            train[key] = value
+    return {**over, "train": train} if train else over
+
+
+def _errors():
+    from pydantic import ValidationError
+
+    from humanoidgen.episodes.dataset import DatasetError
+    from humanoidgen.policies.checkpoint import CheckpointError
+    from humanoidgen.policies.data import DataError
+    from humanoidgen.policies.eval import EvalError
+
+    return (DataError, CheckpointError, EvalError, DatasetError, ValidationError, ValueError, KeyError,
+            FileNotFoundError)
+
+
+def _one_line(exc: Exception) -> str:
+    from pydantic import ValidationError
+
+    if isinstance(exc, ValidationError):
+        first = exc.errors()[0]
+        return f"bad config: {'.'.join(str(p) for p in first['loc'])}: {first['msg']}"
+    text = str(exc.args[0]) if isinstance(exc, KeyError) and exc.args else str(exc)  # KeyError quotes its text
+    return (text.splitlines() or [type(exc).__name__])[0]
+
+
+@app.command()
+def train(
+    policy: str = typer.Option(..., "--policy", help="dp (head RGB + joints) or dp3 (point cloud + joints)."),
+    data: Path = typer.Option(..., "--data", help="A zarr from `hgen dataset export --zarr`."),
+    out: Path = typer.Option(..., "--out", help="Run folder: checkpoints/, latest.pt, config.json."),
+    epochs: int | None = typer.Option(None, min=1, help="Epochs (default 3000, the paper's)."),
+    episodes: int | None = typer.Option(None, min=1, help="Train on the first N episodes (20, 50, 100 ...)."),
+    batch_size: int | None = typer.Option(None, min=1, help="Batch size (default 256)."),
+    checkpoint_every: int | None = typer.Option(None, min=1, help="Keep a checkpoint every N epochs (and the last)."),
+    config: str | None = typer.Option(None, help="More settings as JSON (or a JSON file), e.g. "
+                                                 "'{\"unet\": {\"down_dims\": [64, 128, 256]}, \"num_points\": 512}'."),
+    task: str | None = typer.Option(None, help="The task, for a zarr exported without it."),
+    device: str = typer.Option("auto", help="auto, cpu or cuda."),
+    resume: bool = typer.Option(False, help="Continue the run in --out from its latest.pt."),
+    threads: int | None = typer.Option(None, min=1, help="CPU threads for torch (default: torch's)."),
+) -> None:
+    """Train DP or DP3 with a progress bar; Ctrl-C saves latest.pt, and --resume continues from it.
+
+    Example: hgen policy train --policy dp3 --data data/cd.zarr --out runs/cd_dp3 --episodes 50 --epochs 200
+    """
+    import torch
+
+    from humanoidgen.policies.train import train as run_train
+
+    if threads:
+        torch.set_num_threads(threads)
+    over = _overrides(epochs, batch_size, episodes, checkpoint_every, config)
+    try:
+        result = run_train(policy, data, out, over, device=device, resume=resume, task=task)
+    except _errors() as exc:
+        _fail(_one_line(exc))
+        return
+    if result.interrupted:
+        _fail(f"interrupted after epoch {result.epochs}; continue with the same command and --resume")
+    typer.echo(f"trained {policy} for {result.new_epochs} epochs ({result.epochs} in all) in "
+               f"{result.seconds / 60:.1f} min ({result.seconds_per_epoch:.2f} s/epoch, {result.steps_per_epoch} "
+               f"steps each); loss {result.losses[0]:.4f} -> {result.losses[-1]:.4f}; checkpoints in "
+               f"{out / 'checkpoints'}")
+
+
+@app.command()
+def eval(  # noqa: A001 - the command is called eval
+    run: Path = typer.Argument(..., help="A run folder (all its kept checkpoints) or one checkpoint file."),
+    checkpoint: list[Path] = typer.Option(None, "--checkpoint", help="Only these checkpoints (repeatable)."),
+    task: str | None = typer.Option(None, help="The task to evaluate on; it must be the one trained on."),
+    episodes: int = typer.Option(20, min=1, help="Episodes per seed and checkpoint."),
+    seeds: str = typer.Option("0,1,2", help="Evaluation seeds (scenes 100000 + 1000*seed + episode)."),
+    video: Path | None = typer.Option(None, "--video", help="Write one MP4 per episode into this folder."),
+    out: Path | None = typer.Option(None, "--out", help="Write the report (JSON) here."),
+    device: str = typer.Option("auto", help="auto, cpu or cuda."),
+    threads: int | None = typer.Option(None, min=1, help="CPU threads for torch."),
+    max_steps: int | None = typer.Option(None, min=1, help="Cut episodes at N actions (default: the task's "
+                                                           "time limit)."),
+) -> None:
+    """Run the policy in its task and report success mean and std over seeds and checkpoints.
+
+    Example: hgen policy eval runs/cd_dp3 --task close_drawer --episodes 20 --seeds 0,1,2
+    """
+    os.environ.setdefault("MUJOCO_GL", "egl")
+    import torch
+
+    from humanoidgen.policies.eval import evaluate
+
+    if threads:
+        torch.set_num_threads(threads)
+    try:
+        seed_list = tuple(int(s) for s in seeds.split(",") if s.strip())
+    except ValueError:
+        _fail(f"--seeds must be comma-separated integers, got {seeds!r}")
+        return
+    try:
+        report = evaluate(run, task, episodes, seed_list, checkpoints=checkpoint or None, device=device,
+                          video_dir=video, max_steps=max_steps)
+    except _errors() as exc:
+        _fail(_one_line(exc))
+        return
+    for (ckpt, seed), rate in report.rates().items():
+        typer.echo(f"{Path(ckpt).name} seed {seed}: {100 * rate:.0f}% of {episodes}")
+    typer.echo(f"{report.policy} on {report.task}: success {100 * report.success_mean:.1f}% +- "
+               f"{100 * report.success_std:.1f} over {len(report.rates())} (checkpoint, seed) pairs")
+    if out is not None:
+        out.parent.mkdir(parents=True, exist_ok=True)
+        out.write_text(json.dumps(report.to_dict(), indent=2))
+        typer.echo(f"wrote {out}")
+
+
+@app.command()
+def bench(
+    tasks: str = typer.Option("close_drawer,open_box_easy,dual_bottles_pick_easy",
+                              help="Comma-separated tasks ('paper': the paper's 14)."),
+    demos: str = typer.Option("20,50,100", help="Numbers of demonstrations."),
+    policies: str = typer.Option("dp,dp3", help="Policies."),
+    data_root: Path = typer.Option(Path("data/policy_study"), help="Where <task>.zarr are (collected if missing)."),
+    runs_root: Path = typer.Option(Path("runs/policy_study"), help="Where the runs go."),
+    epochs: int | None = typer.Option(None, min=1, help="Epochs per run (default: the paper's 3000)."),
+    config: str | None = typer.Option(None, help="Settings for every run, JSON (as for train --config)."),
+    episodes: int = typer.Option(20, min=1, help="Evaluation episodes per seed."),
+    seeds: str = typer.Option("0,1,2", help="Evaluation seeds."),
+    out: Path = typer.Option(Path("bench/results/policies.json"), help="JSON of the rows; a .png plot beside it."),
+    device: str = typer.Option("auto", help="auto, cpu or cuda."),
+    workers: int = typer.Option(1, min=1, help="Collection workers for missing data."),
+) -> None:
+    """The study: tasks x demos x policies, trained and evaluated; writes a table, a JSON and a plot.
+
+    Example (GPU, the paper's recipe): hgen policy bench --tasks paper --device cuda
+    """
+    os.environ.setdefault("MUJOCO_GL", "egl")
+    from humanoidgen.policies.bench import PAPER_TASKS, StudyConfig, format_row, run_study, write_results
+
+    over = _overrides(epochs, None, None, None, config)
+    task_list = PAPER_TASKS if tasks == "paper" else tuple(t.strip() for t in tasks.split(",") if t.strip())
+    cfg = StudyConfig(tasks=task_list, demos=tuple(int(d) for d in demos.split(",")),
+                      policies=tuple(p.strip() for p in policies.split(",")), data_root=data_root,
+                      runs_root=runs_root, overrides={p: over for p in ("dp", "dp3")}, eval_episodes=episodes,
+                      eval_seeds=tuple(int(s) for s in seeds.split(",")), device=device, collect_workers=workers)
+    try:
+        rows = run_study(cfg)
+    except _errors() as exc:
+        _fail(_one_line(exc))
+        return
+    typer.echo("\n".join(format_row(r) for r in rows))
+    write_results(rows, cfg, out, out.with_suffix(".png"))
+    typer.echo(f"wrote {out} and {out.with_suffix('.png')}")

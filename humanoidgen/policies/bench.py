@@ -1,0 +1,155 @@
+"""The paper's policy study: tasks x numbers of demonstrations x policies, each trained on the first N
+episodes of the task's zarr and evaluated closed-loop; a table, a JSON and a plot of success vs demos.
+
+Missing data is collected first (as `hgen collect TASK --cameras head` records: 10 Hz, the head camera,
+the fused point cloud; `max(demos)` episodes), then exported (`hgen dataset export --zarr`), into
+DATA/<task> and DATA/<task>.zarr. A run whose last checkpoint exists is
+not trained again, so an interrupted study continues where it stopped."""
+
+from __future__ import annotations
+
+import json
+import time
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+
+from humanoidgen.policies import checkpoint as ck
+
+PAPER_TASKS = ("block_handover", "blocks_stack_easy", "close_box_easy", "close_drawer", "close_laptop_easy",
+               "cup_pour_easy", "dual_bottles_pick_easy", "open_box_easy", "open_drawer", "open_laptop_easy",
+               "pyramid_stack", "block_stack_single", "empty_cup_place", "handover_and_storage")
+
+
+@dataclass
+class StudyConfig:
+    tasks: tuple[str, ...] = PAPER_TASKS
+    demos: tuple[int, ...] = (20, 50, 100)
+    policies: tuple[str, ...] = ("dp", "dp3")
+    data_root: Path = Path("data/policy_study")
+    runs_root: Path = Path("runs/policy_study")
+    overrides: dict[str, dict] = field(default_factory=dict)  # per policy, as `policy_type(..).config(...)` takes
+    eval_episodes: int = 20
+    eval_seeds: tuple[int, ...] = (0, 1, 2)
+    device: str = "auto"
+    collect_workers: int = 1
+
+
+def ensure_data(task: str, n: int, cfg: StudyConfig, progress: bool = True) -> Path:
+    """DATA/<task>.zarr with at least n episodes, collecting and exporting what is missing."""
+    import zarr
+
+    from humanoidgen.episodes.collect import collect
+    from humanoidgen.episodes.dataset import EpisodeStore, export_zarr
+    from humanoidgen.episodes.recorder import RecorderConfig
+
+    out = Path(cfg.data_root) / f"{task}.zarr"
+    if out.exists() and zarr.open_group(str(out), mode="r")["meta/episode_ends"].shape[0] >= n:
+        return out
+    folder = Path(cfg.data_root) / task
+    store = EpisodeStore(folder)
+    have = len(store.kept()) if store.meta_path.exists() else 0
+    if have < n:
+        rec = RecorderConfig(every=5, cameras=("head",), point_cloud=True)
+        stats = collect(task, n, folder, workers=cfg.collect_workers, resume=store.meta_path.exists(), recorder=rec,
+                        progress=(lambda k, t: print(f"\rcollect {task}: kept {k}/{n}, tried {t}", end="",
+                                                     flush=True)) if progress else None)
+        if progress:
+            print()
+        if stats.kept < n:
+            raise RuntimeError(f"collected only {stats.kept} of {n} episodes of {task} in {stats.tried} attempts")
+    export_zarr(store, out)
+    return out
+
+
+def run_study(cfg: StudyConfig, progress: bool = True) -> list[dict]:
+    from humanoidgen.policies.eval import evaluate
+    from humanoidgen.policies.train import train
+
+    rows = []
+    for task in cfg.tasks:
+        data = ensure_data(task, max(cfg.demos), cfg, progress)
+        for policy in cfg.policies:
+            for n in cfg.demos:
+                over = _with(cfg.overrides.get(policy, {}), {"train": {"episodes": n}})
+                run = Path(cfg.runs_root) / f"{task}_{policy}_{n}"
+                result = None
+                if not _finished(run):
+                    result = train(policy, data, run, over, device=cfg.device, resume=(run / ck.LATEST).exists(),
+                                   progress=progress)
+                    if result.interrupted:
+                        raise KeyboardInterrupt
+                last = ck.run_checkpoints(run)[-1]
+                t0 = time.perf_counter()
+                report = evaluate(run, task, cfg.eval_episodes, cfg.eval_seeds, checkpoints=[last],
+                                  device=cfg.device, progress=progress)
+                state = ck.read(run / ck.LATEST)
+                row = {"task": task, "policy": policy, "demos": n, "success_mean": report.success_mean,
+                       "success_std": report.success_std, "rates": [r["success"] for r in report.to_dict()["rates"]],
+                       "epochs": int(state["epoch"]), "final_loss": float(state["losses"][-1]),
+                       "train_seconds": result.seconds if result else None,
+                       "seconds_per_epoch": result.seconds_per_epoch if result else None,
+                       "eval_seconds": time.perf_counter() - t0, "checkpoint": str(last)}
+                rows.append(row)
+                if progress:
+                    print(format_row(row), flush=True)
+    return rows
+
+
+def format_row(r: dict) -> str:
+    train = f"{r['train_seconds'] / 60:.1f} min ({r['seconds_per_epoch']:.1f} s/epoch)" if r["train_seconds"] else "-"
+    return (f"{r['task']:<24} {r['policy']:<4} {r['demos']:>4} demos  success {100 * r['success_mean']:5.1f}% "
+            f"+- {100 * r['success_std']:4.1f}  train {train}  loss {r['final_loss']:.4f}")
+
+
+def write_results(rows: list[dict], cfg: StudyConfig, json_path: Path, plot_path: Path | None,
+                  settings: dict | None = None) -> None:
+    json_path.parent.mkdir(parents=True, exist_ok=True)
+    meta = {k: (str(v) if isinstance(v, Path) else v) for k, v in asdict(cfg).items()}
+    json_path.write_text(json.dumps({"settings": {**meta, **(settings or {})}, "rows": rows}, indent=2))
+    if plot_path is not None:
+        plot(rows, plot_path)
+
+
+def plot(rows: list[dict], path: Path) -> bool:
+    try:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+    except ImportError:
+        print("matplotlib is not installed: no plot written")
+        return False
+    tasks = sorted({r["task"] for r in rows})
+    fig, axes = plt.subplots(1, len(tasks), figsize=(4 * len(tasks), 3.4), squeeze=False)
+    for ax, task in zip(axes[0], tasks):
+        for policy in sorted({r["policy"] for r in rows if r["task"] == task}):
+            pts = sorted((r["demos"], 100 * r["success_mean"], 100 * r["success_std"]) for r in rows
+                         if r["task"] == task and r["policy"] == policy)
+            xs, ys, es = zip(*pts)
+            ax.errorbar(xs, ys, yerr=es, marker="o", capsize=3, label=policy.upper())
+        ax.set_title(task)
+        ax.set_xlabel("demonstrations")
+        ax.set_ylim(-5, 105)
+        ax.grid(alpha=0.3)
+    axes[0][0].set_ylabel("success (%)")
+    axes[0][-1].legend()
+    fig.tight_layout()
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    return True
+
+
+def _finished(run: Path) -> bool:
+    latest = run / ck.LATEST
+    if not latest.exists():
+        return False
+    state = ck.read(latest)
+    return int(state["epoch"]) >= int(state["config"]["train"]["epochs"])
+
+
+def _with(base: dict, extra: dict) -> dict:
+    out = dict(base)
+    for k, v in extra.items():
+        out[k] = _with(out.get(k, {}), v) if isinstance(v, dict) else v
+    return out

@@ -1,0 +1,86 @@
+"""Settings shared by the diffusion policies: the action sequence they denoise, the U-Net, the noise schedule
+and the training recipe. Defaults follow the DP / DP3 code the paper trains with (RoboTwin's robot_dp3.yaml:
+horizon 8, 3 observation steps, 100 DDPM steps with the squared-cosine schedule, 10 DDIM steps at inference,
+AdamW 1e-4 with 500 warm-up steps and a cosine decay, EMA with power 0.75, batch 256, 3,000 epochs).
+
+On action steps: that code asks for 8 of a horizon of 8 with 3 observation steps, but it executes
+`action[n_obs_steps - 1 : n_obs_steps - 1 + n_action_steps]`, which a horizon of 8 cuts to 6. We say 6 and
+refuse more than fit (`n_obs_steps - 1 + n_action_steps <= horizon`)."""
+
+from __future__ import annotations
+
+from typing import Literal
+
+from pydantic import BaseModel, ConfigDict, Field, model_validator
+
+
+class _Strict(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+
+class UnetConfig(_Strict):
+    down_dims: tuple[int, ...] = Field(default=(512, 1024, 2048), min_length=1)
+    kernel_size: int = Field(default=5, ge=1)
+    n_groups: int = Field(default=8, ge=1)
+    diffusion_step_embed_dim: int = Field(default=128, ge=2)
+    cond_predict_scale: bool = True  # FiLM with scale and bias (DP's default), not bias only
+
+    @model_validator(mode="after")
+    def _groups_divide(self) -> UnetConfig:
+        bad = [d for d in self.down_dims if d % self.n_groups]
+        if bad:
+            raise ValueError(f"down_dims {bad} are not multiples of n_groups={self.n_groups} (GroupNorm)")
+        return self
+
+
+class NoiseConfig(_Strict):
+    num_train_timesteps: int = Field(default=100, ge=1)
+    num_inference_steps: int = Field(default=10, ge=1)
+    beta_schedule: Literal["squaredcos_cap_v2", "linear", "scaled_linear"] = "squaredcos_cap_v2"
+    prediction_type: Literal["epsilon", "sample"] = "epsilon"
+    clip_sample: bool = True
+
+    @model_validator(mode="after")
+    def _fewer_inference_steps(self) -> NoiseConfig:
+        if self.num_inference_steps > self.num_train_timesteps:
+            raise ValueError("num_inference_steps cannot exceed num_train_timesteps")
+        return self
+
+
+class TrainConfig(_Strict):
+    epochs: int = Field(default=3000, ge=1)
+    batch_size: int = Field(default=256, ge=1)
+    lr: float = Field(default=1e-4, gt=0)
+    weight_decay: float = Field(default=1e-6, ge=0)
+    betas: tuple[float, float] = (0.95, 0.999)
+    lr_warmup_steps: int = Field(default=500, ge=0)
+    ema_power: float = Field(default=0.75, gt=0)
+    ema_max_decay: float = Field(default=0.9999, gt=0, lt=1)
+    checkpoint_every: int = Field(default=100, ge=1)  # epochs between kept checkpoints (the last one always)
+    save_every: int = Field(default=10, ge=1)  # epochs between writes of the resumable latest.pt
+    seed: int = 0
+    episodes: int | None = Field(default=None, ge=1)  # the first N episodes of the data (None: all)
+
+
+class PolicyConfig(_Strict):
+    """What every policy has; dp.DPConfig and dp3.DP3Config add their encoders."""
+
+    horizon: int = Field(default=8, ge=1)
+    n_obs_steps: int = Field(default=3, ge=1)
+    n_action_steps: int = Field(default=6, ge=1)
+    state_dim: int = Field(default=26, ge=1)
+    action_dim: int = Field(default=26, ge=1)
+    unet: UnetConfig = UnetConfig()
+    noise: NoiseConfig = NoiseConfig()
+    train: TrainConfig = TrainConfig()
+
+    @model_validator(mode="after")
+    def _actions_fit(self) -> PolicyConfig:
+        if self.n_obs_steps - 1 + self.n_action_steps > self.horizon:
+            raise ValueError(f"n_obs_steps - 1 + n_action_steps = {self.n_obs_steps - 1 + self.n_action_steps} "
+                             f"exceeds horizon {self.horizon}: the executed actions must lie in the predicted ones")
+        levels = len(self.unet.down_dims) - 1  # the U-Net halves the sequence this many times
+        if self.horizon % (1 << levels):
+            raise ValueError(f"horizon {self.horizon} must be divisible by 2**{levels} for "
+                             f"{len(self.unet.down_dims)} U-Net levels")
+        return self

@@ -1,0 +1,1 @@
+"""Diffusion Policy: head-camera RGB + joint state."""

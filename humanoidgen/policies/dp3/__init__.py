@@ -1,0 +1,1 @@
+"""DP3: point cloud + joint state."""

@@ -1,0 +1,174 @@
+"""Closed-loop evaluation: a trained policy acts in its task's environment (`envs.HumanoidTaskEnv`) and the
+task's success predicates judge each episode. As the paper reports it: success rate per evaluation seed and
+checkpoint, then mean and standard deviation over them.
+
+Evaluation seed s, episode i runs scene seed EVAL_SEED_BASE + 1000 s + i (never a collection seed by default)
+with the policy's sampling noise seeded by the same number, so every checkpoint meets the same scenes and a
+rerun gives the same result."""
+
+from __future__ import annotations
+
+import time
+from collections import deque
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+
+import numpy as np
+import torch
+
+from humanoidgen.envs.config import EVAL_SEED_BASE, TaskEnvConfig
+from humanoidgen.policies import checkpoint as ck
+from humanoidgen.policies.train import resolve_device
+
+MAX_EPISODES_PER_SEED = 1000
+
+
+class EvalError(ValueError):
+    pass
+
+
+@dataclass
+class EpisodeOutcome:
+    checkpoint: str
+    seed: int
+    scene_seed: int
+    success: bool
+    steps: int
+    seconds: float
+
+
+@dataclass
+class EvalReport:
+    task: str
+    policy: str
+    checkpoints: list[str]
+    seeds: list[int]
+    episodes: int
+    outcomes: list[EpisodeOutcome] = field(default_factory=list)
+
+    def rates(self) -> dict[tuple[str, int], float]:
+        """Success rate of each (checkpoint, seed)."""
+        out: dict[tuple[str, int], list[bool]] = {}
+        for o in self.outcomes:
+            out.setdefault((o.checkpoint, o.seed), []).append(o.success)
+        return {k: float(np.mean(v)) for k, v in out.items()}
+
+    @property
+    def success_mean(self) -> float:
+        return float(np.mean(list(self.rates().values()))) if self.outcomes else 0.0
+
+    @property
+    def success_std(self) -> float:
+        return float(np.std(list(self.rates().values()))) if self.outcomes else 0.0
+
+    def to_dict(self) -> dict:
+        return {"task": self.task, "policy": self.policy, "checkpoints": self.checkpoints, "seeds": self.seeds,
+                "episodes": self.episodes, "success_mean": self.success_mean, "success_std": self.success_std,
+                "rates": [{"checkpoint": c, "seed": s, "success": r} for (c, s), r in self.rates().items()],
+                "outcomes": [asdict(o) for o in self.outcomes]}
+
+
+def env_config_for(policy: str, cfg, meta: dict, max_steps: int | None = None) -> TaskEnvConfig:
+    """The environment observing what the policy was trained on, at the data's action rate."""
+    rec = dict(meta.get("recorder") or {})
+    hz = meta.get("control_hz", 50.0)
+    if policy == "dp":
+        return TaskEnvConfig.from_recorder(rec, hz, cameras=(cfg.camera,), depth=False, point_cloud=False,
+                                           max_steps=max_steps)
+    return TaskEnvConfig.from_recorder(rec, hz, cameras=(), depth=False, point_cloud=True, max_steps=max_steps)
+
+
+def policy_obs(model, history: deque, device: str) -> dict[str, torch.Tensor]:
+    """The last n_obs_steps environment observations as a batch of one, with the zarr's names."""
+    cfg = model.cfg
+    out = {"state": torch.as_tensor(np.stack([h["joint_pos"] for h in history]))[None]}
+    if "point_cloud" in model.obs_keys:
+        out["point_cloud"] = torch.as_tensor(np.stack([h["point_cloud"][: cfg.num_points] for h in history]))[None]
+    if "img" in model.obs_keys:
+        from humanoidgen.policies.dp.model import resize_images
+
+        frames = np.stack([h[f"rgb/{cfg.camera}"] for h in history])
+        out["img"] = resize_images(frames, cfg.image_size)[None]
+    return {k: v.to(device) for k, v in out.items()}
+
+
+def rollout(model, env, scene_seed: int, generator: torch.Generator, device: str, video=None) -> tuple[bool, int]:
+    obs, info = env.reset(seed=scene_seed)
+    history = deque([obs] * model.cfg.n_obs_steps, maxlen=model.cfg.n_obs_steps)
+    steps, done = 0, False
+    if video is not None:
+        video.frame(env.render())
+    while not done:
+        actions = model.predict_action(policy_obs(model, history, device), generator=generator)["action"][0]
+        for a in actions.cpu().numpy():
+            obs, _, terminated, truncated, info = env.step(a)
+            history.append(obs)
+            steps += 1
+            if video is not None:
+                video.frame(env.render())
+            if terminated or truncated:
+                done = True
+                break
+    return bool(info["success"]), steps
+
+
+def evaluate(run: Path, task: str | None = None, episodes: int = 20, seeds: tuple[int, ...] = (0, 1, 2),
+             checkpoints: list[Path] | None = None, device: str = "auto", video_dir: Path | None = None,
+             progress: bool = True, max_steps: int | None = None) -> EvalReport:
+    """Evaluate a run's checkpoints (all kept ones, or `checkpoints`) on its task; `max_steps` shortens
+    episodes below the task's time limit (for quick checks)."""
+    from tqdm import tqdm
+
+    from humanoidgen.envs.task_env import HumanoidTaskEnv
+
+    if not 1 <= episodes <= MAX_EPISODES_PER_SEED:
+        raise EvalError(f"--episodes must be in 1..{MAX_EPISODES_PER_SEED}, got {episodes}")
+    if not seeds or any(s < 0 for s in seeds):
+        raise EvalError("--seeds must be non-negative integers, e.g. 0,1,2")
+    device = resolve_device(device)
+    paths = [Path(p) for p in checkpoints] if checkpoints else ck.run_checkpoints(run)
+    loaded = [(p, *ck.load_policy(p, device)) for p in paths]
+    tasks = {meta["task"] for _, _, meta in loaded}
+    if len(tasks) > 1:
+        raise EvalError(f"the checkpoints were trained on different tasks ({', '.join(sorted(tasks))})")
+    trained = tasks.pop()
+    if task is not None and task != trained:
+        raise EvalError(f"{paths[0]} was trained on task {trained!r}, not {task!r}")
+    policy = loaded[0][1].name
+    env = HumanoidTaskEnv(trained, config=env_config_for(policy, loaded[0][1].cfg, loaded[0][2], max_steps),
+                          render_mode="rgb_array" if video_dir is not None else None)
+    report = EvalReport(trained, policy, [str(p) for p in paths], list(seeds), episodes)
+    bar = tqdm(total=len(paths) * len(seeds) * episodes, unit="episode", desc=f"eval {policy} {trained}",
+               disable=not progress, dynamic_ncols=True)
+    try:
+        for path, model, _ in loaded:
+            for seed in seeds:
+                for i in range(episodes):
+                    number = MAX_EPISODES_PER_SEED * seed + i
+                    video = _video(video_dir, path, seed, i, env.config.action_hz)
+                    t0 = time.perf_counter()
+                    try:
+                        ok, steps = rollout(model, env, EVAL_SEED_BASE + number,
+                                            torch.Generator().manual_seed(number), device, video)
+                    finally:
+                        if video is not None:
+                            video.close()
+                    report.outcomes.append(EpisodeOutcome(str(path), seed, EVAL_SEED_BASE + number, ok, steps,
+                                                          time.perf_counter() - t0))
+                    bar.update(1)
+                    done = report.outcomes
+                    bar.set_postfix_str(f"success {sum(o.success for o in done)}/{len(done)}")
+    finally:
+        bar.close()
+        env.close()
+    return report
+
+
+def _video(video_dir: Path | None, ckpt: Path, seed: int, i: int, fps: float):
+    if video_dir is None:
+        return None
+    from humanoidgen.episodes.video import VideoWriter
+
+    w = VideoWriter(Path(video_dir) / f"{ckpt.stem}_seed{seed}_ep{i:03d}.mp4", fps=max(1, round(fps)))
+    w.open()
+    return w

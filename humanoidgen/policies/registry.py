@@ -1,0 +1,53 @@
+"""The policies by name: their config class, model class and what each needs from the data and the env."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from humanoidgen.policies.config import PolicyConfig
+
+
+@dataclass(frozen=True)
+class PolicyType:
+    name: str
+    config_cls: type[PolicyConfig]
+    needs: str  # what a zarr must hold besides state and action, as a reason for an error message
+
+    def model_cls(self):
+        if self.name == "dp":
+            from humanoidgen.policies.dp.model import DPPolicy
+
+            return DPPolicy
+        from humanoidgen.policies.dp3.model import DP3Policy
+
+        return DP3Policy
+
+    def config(self, overrides: dict | None = None) -> PolicyConfig:
+        """The default config with `overrides` (nested dicts: {"unet": {"down_dims": [64, 128, 256]}})."""
+        base = self.config_cls().model_dump()
+        return self.config_cls.model_validate(_merge(base, overrides or {}))
+
+
+def _merge(base: dict, over: dict) -> dict:
+    out = dict(base)
+    for k, v in over.items():
+        out[k] = _merge(base[k], v) if isinstance(v, dict) and isinstance(base.get(k), dict) else v
+    return out
+
+
+def _types() -> dict[str, PolicyType]:
+    from humanoidgen.policies.dp.config import DPConfig
+    from humanoidgen.policies.dp3.config import DP3Config
+
+    return {"dp": PolicyType("dp", DPConfig, "DP needs the camera images"),
+            "dp3": PolicyType("dp3", DP3Config, "DP3 needs point clouds")}
+
+
+POLICY_NAMES = ("dp", "dp3")
+
+
+def policy_type(name: str) -> PolicyType:
+    types = _types()
+    if name not in types:
+        raise ValueError(f"unknown policy {name!r}; policies: {', '.join(POLICY_NAMES)}")
+    return types[name]

@@ -1,0 +1,154 @@
+"""DP and DP3: training from a real (tiny) export lowers the loss, checkpoints reload to identical actions,
+an interrupted run resumes where it stopped, evaluation runs episodes judged by the task's predicates, and bad
+input gets one line and a non-zero exit."""
+
+import json
+import shutil
+
+import numpy as np
+import pytest
+
+torch = pytest.importorskip("torch")
+
+from typer.testing import CliRunner  # noqa: E402
+
+from humanoidgen.cli.main import app  # noqa: E402
+from humanoidgen.episodes.dataset import EpisodeStore, export_zarr  # noqa: E402
+from humanoidgen.episodes.recorder import RecorderConfig  # noqa: E402
+from humanoidgen.episodes.task_episode import EpisodeRequest, run_task_episode  # noqa: E402
+from humanoidgen.policies import checkpoint as ck  # noqa: E402
+from humanoidgen.policies.data import DataError, read_demos, sequence_index  # noqa: E402
+from humanoidgen.policies.eval import evaluate  # noqa: E402
+from humanoidgen.policies.registry import policy_type  # noqa: E402
+from humanoidgen.policies.train import train  # noqa: E402
+
+SMALL_REC = dict(every=5, cameras=("head",), width=64, height=48, point_cloud=True, num_points=128)
+TINY = {"unet": {"down_dims": [32, 64], "diffusion_step_embed_dim": 32}, "horizon": 8,
+        "train": {"batch_size": 32, "lr": 1e-3, "lr_warmup_steps": 0, "checkpoint_every": 2, "save_every": 1}}
+TINY_DP3 = {**TINY, "num_points": 64, "encoder_output_dim": 32, "point_mlp": [32, 64], "state_mlp": [32, 32]}
+TINY_DP = {**TINY, "image_size": [24, 32], "crop_size": [20, 28]}
+
+
+@pytest.fixture(scope="module", autouse=True)
+def _threads():
+    before = torch.get_num_threads()
+    torch.set_num_threads(1)  # on a shared 2-core machine a second thread makes it ~10x slower
+    yield
+    torch.set_num_threads(before)
+
+
+@pytest.fixture(scope="module")
+def demos_zarr(tmp_path_factory):
+    """Two close_drawer demonstrations recorded as `hgen collect` records them (small pictures), exported."""
+    root = tmp_path_factory.mktemp("demos")
+    rec = RecorderConfig(**SMALL_REC)
+    store = EpisodeStore(root / "store")
+    store.create({"task": "close_drawer", "control_hz": 50.0, "recorder": {**rec.__dict__}})
+    for seed in (0, 1):
+        result, arrays = run_task_episode(EpisodeRequest("close_drawer", seed, recorder=rec))
+        assert result.success
+        store.add({"seed": seed, "success": True}, arrays)
+    export_zarr(store, root / "cd.zarr")
+    return root / "cd.zarr"
+
+
+def _with(over, **train):
+    return {**over, "train": {**over["train"], **train}}
+
+
+def test_sequence_index_pads_like_dp():
+    idx = sequence_index(np.array([5, 9]), horizon=4, n_obs_steps=2, n_action_steps=2)
+    assert idx[0].tolist() == [0, 0, 1, 2]  # the first frame repeated before the episode
+    assert idx[idx[:, 0] < 5][-1].tolist() == [2, 3, 4, 4]  # the last frame repeated after it, never crossing
+    assert idx.min() >= 0 and all(((r < 5).all() or (r >= 5).all()) for r in idx)
+    # DP's count per episode: length + (n_obs_steps - 1) + (n_action_steps - 1) - horizon + 1
+    assert len(idx) == (5 + 1 + 1 - 4 + 1) + (4 + 1 + 1 - 4 + 1)
+
+
+def test_config_is_validated():
+    with pytest.raises(ValueError, match="exceeds horizon"):
+        policy_type("dp3").config({"n_action_steps": 8})  # 3 obs steps + 8 actions do not fit in 8
+    with pytest.raises(ValueError, match="n_groups"):
+        policy_type("dp").config({"unet": {"down_dims": [30, 60]}})
+    with pytest.raises(ValueError, match="unknown policy"):
+        policy_type("act")
+
+
+def test_dp3_tiny_training_lowers_the_loss_and_reloads_to_identical_actions(demos_zarr, tmp_path):
+    run = tmp_path / "dp3"
+    result = train("dp3", demos_zarr, run, _with(TINY_DP3, epochs=12), device="cpu", progress=False)
+    assert result.epochs == 12 and len(result.losses) == 12
+    assert np.mean(result.losses[-3:]) < 0.7 * np.mean(result.losses[:2]), result.losses
+    demos = read_demos(demos_zarr, ("state", "point_cloud"))
+    obs = {"state": torch.as_tensor(demos.arrays["state"][None, :3]),
+           "point_cloud": torch.as_tensor(demos.arrays["point_cloud"][None, :3])}
+    a, meta = ck.load_policy(ck.run_checkpoints(run)[-1])
+    b, _ = ck.load_policy(ck.run_checkpoints(run)[-1])
+    assert meta["task"] == "close_drawer" and meta["recorder"]["every"] == 5
+    out_a = a.predict_action(obs, generator=torch.Generator().manual_seed(7))["action"]
+    out_b = b.predict_action(obs, generator=torch.Generator().manual_seed(7))["action"]
+    assert out_a.shape == (1, 6, 26)
+    assert torch.equal(out_a, out_b)
+    other = a.predict_action(obs, generator=torch.Generator().manual_seed(8))["action"]
+    assert not torch.equal(out_a, other)  # sampling noise matters, so equality above is no accident
+
+
+def test_interrupted_training_resumes_where_it_stopped(demos_zarr, tmp_path):
+    whole = train("dp3", demos_zarr, tmp_path / "whole", _with(TINY_DP3, epochs=3), device="cpu", progress=False)
+    first = train("dp3", demos_zarr, tmp_path / "parts", _with(TINY_DP3, epochs=2), device="cpu", progress=False)
+    assert first.epochs == 2
+    with pytest.raises(ck.CheckpointError, match="--resume"):
+        train("dp3", demos_zarr, tmp_path / "parts", _with(TINY_DP3, epochs=3), device="cpu", progress=False)
+    rest = train("dp3", demos_zarr, tmp_path / "parts", _with(TINY_DP3, epochs=3), device="cpu", resume=True,
+                 progress=False)
+    assert rest.epochs == 3 and rest.new_epochs == 1
+    # The cosine schedule differs (its length was 2 epochs, then 3), so only the first two epochs match.
+    np.testing.assert_allclose(rest.losses[:2], first.losses, rtol=1e-6)
+    assert len(rest.losses) == len(whole.losses)
+
+
+def test_dp_trains_and_eval_runs_episodes_judged_by_the_predicates(demos_zarr, tmp_path):
+    run = tmp_path / "dp"
+    result = train("dp", demos_zarr, run, _with(TINY_DP, epochs=2), device="cpu", progress=False)
+    assert np.isfinite(result.losses).all()
+    report = evaluate(run, "close_drawer", episodes=1, seeds=(0, 1), device="cpu", progress=False, max_steps=4)
+    assert len(report.outcomes) == 2 and {o.seed for o in report.outcomes} == {0, 1}
+    assert all(o.steps == 4 and not o.success for o in report.outcomes)  # 4 actions cannot close the drawer
+    assert report.success_mean == 0.0 and report.outcomes[0].scene_seed == 100_000
+    assert report.outcomes[1].scene_seed == 101_000
+
+
+def test_bad_input_is_one_line_and_exit_1(demos_zarr, tmp_path):
+    runner = CliRunner()
+    no_pc = tmp_path / "no_pc.zarr"
+    shutil.copytree(demos_zarr, no_pc)
+    shutil.rmtree(no_pc / "data" / "point_cloud")
+    with pytest.raises(DataError, match="point_cloud"):
+        read_demos(no_pc, ("state", "point_cloud"))
+    r = runner.invoke(app, ["policy", "train", "--policy", "dp3", "--data", str(no_pc), "--out",
+                            str(tmp_path / "x"), "--epochs", "1"])
+    assert r.exit_code == 1 and "no data/point_cloud" in r.output and len(r.output.strip().splitlines()) == 1
+
+    run = tmp_path / "small"
+    r = runner.invoke(app, ["policy", "train", "--policy", "dp3", "--data", str(demos_zarr), "--out", str(run),
+                            "--epochs", "1", "--config", json.dumps(TINY_DP3), "--device", "cpu"])
+    assert r.exit_code == 0, r.output
+    r = runner.invoke(app, ["policy", "eval", str(run), "--task", "open_box_easy", "--episodes", "1"])
+    assert r.exit_code == 1 and "trained on task 'close_drawer', not 'open_box_easy'" in r.output
+    assert len(r.output.strip().splitlines()) == 1
+    r = runner.invoke(app, ["policy", "train", "--policy", "dp3", "--data", str(tmp_path / "missing.zarr"),
+                            "--out", str(tmp_path / "y")])
+    assert r.exit_code == 1 and "no training data" in r.output
+    r = runner.invoke(app, ["policy", "train", "--policy", "dp3", "--data", str(demos_zarr), "--out",
+                            str(tmp_path / "z"), "--config", '{"n_action_steps": 9}'])
+    assert r.exit_code == 1 and "exceeds horizon" in r.output
+
+
+def test_export_says_what_training_needs_and_episodes_picks_the_first(demos_zarr):
+    d = read_demos(demos_zarr, ("state", "point_cloud"))
+    assert d.attrs["task"] == "close_drawer" and d.attrs["camera"] == "head"
+    assert d.attrs["recorder"]["every"] == 5 and d.n_episodes == 2
+    one = read_demos(demos_zarr, ("state", "img"), episodes=1)
+    assert one.n_episodes == 1 and one.n_frames == d.episode_ends[0] and len(one.arrays["state"]) == one.n_frames
+    with pytest.raises(DataError, match="fewer than the 3"):
+        read_demos(demos_zarr, ("state",), episodes=3)
