@@ -291,7 +291,7 @@ class ArmMoves(PartFollowing, Approaches):
             self._settle(0.2)
             got = self._part_openness(target)
             if abs(got - wanted) <= FOLLOW_TOL:
-                self.events.append(f"pushed {obj.type_name} {obj.obj_id} a second time to reach openness {wanted:.2f}")
+                self.events.append(f"pushed {obj.type_name} {obj.obj_id} a second time to reach openness {round(wanted, 2):g}")
                 return
         share = (got - start) / way
         label = f"{obj.type_name} {obj.obj_id}"
@@ -306,7 +306,7 @@ class ArmMoves(PartFollowing, Approaches):
                    "has to give way (for a flip: under the edge, e.g. offset along the part's inner axis), push in "
                    "smaller steps with explicit Constraints, or grasp it and move it with openness=")
         raise PlanningError("move_to_pose_with_screw",
-                            f"{label} is at openness {got:.2f} after the move, not the {wanted:.2f} asked (it moved "
+                            f"{label} is at openness {got:.2f} after the move, not the {round(wanted, 2):g} asked (it moved "
                             f"{max(share, 0.0) * 100:.0f}% of the way from {start:.2f}): {why}")
 
     def _holds(self, side: Side, obj: SceneObject) -> bool:
