@@ -17,7 +17,6 @@ import numpy as np
 import pytest
 from pydantic import ValidationError
 
-from humanoidgen.episodes.task_episode import EpisodeRequest, run_task_episode
 from humanoidgen.objects import library
 from humanoidgen.objects.queries import get_point_in_env
 from humanoidgen.planning import constraint_gen, move_action, placing
@@ -25,6 +24,7 @@ from humanoidgen.tasks.predicates import Upright
 from humanoidgen.tasks.registry import load_task
 from humanoidgen.tasks.scene import build_scene
 from humanoidgen.tasks.targets import TargetSpec
+from plan_runs import run_plan
 
 
 @pytest.fixture(scope="module")
@@ -175,9 +175,7 @@ MID_AIR_HANDOVER = '''def step(planner):
 
 
 def test_a_mid_air_handover_episode(tmp_path):
-    path = tmp_path / "handover.py"
-    path.write_text(MID_AIR_HANDOVER)
-    result, _ = run_task_episode(EpisodeRequest("block_handover", seed=0, plan_path=str(path)))
+    result = run_plan(tmp_path, "block_handover", 0, MID_AIR_HANDOVER)
     events = " | ".join(e for s in result.steps for e in s.events)
     assert all(s.ok for s in result.steps), [s.error for s in result.steps]
     assert "pinched rectangular_cube 0 with the left hand" in events

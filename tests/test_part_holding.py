@@ -15,7 +15,6 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
-from humanoidgen.episodes.task_episode import EpisodeRequest, run_task_episode
 from humanoidgen.objects.articulated import set_openness
 from humanoidgen.objects.describe import openness
 from humanoidgen.planning import constraint_gen
@@ -24,6 +23,7 @@ from humanoidgen.planning.part_grip import track_rolling
 from humanoidgen.planning.planner import HumanoidMotionPlanner
 from humanoidgen.tasks.registry import load_task
 from humanoidgen.tasks.scene import build_scene
+from plan_runs import run_plan
 
 
 def _planner(task: str, seed: int) -> tuple:
@@ -73,9 +73,7 @@ CLOSE_BY_HANDLE = '''def step(planner):
 
 
 def test_closing_a_drawer_by_its_handle(tmp_path):
-    path = tmp_path / "close_by_handle.py"
-    path.write_text(CLOSE_BY_HANDLE)
-    result, _ = run_task_episode(EpisodeRequest("close_drawer", seed=2, plan_path=str(path)))
+    result = run_plan(tmp_path, "close_drawer", 2, CLOSE_BY_HANDLE)
     assert all(s.ok for s in result.steps), [s.error for s in result.steps]
     assert result.success, result.objects
 

@@ -20,20 +20,13 @@ import json
 import numpy as np
 import pytest
 
-from humanoidgen.episodes.task_episode import EpisodeRequest, run_task_episode
 from humanoidgen.objects.hands import HAND_POSTURES
 from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env
 from humanoidgen.planning.constraints import Constraint
 from humanoidgen.planning.planner import HumanoidMotionPlanner, PlanningError
 from humanoidgen.sim.env import HumanoidEnv
 from humanoidgen.sim.scene import SceneBuilder
-
-
-def run_plan(tmp_path, task: str, seed: int, text: str):
-    path = tmp_path / f"{task}_{seed}.py"
-    path.write_text(text)
-    result, _ = run_task_episode(EpisodeRequest(task, seed=seed, plan_path=str(path)))
-    return result
+from plan_runs import run_plan
 
 
 def without_push(tmp_path, task: str) -> str:

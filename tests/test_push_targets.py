@@ -13,12 +13,12 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from humanoidgen.episodes.task_episode import EpisodeRequest, run_task_episode
 from humanoidgen.objects.describe import describe_scene
 from humanoidgen.planning.planner import HumanoidMotionPlanner
 from humanoidgen.planning.push_actions import contact_point, stages
 from humanoidgen.tasks.registry import load_task, parse_task
 from humanoidgen.tasks.scene import build_scene
+from plan_runs import run_plan
 
 ARTICULATED_TASKS = ("open_box_easy", "open_box_hard", "close_box_easy", "close_box_hard", "open_laptop_easy",
                      "open_laptop_hard", "close_laptop_easy", "close_laptop_hard", "close_drawer")
@@ -132,9 +132,7 @@ PAPER_PUSH = '''def step(planner):
 
 @pytest.mark.parametrize("task, obj, seed", [("open_box_easy", "box", 1), ("close_laptop_easy", "laptop", 2)])
 def test_target1_then_target2_does_the_task(tmp_path, task, obj, seed):
-    path = tmp_path / f"{task}.py"
-    path.write_text(PAPER_PUSH.format(obj=obj))
-    result, _ = run_task_episode(EpisodeRequest(task, seed=seed, plan_path=str(path)))
+    result = run_plan(tmp_path, task, seed, PAPER_PUSH.format(obj=obj))
     failed = result.failed_step
     assert result.success, (failed.error if failed else None, result.checks)
     assert any(e.startswith(f"pushed {obj} 0 from openness") for s in result.steps for e in s.events)

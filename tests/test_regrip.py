@@ -10,10 +10,10 @@ from __future__ import annotations
 
 import pytest
 
-from humanoidgen.episodes.task_episode import EpisodeRequest, run_task_episode
 from humanoidgen.planning.goal_search import part_stays
 from humanoidgen.tasks.registry import load_task
 from humanoidgen.tasks.scene import build_scene
+from plan_runs import run_plan
 
 # Written as the paper's prompt teaches: grasp the part, move it to an openness, let go.
 CLOSE_BY_GRASP = '''
@@ -33,9 +33,7 @@ def step(planner):
 
 
 def _run(tmp_path, task: str, obj: str, seed: int):
-    path = tmp_path / f"{task}.py"
-    path.write_text(CLOSE_BY_GRASP.format(obj=obj))
-    result, _ = run_task_episode(EpisodeRequest(task, seed=seed, plan_path=str(path)))
+    result = run_plan(tmp_path, task, seed, CLOSE_BY_GRASP.format(obj=obj))
     assert all(s.ok for s in result.steps), [s.error for s in result.steps]
     return result
 

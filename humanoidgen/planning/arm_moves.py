@@ -24,6 +24,7 @@ from humanoidgen.planning.part_grip import FOLLOW_ENOUGH, PartFollowing  # noqa:
 from humanoidgen.planning.paths import time_parametrize
 from humanoidgen.planning.poses import Pose
 from humanoidgen.sim.action import ARM_SLICE, HAND_SLICE
+from humanoidgen.sim.geometry import rotation_angle
 from humanoidgen.sim.layout import SIDES, Side
 from humanoidgen.sim.scene import SceneObject
 
@@ -155,8 +156,7 @@ class ArmMoves(PartFollowing, Approaches):
         if not self._carries(side) or placing.height_above_support(self.env, self.holding[side]) > LIFT_BEFORE_TURN_M:
             return False
         _, R_now = self.kin.ee_pose(side)
-        cos = (np.trace(R_now.T @ target.R) - 1.0) / 2.0
-        return float(np.degrees(np.arccos(np.clip(cos, -1.0, 1.0)))) > LIFT_BEFORE_TURN_DEG
+        return np.degrees(rotation_angle(R_now, target.R)) > LIFT_BEFORE_TURN_DEG
 
     def _plan_side(self, side: Side, target: Pose, path_constraints: list = ()) -> np.ndarray:
         t0 = time.perf_counter()
@@ -224,10 +224,10 @@ class ArmMoves(PartFollowing, Approaches):
             self.collisions.ignored_bodies = ignored_before
             self.kin.sync(self.env.data.qpos)
         out = []
+        # Gentler with something in the hand: a pinched object slips under hard accelerations (on a planned path
+        # too: there the fastest profile swings a block held by its end out of the fingers).
+        carrying = self._carries(side)
         for k, leg in enumerate(legs):
-            # Gentler with something in the hand: a pinched object slips under hard accelerations (on a planned
-            # path too: there the fastest profile swings a block held by its end out of the fingers).
-            carrying = self._carries(side)
             if leg.method == "rrt_connect":
                 samples = time_parametrize(leg.waypoints, dt=dt, **(CARRY_LIMITS if carrying else {}))[1]
             else:

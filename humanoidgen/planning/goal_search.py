@@ -95,9 +95,9 @@ class GoalSearch:
             self.collisions.ignored_bodies = ignored_before
             self.kin.sync(self.env.data.qpos)
         self.goal_results.append(result)
-        regrip = None
+        partial = None
         if not result.success and riding and result.partial is not None and self.regrips_left > 0:
-            result, regrip = self._partial_goal(side, follow, result)
+            result, partial = self._partial_goal(side, follow, result)
         if not result.success:
             raise PlanningError("generate_end_effector_pose", self._goal_failure(side, constraints, gen, result))
         pose = Pose.from_mat(result.ee_pos, result.ee_mat, joint_q=result.q, side=side)
@@ -107,35 +107,38 @@ class GoalSearch:
             pose.approach_object = gen.approach_object
             pose.follow = gen.follow
             pose.posture = gen.posture
-        if regrip is not None:
-            q_reached = regrip.pop("q_reached")
+        if partial is not None:
+            q_reached, pose.regrip = partial
             pose.follow = dict(gen.follow, q_target=q_reached)
-            obj = self.env.scene.object(*regrip["obj"])
-            if regrip["share"] >= PARTIAL_ENOUGH and part_stays(self.env, follow["joint"], q_reached):
-                # Most of the way, and the part stays where the hand leaves it: go that far (the plan's next steps
-                # may push it on); a part that would swing away from there is gripped again and taken on.
-                self.events.append(f"{obj.type_name} {obj.obj_id} goes only to openness {regrip['reached']:.2f} of "
-                                   f"the {regrip['openness']:g} asked: the {side} arm's reach ends there holding it")
-            else:
-                pose.regrip = regrip
         return result, pose
 
-    def _partial_goal(self, side: Side, follow: dict, failed: GoalResult) -> tuple[GoalResult, dict]:
-        """A held part the arm can move only partway: the goal there, and what the move does after it. Short of
-        PARTIAL_ENOUGH of the way, it lets go, grips the part again where it is and moves it on to the openness
-        asked (planning/regrip.py); from there on it stops there (an event says so)."""
+    def _partial_goal(self, side: Side, follow: dict, failed: GoalResult) -> tuple[GoalResult, tuple[float, dict | None]]:
+        """A held part the arm can move only partway: the goal as far as it gets, the part's joint value there, and
+        what the move does after it (`Pose.regrip`). Short of PARTIAL_ENOUGH of the way, or where the part would
+        not stay where the hand leaves it, the move lets go, grips the part again and takes it on to the openness
+        asked (planning/regrip.py); otherwise it stops there (an event says so: the plan's next steps may push it
+        on)."""
         q, q_reached = failed.partial
-        self.kin.set_arm(side, q)
-        self.kin.forward()
-        p, R = self.kin.ee_pose(side)
-        self.kin.sync(self.env.data.qpos)
         obj = self.env.scene.object(*follow["obj"])
         art = obj.annotations.articulation
         now, reached, wanted = (openness_of(self.env.model, self.env.data, obj), art.openness_of(q_reached),
                                 art.openness_of(follow["q_target"]))
-        return (GoalResult(True, q, p, R, 0.0, [], None, 0, failed.solve_time),
-                {"obj": follow["obj"], "openness": wanted, "verb": self.grip[side], "q_reached": q_reached,
-                 "reached": reached, "share": (reached - now) / (wanted - now) if wanted != now else 1.0})
+        share = (reached - now) / (wanted - now) if wanted != now else 1.0
+        regrip = None
+        if share >= PARTIAL_ENOUGH and part_stays(self.env, follow["joint"], q_reached):
+            self.events.append(f"{obj.type_name} {obj.obj_id} goes only to openness {reached:.2f} of the {wanted:g} "
+                               f"asked: the {side} arm's reach ends there holding it")
+        else:
+            regrip = {"obj": follow["obj"], "openness": wanted, "verb": self.grip[side], "reached": reached}
+        return self._goal_at(side, q, failed.solve_time), (q_reached, regrip)
+
+    def _goal_at(self, side: Side, q: np.ndarray, solve_time: float) -> GoalResult:
+        """A solved goal at arm configuration q (its end-effector pose read from the kinematics)."""
+        self.kin.set_arm(side, q)
+        self.kin.forward()
+        p, R = self.kin.ee_pose(side)
+        self.kin.sync(self.env.data.qpos)
+        return GoalResult(True, q, p, R, 0.0, [], None, 0, solve_time)
 
     # -- ignore lists ----------------------------------------------------------------------------------
     def _use_ignores(self, side: Side, gen, ignored_before: set[int]) -> None:
@@ -175,12 +178,7 @@ class GoalSearch:
         way = abs(follow["q_target"] - q_now)
         reached = abs(q_steps[len(path) - 1] - q_now) if len(path) else 0.0
         if not reason or (len(path) and reached >= self._follow_enough(side) * way):
-            q = path[-1]
-            self.kin.set_arm(side, q)
-            self.kin.forward()
-            p, R = self.kin.ee_pose(side)
-            self.kin.sync(self.env.data.qpos)
-            return GoalResult(True, q, p, R, 0.0, [], None, 0, time.perf_counter() - t0)
+            return self._goal_at(side, path[-1], time.perf_counter() - t0)
         obj = self.env.scene.object(*follow["obj"])
         held = self.holding[side] is not None
         art = obj.annotations.articulation

@@ -14,7 +14,7 @@ from humanoidgen.planning.constraints import Constraint
 from humanoidgen.planning.kinematics import Kinematics
 from humanoidgen.planning.paths import is_valid, plan_rrt_connect, segment_valid, straight_path
 from humanoidgen.planning.poses import screw_interpolate
-from humanoidgen.sim.geometry import rotation_error
+from humanoidgen.sim.geometry import rotation_angle, rotation_error
 from humanoidgen.sim.layout import Side
 
 ROT_WEIGHT = 0.2  # metres per radian when tracking poses
@@ -141,10 +141,6 @@ def plan_arm_motion(kin: Kinematics, cw: CollisionWorld, side: Side, q_start: np
 CARRY_TURN_SLACK = np.radians(15.0)
 
 
-def _rotation_angle(Ra: np.ndarray, Rb: np.ndarray) -> float:
-    return float(np.arccos(np.clip((np.trace(Ra.T @ Rb) - 1.0) / 2.0, -1.0, 1.0)))
-
-
 def carried_turn_check(kin: Kinematics, side: Side, q_start: np.ndarray, q_goal: np.ndarray):
     """A state check for the sampling planner: the object `side` carries turns at most CARRY_TURN_SLACK more than
     the way from its start to its goal orientation (angle to start + angle to goal <= their angle + 2 slack);
@@ -162,11 +158,11 @@ def carried_turn_check(kin: Kinematics, side: Side, q_start: np.ndarray, q_goal:
     R0, R1 = orientation(q_start), orientation(q_goal)
     kin.set_arm(side, saved)
     kin.forward()
-    budget = _rotation_angle(R0, R1) + 2 * CARRY_TURN_SLACK
+    budget = rotation_angle(R0, R1) + 2 * CARRY_TURN_SLACK
 
     def ok(k: Kinematics) -> bool:
         R = k.data.xmat[body].reshape(3, 3)
-        return bool(_rotation_angle(R, R0) + _rotation_angle(R, R1) <= budget)
+        return bool(rotation_angle(R, R0) + rotation_angle(R, R1) <= budget)
 
     return ok
 

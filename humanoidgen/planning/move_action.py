@@ -113,14 +113,11 @@ class Neighbour:
     gap: float  # how far apart the two footprints are at the goal (negative: overlapping)
 
 
-def _footprint(env, obj: SceneObject, centre: np.ndarray, R: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _footprint(obj: SceneObject, R: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Horizontal footprint axes (the object's x and y, flattened) and the half sizes along them."""
     lo, hi = np.asarray(obj.annotations.bbox_min), np.asarray(obj.annotations.bbox_max)
-    axes = []
-    for k in (0, 1):
-        a = R[:2, k]
-        axes.append(a / max(np.linalg.norm(a), 1e-9))
-    return np.array(axes), (hi[:2] - lo[:2]) / 2
+    axes = R[:2, :2].T  # rows: the object's x and y axes, horizontal parts
+    return axes / np.maximum(np.linalg.norm(axes, axis=1, keepdims=True), 1e-9), (hi[:2] - lo[:2]) / 2
 
 
 def _gap(c1, axes1, half1, c2, axes2, half2) -> float:
@@ -137,19 +134,17 @@ def _gap(c1, axes1, half1, c2, axes2, half2) -> float:
 def beside(env, obj: SceneObject, goal: np.ndarray, R: np.ndarray) -> Neighbour | None:
     """The nearest object standing beside the held object's place at `goal` (its footprint within BESIDE_M, not
     under it, not a container, reaching the held object's height), or None."""
-    axes, half = _footprint(env, obj, goal, R)
+    axes, half = _footprint(obj, R)
     bottom = goal[2] - placing.lowest_offset(obj, R)
     _, under = placing.support_below(env, obj, goal, R)
     best = None
     for o in env.scene.objects:
         if o is obj or o.annotations is None or placing.is_container(o) or f"{o.type_name} {o.obj_id}" == under:
             continue
-        c = get_point_in_env(env, "center", o.type_name, o.obj_id)
-        Ro = env.data.xmat[env.model.body(o.body).id].reshape(3, 3)
-        top = c[2] + placing.lowest_offset(o, -Ro)  # the highest corner (the lowest of the flipped box)
-        if top <= bottom:
+        c, Ro = placing.object_pose(env, o)
+        if c[2] + placing.highest_offset(o, Ro) <= bottom:
             continue
-        o_axes, o_half = _footprint(env, o, c, Ro)
+        o_axes, o_half = _footprint(o, Ro)
         gap = _gap(goal, axes, half, c, o_axes, o_half)
         if gap < BESIDE_M and (best is None or gap < best.gap):
             best = Neighbour(o, c, o_axes, o_half, gap)

@@ -47,7 +47,8 @@ def _corners(obj: SceneObject) -> np.ndarray:
     return np.array([[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])])
 
 
-def _pose(env, obj: SceneObject) -> tuple[np.ndarray, np.ndarray]:
+def object_pose(env, obj: SceneObject) -> tuple[np.ndarray, np.ndarray]:
+    """The object's position and rotation matrix now."""
     bid = env.model.body(obj.body).id
     return env.data.xpos[bid].copy(), env.data.xmat[bid].reshape(3, 3).copy()
 
@@ -80,6 +81,11 @@ def lowest_offset(obj: SceneObject, R: np.ndarray) -> float:
     return float(-(_corners(obj) @ R.T)[:, 2].min())
 
 
+def highest_offset(obj: SceneObject, R: np.ndarray) -> float:
+    """How far the object's highest bbox corner is above its centre, in orientation R."""
+    return float((_corners(obj) @ R.T)[:, 2].max())
+
+
 def support_below(env, obj: SceneObject, goal: np.ndarray, R: np.ndarray) -> tuple[float, str]:
     """The height of what the held object would rest on with its centre at `goal` in orientation R: the table or
     the top of an object whose footprint is under it (containers excepted: things go down into them)."""
@@ -89,12 +95,12 @@ def support_below(env, obj: SceneObject, goal: np.ndarray, R: np.ndarray) -> tup
     for o in env.scene.objects:
         if o is obj or o.annotations is None or is_container(o):
             continue
-        c, Ro = _pose(env, o)
+        c, Ro = object_pose(env, o)
         opts = _corners(o) @ Ro.T + c
         olo, ohi = opts[:, :2].min(0), opts[:, :2].max(0)
         overlap = np.minimum(hi, ohi) - np.maximum(lo, olo)
         need = np.maximum(SUPPORT_OVERLAP_M, SUPPORT_SHARE * np.minimum(hi - lo, ohi - olo))
-        top = float(opts[:, 2].max())
+        top = float(c[2] + highest_offset(o, Ro))
         if np.all(overlap > need) and top > best and top < goal[2]:
             best, what = top, f"{o.type_name} {o.obj_id}"
     return best, what
@@ -108,7 +114,7 @@ def height_above(env, obj: SceneObject, centre: np.ndarray, R: np.ndarray) -> fl
 
 def height_above_support(env, obj: SceneObject) -> float:
     """How far the object's lowest corner is above what is under it now."""
-    return height_above(env, obj, *_pose(env, obj))
+    return height_above(env, obj, *object_pose(env, obj))
 
 
 def release_lift(env, obj: SceneObject, goal: np.ndarray, R: np.ndarray) -> tuple[np.ndarray, str | None]:

@@ -65,10 +65,15 @@ def look_at_quat(eye: np.ndarray, target: np.ndarray, up: np.ndarray = np.array(
     return mat_to_quat(look_at_mat(eye, target, up))
 
 
+def rotation_angle(Ra: np.ndarray, Rb: np.ndarray) -> float:
+    """The angle (rad) of the rotation between two orientations."""
+    return float(np.arccos(np.clip((np.trace(Ra.T @ Rb) - 1.0) / 2.0, -1.0, 1.0)))
+
+
 def rotation_error(R_current: np.ndarray, R_target: np.ndarray) -> np.ndarray:
     """Axis-angle vector (world frame) that rotates R_current onto R_target."""
     R_err = R_target @ R_current.T
-    angle = np.arccos(np.clip((np.trace(R_err) - 1) / 2, -1.0, 1.0))
+    angle = rotation_angle(R_current, R_target)
     if angle < 1e-9:
         return np.zeros(3)
     axis = np.array([R_err[2, 1] - R_err[1, 2], R_err[0, 2] - R_err[2, 0], R_err[1, 0] - R_err[0, 1]])
