@@ -15,12 +15,11 @@ from gymnasium import spaces
 
 from humanoidgen.envs.config import TaskEnvConfig
 from humanoidgen.episodes.depth_units import decode_depth, encode_depth
-from humanoidgen.episodes.render_replay import pose_data
+from humanoidgen.episodes.render_replay import render_configuration
 from humanoidgen.sim.action import ACTION_DIM
-from humanoidgen.sim.cameras import CAMERA_NAMES, CameraRig
+from humanoidgen.sim.cameras import CameraRig
 from humanoidgen.sim.env import HumanoidEnv
-from humanoidgen.sim.geometry import mat_to_quat
-from humanoidgen.sim.pointcloud import PointCloudConfig, fuse_point_cloud
+from humanoidgen.sim.pointcloud import PointCloudConfig
 
 
 def observation_space(cfg: TaskEnvConfig) -> spaces.Dict:
@@ -45,7 +44,6 @@ class Observer:
         """`render_model`: the scene at the recording's visual detail (`render_model_for`); None: sim's own."""
         self.sim, self.cfg = sim, cfg
         cams = set(cfg.cameras) | (set(cfg.point_cloud_cameras) if cfg.point_cloud else set())
-        self._cams = tuple(c for c in CAMERA_NAMES if c in cams)
         self._model = render_model if render_model is not None else sim.model
         self._data = mujoco.MjData(self._model) if cams else None
         self._rig = CameraRig(self._model, cfg.width, cfg.height) if cams else None
@@ -58,25 +56,18 @@ class Observer:
 
     def __call__(self) -> dict[str, np.ndarray]:
         sim, cfg = self.sim, self.cfg
-        ee = []
-        for side in ("left", "right"):
-            p, R = sim.hand_pose(side)
-            ee.append(np.concatenate([p, mat_to_quat(R)]))
-        obs = {"joint_pos": sim.joint_positions().astype(np.float32),
-               "ee_pose": np.concatenate(ee).astype(np.float32)}
+        obs = {"joint_pos": sim.joint_positions().astype(np.float32), "ee_pose": sim.ee_poses().astype(np.float32)}
         if self._rig is None:
             return obs
-        pose_data(self._model, self._data, sim.kinematics_qpos())
-        frames = {c: self._rig.render(self._data, c, rgb=c in cfg.cameras, depth=cfg.depth or cfg.point_cloud,
-                                      segmentation=False) for c in self._cams}
+        frames, cloud = render_configuration(self._rig, self._model, self._data, sim.kinematics_qpos(),
+                                             tuple(cfg.cameras), cfg.depth,
+                                             tuple(cfg.point_cloud_cameras) if cfg.point_cloud else (), self._pc)
         for c in cfg.cameras:
             obs[f"rgb/{c}"] = frames[c].rgb
             if cfg.depth:
                 obs[f"depth/{c}"] = decode_depth(encode_depth(frames[c].depth))  # as stored: whole mm
-        if cfg.point_cloud:
-            views = [(frames[c].depth, frames[c].fovy, frames[c].cam_pos, frames[c].cam_mat, None)
-                     for c in cfg.point_cloud_cameras]
-            obs["point_cloud"] = fuse_point_cloud(views, self._pc).astype(np.float32)
+        if cloud is not None:
+            obs["point_cloud"] = cloud.astype(np.float32)
         return obs
 
 

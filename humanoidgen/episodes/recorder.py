@@ -18,7 +18,6 @@ import numpy as np
 
 from humanoidgen.sim.cameras import CAMERA_NAMES
 from humanoidgen.sim.env import HumanoidEnv
-from humanoidgen.sim.geometry import mat_to_quat
 from humanoidgen.sim.meshes import DEFAULT_MAX_FACES, recording_faces
 
 
@@ -80,11 +79,7 @@ class EpisodeRecorder:
         rec.setdefault("joint_pos", []).append(env.joint_positions().astype(np.float32))
         rec.setdefault("qpos", []).append(env.data.qpos.astype(np.float64).copy())
         rec.setdefault("time", []).append(env.time)
-        ee = []
-        for side in ("left", "right"):
-            p, R = env.hand_pose(side)
-            ee.append(np.concatenate([p, mat_to_quat(R)]))
-        rec.setdefault("ee_pose", []).append(np.concatenate(ee).astype(np.float32))
+        rec.setdefault("ee_pose", []).append(env.ee_poses().astype(np.float32))
         objs = [np.concatenate(env.object_pose(o.body)) for o in env.scene.objects]
         rec.setdefault("object_pose", []).append(np.array(objs, np.float32).reshape(len(objs), 7))
         if self.config.renders:

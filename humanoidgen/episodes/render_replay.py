@@ -62,20 +62,30 @@ def render_recording(model: mujoco.MjModel, configurations: Sequence[np.ndarray]
 
 def _render_frames(model, configurations, cameras, width, height, depth, point_cloud_cameras, num_points,
                    out: dict[str, np.ndarray], frames_to_render: range) -> None:
-    views = tuple(dict.fromkeys(cameras + point_cloud_cameras))
     pc = PointCloudConfig(num_points=num_points)
     data = mujoco.MjData(model)
     with CameraRig(model, width, height) as rig:
         for t in frames_to_render:
-            pose_data(model, data, configurations[t])
-            frames = {c: rig.render(data, c, rgb=c in cameras, depth=depth or c in point_cloud_cameras,
-                                    segmentation=False) for c in views}
+            frames, cloud = render_configuration(rig, model, data, configurations[t], cameras, depth,
+                                                 point_cloud_cameras, pc)
             for c in cameras:
                 out[f"rgb/{c}"][t] = frames[c].rgb
                 if depth:
                     out[f"depth/{c}"][t] = encode_depth(frames[c].depth)
-            if point_cloud_cameras:
-                # From the float depth as rendered, not the stored millimetres.
-                out["point_cloud"][t] = fuse_point_cloud(
-                    [(frames[c].depth, frames[c].fovy, frames[c].cam_pos, frames[c].cam_mat, None)
-                     for c in point_cloud_cameras], pc)
+            if cloud is not None:
+                out["point_cloud"][t] = cloud
+
+
+def render_configuration(rig: CameraRig, model: mujoco.MjModel, data: mujoco.MjData, qpos: np.ndarray,
+                         cameras: tuple[str, ...], depth: bool, point_cloud_cameras: tuple[str, ...],
+                         pc: PointCloudConfig) -> tuple[dict, np.ndarray | None]:
+    """One recorded frame drawn from configuration `qpos`: the cameras' frames (RGB for `cameras`, depth where
+    asked or needed for the cloud) and the point cloud fused from the float depth as rendered (not the stored
+    millimetres), None without point-cloud cameras."""
+    pose_data(model, data, qpos)
+    frames = {c: rig.render(data, c, rgb=c in cameras, depth=depth or c in point_cloud_cameras, segmentation=False)
+              for c in dict.fromkeys(cameras + point_cloud_cameras)}
+    if not point_cloud_cameras:
+        return frames, None
+    return frames, fuse_point_cloud([(frames[c].depth, frames[c].fovy, frames[c].cam_pos, frames[c].cam_mat, None)
+                                     for c in point_cloud_cameras], pc)

@@ -8,6 +8,7 @@ import mujoco
 import numpy as np
 
 from humanoidgen.sim.action import ACTION_DIM, ACTION_JOINTS, ARM_SLICE, HAND_SLICE, validate_action
+from humanoidgen.sim.geometry import mat_to_quat
 from humanoidgen.sim.layout import ARM_JOINTS, HAND_BASE_FRAME, HAND_JOINTS, Side
 from humanoidgen.sim.scene import Scene
 
@@ -121,6 +122,10 @@ class HumanoidEnv:
         """World position and rotation matrix of the hand's end-effector frame."""
         sid = self._site[side]
         return self.data.site_xpos[sid].copy(), self.data.site_xmat[sid].reshape(3, 3).copy()
+
+    def ee_poses(self) -> np.ndarray:
+        """Both hands' end-effector poses, left then right: position and quaternion (w, x, y, z), (14,)."""
+        return np.concatenate([np.concatenate([p, mat_to_quat(R)]) for p, R in map(self.hand_pose, ("left", "right"))])
 
     def object_pose(self, body: str) -> tuple[np.ndarray, np.ndarray]:
         """World position and quaternion (w, x, y, z) of an object's body."""
