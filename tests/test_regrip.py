@@ -57,8 +57,13 @@ def test_a_lid_beyond_one_grasp_is_gripped_again_and_closed(tmp_path):
     assert result.success, result.checks
 
 
-def test_a_screen_that_stays_is_left_where_the_arm_ends(tmp_path):
+def test_a_screen_that_stays_is_gripped_again_or_left_where_the_arm_ends(tmp_path):
+    # Most of the way there and staying put, a second grip is tried but its failure is not the move's.
     result = _run(tmp_path, "close_laptop_hard", "laptop", 1)
     events = [e for s in result.steps for e in s.events]
-    assert any("goes only to openness" in e for e in events), events
-    assert result.objects["laptop[0]"]["openness"] < 0.7  # it did move most of the way from ~0.84
+    assert any("grips it again" in e for e in events), events
+    openness = result.objects["laptop[0]"]["openness"]
+    if any("stays at openness" in e for e in events):
+        assert openness < 0.7  # it did move most of the way from ~0.84
+    else:
+        assert openness < 0.4  # taken on to the 0.3 asked

@@ -41,11 +41,17 @@ WRAP_TURNS_DEG = (0, 20, -20, 40, -40)
 # A pinch this far (horizontally) from the object's centre of mass squeezes top and bottom where it can.
 OFF_CENTRE_PINCH_M = 0.015
 PUSH_CONE_DEG = 30
+# A plate's edge (a screen's, a lid's) pinched between the fingertips holds with the fingers entering it at a
+# slant too: these turns of the fingers about the squeeze axis, nearest first, are tried where pointing them
+# straight in is out of reach (an open screen's top edge would need the hand high above it, fingers down).
+PART_PINCH_LEAD_TURNS_DEG = (0, 30, -30, 60, -60)
+PART_PINCH_INSET_M = 0.012
 # How far a hand holding a part may turn about the part's parallel axis (a bar, a tab, a screen's edge) while it
-# moves the part: a grasp around a bar or tab lets the part turn in the fingers; a fingertip pinch does not
-# (measured: a pinched screen edge let go within 0.2 s of a 30 deg roll).
+# moves the part: a grasp around a bar or tab lets the part turn in the fingers; a pinch with the pads 12 mm over
+# the plate (PART_PINCH_INSET_M) holds through a 30 deg roll (measured: with the fingertips on the very edge, a
+# screen let go within 0.2 s of a 30 deg roll; 45 deg closed a screen but then it sprang back open on release).
 GRASP_ROLL_DEG = 90.0
-PINCH_ROLL_DEG = 0.0
+PINCH_ROLL_DEG = 30.0
 LIFT = np.array([0.0, 0.0, 0.10])
 TURNED_WITHIN_DEG = 20.0  # a move's quarter-turned hand (placing.py) keeps its palm this near the turned direction
 
@@ -241,10 +247,10 @@ def _grip_variants(env, side: Side, obj_name: str, obj_id: int, operation: str, 
         r2i = get_axis_in_env(env, f"{side}_ring_2_index")
         loc = hand_axes_local(side)
         options = _natural_choices(side, loc["palm"], approach, loc["ring_2_index"], [parallel], fingers_now)
-        variants = [cons + [
+        variants = [(cons + [
             Constraint(env, "parallel", frame, hand_axis=palm, object_axis=approach, name="palm faces the approach"),
             Constraint(env, "parallel", frame, hand_axis=r2i, object_axis=along, name="fingers along the parallel axis"),
-        ] for along in options]
+        ], approach) for along in options]
     else:
         # Thumb and index squeeze along the attach (or parallel) axis; the index edge leads the approach.
         pinch = get_axis_in_env(env, f"{side}_thumb_2_index")
@@ -263,15 +269,25 @@ def _grip_variants(env, side: Side, obj_name: str, obj_id: int, operation: str, 
             options = sorted(options, key=lambda sq: -abs(float(sq[2])))
         fingers_forward = Const(env, "parallel", frame, hand_axis=get_axis_in_env(env, f"{side}_pinch_wrist_2_palm_axis"),
                                 object_axis=np.array([1.0, 0.0, 0.0]), weight=0.1, name="fingers forward (preferred)")
-        variants = [cons + [
-            Constraint(env, "parallel", frame, hand_axis=r2i, object_axis=approach, name="index edge leads"),
-            Constraint(env, "parallel", frame, hand_axis=pinch, object_axis=squeeze, name="pinch along the attach axis"),
-            fingers_forward,
-        ] for squeeze in options]
+        turns = PART_PINCH_LEAD_TURNS_DEG if on_part else (0,)
+        variants = []
+        for squeeze in options:
+            for lead_turn in turns:
+                lead = axis_angle_mat(squeeze, np.radians(lead_turn)) @ approach if lead_turn else approach
+                slant = f" at {lead_turn:+d} deg" if lead_turn else ""
+                at = cons if not on_part else [  # the pads over the plate, not hanging off its edge
+                    Constraint(env, "point2point", frame, hand_key_point=hand_point,
+                               object_key_point=target + PART_PINCH_INSET_M * lead, name=cons[0].name)]
+                variants.append((at + [
+                    Constraint(env, "parallel", frame, hand_axis=r2i, object_axis=lead, name=f"index edge leads{slant}"),
+                    Constraint(env, "parallel", frame, hand_axis=pinch, object_axis=squeeze,
+                               name="pinch along the attach axis"),
+                    fingers_forward,
+                ], lead))
     body = env.scene.object(obj_name, obj_id).body
     out = []
-    for cons in variants:
-        gen = Generated(cons, approach_axis=approach, approach_object=body, posture="wrap" if wrap else None)
+    for cons, lead in variants:
+        gen = Generated(cons, approach_axis=lead, approach_object=body, posture="wrap" if wrap else None)
         # The hand is already on the part; a grasp around a bar or tab may roll about the part's parallel axis.
         _ride_with_part(env, gen, obj_name, obj_id, op.point, openness, grip_axis=op.parallel_axis,
                         roll_deg=GRASP_ROLL_DEG if kind == "grasp" else PINCH_ROLL_DEG)

@@ -21,7 +21,27 @@ MAX_REGRIPS = 2  # a part is gripped again at most this many times on one move
 
 def go_on(planner: HumanoidMotionPlanner, side: Side, regrip: dict) -> None:
     """Let go of the part, grip it again at its present openness (the plan's verb, else the other) and move it on
-    to `regrip["openness"]`. Where that fails, the move fails with both reasons."""
+    to `regrip["openness"]`. Where that fails, the move fails with both reasons, unless the regrip is optional
+    (the part went most of the way and stays there): then the part is left where it is, with an event."""
+    from humanoidgen.planning.arm_moves import PlanningError
+
+    if not regrip.get("optional"):
+        _go_on(planner, side, regrip)
+        return
+    try:
+        _go_on(planner, side, regrip)
+    except PlanningError as exc:
+        from humanoidgen.objects.describe import openness
+
+        obj = planner.env.scene.object(*regrip["obj"])
+        planner.open_hand(side)
+        now = openness(planner.env.model, planner.env.data, obj)
+        planner.events.append(f"{obj.type_name} {obj.obj_id} stays at openness {now:.2f} of the "
+                              f"{regrip['openness']:g} asked: the {side} arm's reach ends there holding it, and "
+                              f"going on from a second grip failed ({exc.reason})")
+
+
+def _go_on(planner: HumanoidMotionPlanner, side: Side, regrip: dict) -> None:
     from humanoidgen.planning.arm_moves import PlanningError
 
     obj = planner.env.scene.object(*regrip["obj"])

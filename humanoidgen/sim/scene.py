@@ -111,7 +111,7 @@ class SceneBuilder:
         hx, hy, ht = (TABLE_X[1] - TABLE_X[0]) / 2, (TABLE_Y[1] - TABLE_Y[0]) / 2, TABLE_THICKNESS / 2
         table = world.add_body(name="table", pos=[cx, cy, TABLE_TOP_Z])
         table.add_geom(name="table_top", type=mujoco.mjtGeom.mjGEOM_BOX, size=[hx, hy, ht], pos=[0, 0, -ht],
-                       material="table_mat", friction=[0.8, 0.01, 0.001])
+                       material="table_mat", friction=[1.0, 0.01, 0.001])  # as grippy as the fingertips
         leg_h = (TABLE_TOP_Z - TABLE_THICKNESS - FLOOR_Z) / 2
         for sx in (-1, 1):
             for sy in (-1, 1):
