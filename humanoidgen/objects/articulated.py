@@ -437,7 +437,9 @@ class ToasterFamily(_ArticulatedFamily):
         1: dict(description="red two-slot toaster", depth=0.15, width=0.21, height=0.19, travel=0.09,
                 rgba=(0.8, 0.15, 0.12, 1.0)),
     }
-    _LEVER = (0.02, 0.012, 0.008)
+    # The lever sticks 6 cm out of the front face: a fingertip pressing its middle keeps the curled fingers
+    # clear of the body (at 4 cm the pinky caught the front face halfway down).
+    _LEVER = (0.03, 0.012, 0.008)
 
     def _lever_pos(self, p: dict) -> tuple[float, float, float]:
         return (-p["depth"] / 2 - self._LEVER[0], p["width"] / 2 - 0.04, 0.8 * p["height"])
