@@ -26,9 +26,10 @@ PYTHON="${PYTHON:-python3}"
 # Policy learning needs torch + torchvision (+ diffusers, gymnasium): from PyPI that is the CUDA build, about
 # 5.6 GB. HGEN_TORCH_INDEX=https://download.pytorch.org/whl/cpu installs the CPU build (about 1.1 GB) of both
 # from that index first (one index for both keeps them a matching pair); HGEN_NO_POLICY=1 skips them.
-EXTRAS="dev,policy"
+# The ray extra is for `--ray` (collection and benchmarks on a Ray cluster) and its tests.
+EXTRAS="dev,policy,ray"
 if [ "${HGEN_NO_POLICY:-0}" = "1" ]; then
-  EXTRAS="dev"
+  EXTRAS="dev,ray"
 elif [ -n "${HGEN_TORCH_INDEX:-}" ]; then
   "$PYTHON" -m pip install --disable-pip-version-check -q torch torchvision --index-url "$HGEN_TORCH_INDEX"
 fi

@@ -62,6 +62,10 @@ def run(
     video_camera: str = typer.Option("front", help="Camera for --video."),
     json_out: Path = typer.Option(None, "--json", help="Write the result (steps, timings, final object poses) as JSON."),
     step_timeout: float = typer.Option(300.0, min=1.0, help="Seconds one plan step may take before it is stopped."),
+    room: str = typer.Option(None, help="Run in a room: a room seed, or 'random' (a room drawn from each episode's "
+                                        "seed); the task and its plan run unchanged (scenes.frames)."),
+    randomize_visuals: bool = typer.Option(False, help="Randomize colours, textures, lights, camera poses and "
+                                                       "distractors (drawn from the seed)."),
 ) -> None:
     """Run one episode of a task and report success, the step log and timings.
 
@@ -83,8 +87,16 @@ def run(
     if video is not None and video_camera not in CAMERA_NAMES:
         _fail(f"unknown camera {video_camera!r}; cameras: {', '.join(CAMERA_NAMES)}")
     writer = VideoWriter(video, video_camera) if video is not None else None
+    from humanoidgen.scenes.dressing import episode_dressing
+
+    try:
+        dressing = episode_dressing(room, randomize_visuals, seed)
+    except ValueError as exc:
+        _fail(str(exc))
+        return
     req = EpisodeRequest(task, seed, str(script) if script else None, step_timeout_s=step_timeout,
-                         video=VideoSpec(video_camera, writer.width, writer.height, writer.fps) if writer else None)
+                         video=VideoSpec(video_camera, writer.width, writer.height, writer.fps) if writer else None,
+                         dressing=dressing)
     try:
         if writer is not None:
             writer.open()
@@ -116,9 +128,17 @@ def collect(
     task: str = typer.Argument(..., help="A task name or task YAML."),
     n: int = typer.Option(..., "-n", min=1, help="How many successful episodes to keep."),
     out: Path = typer.Option(..., "--out", help="Dataset folder (episodes are written one by one)."),
-    workers: int = typer.Option(1, min=1, help="Worker processes; the dataset is the same for any number."),
+    workers: int = typer.Option(None, min=1, help="Worker processes (default 1); the dataset is the same for any "
+                                                 "number. With --ray local: the Ray CPUs (default: all); with a "
+                                                 "cluster: at most this many attempts at once."),
     seed: int = typer.Option(0, help="First seed; attempts use seed, seed+1, ..."),
     resume: bool = typer.Option(False, help="Continue an interrupted collection in --out."),
+    ray_address: str = typer.Option(None, "--ray", help="Run the attempts as Ray tasks: 'local', 'auto' or "
+                                                        "'ray://host:port' (see the README's cluster recipe)."),
+    ray_results: str = typer.Option("auto", help="With --ray, how kept episodes reach --out: 'object-store', "
+                                                 "'shared-folder' (written by the task) or 'auto' (the folder "
+                                                 "when recording images or point clouds)."),
+    ray_gpus: float = typer.Option(0.0, min=0.0, help="With --ray, GPUs per attempt (rendering)."),
     cameras: str = typer.Option("all", help="Cameras to record: 'all', 'none' or a comma list (head,front,...)."),
     width: int = typer.Option(320, help="Image width."),
     height: int = typer.Option(240, help="Image height."),
@@ -128,6 +148,11 @@ def collect(
                                                 "the resolution, 375 at 320x240; 1500: the full detail of "
                                                 "`hgen render`)."),
     script: Path = typer.Option(None, exists=True, help="A plan file or folder instead of the reference plan."),
+    room: str = typer.Option(None, help="Run in a room: a room seed, or 'random' (a room drawn from each episode's "
+                                        "seed); the task and its plan run unchanged (scenes.frames)."),
+    randomize_visuals: bool = typer.Option(False, help="Randomize each attempt's look (colours, textures, lights, "
+                                                       "camera jitter, distractors), drawn from its seed and stored "
+                                                       "in its index record so it re-renders exactly."),
 ) -> None:
     """Collect N successful randomized demonstrations of a task.
 
@@ -158,16 +183,47 @@ def collect(
     except (KeyError, ValueError, FileNotFoundError) as exc:
         _fail(str(exc).strip("'\""))
         return
+    from humanoidgen.episodes.ray_session import RaySetupError, check_address
+
+    from humanoidgen.scenes.room import room_seed_for
+
+    try:
+        room_seed_for(room, 0)  # a bad --room fails before any work
+    except ValueError as exc:
+        _fail(str(exc))
+        return
+    if ray_address is not None and (room is not None or randomize_visuals):
+        _fail("--room and --randomize-visuals are not supported with --ray yet; collect locally")
+        return
+    if ray_address is not None:
+        try:
+            check_address(ray_address)
+        except RaySetupError as exc:
+            _fail(str(exc))
+            return
     bar = tqdm(total=n, unit="episode", desc=f"collect {task}")
 
-    def progress(kept: int, tried: int) -> None:
+    def progress(kept: int, tried: int, nodes=None) -> None:
         bar.n = kept
-        bar.set_postfix_str(f"kept {kept}/tried {tried} ({100 * kept / max(tried, 1):.0f}% success)")
+        per_node = f"; {nodes.text()}" if nodes is not None else ""
+        bar.set_postfix_str(f"kept {kept}/tried {tried} ({100 * kept / max(tried, 1):.0f}% success){per_node}")
         bar.refresh()
 
     try:
-        stats = run_collect(task, n, out, workers=workers, seed=seed, resume=resume, recorder=rec,
-                            plan_path=str(script) if script else None, progress=progress)
+        if ray_address is None:
+            stats = run_collect(task, n, out, workers=workers or 1, seed=seed, resume=resume, recorder=rec,
+                                plan_path=str(script) if script else None, progress=progress, room=room,
+                                randomize_visuals=randomize_visuals)
+        else:
+            from humanoidgen.episodes.ray_collect import ray_collect
+
+            stats = ray_collect(task, n, out, ray_address, workers=workers, seed=seed, resume=resume, recorder=rec,
+                                plan_path=str(script) if script else None, progress=progress,
+                                transport=ray_results, gpus_per_task=ray_gpus)
+    except RaySetupError as exc:
+        bar.close()
+        _fail(str(exc))
+        return
     except KeyboardInterrupt:
         bar.close()
         _fail(f"interrupted; what was kept is in {out}. Continue with: hgen collect {task} -n {n} --out {out} --resume")
@@ -187,9 +243,13 @@ def bench(
     tasks_opt: str = typer.Option(None, "--tasks", help="Comma list of tasks (default: every task with a reference plan)."),
     episodes: int = typer.Option(10, min=1, help="Randomized episodes per task."),
     seed: int = typer.Option(1000, help="First seed (held-out from collection's default seeds)."),
-    workers: int = typer.Option(1, min=1, help="Worker processes."),
+    workers: int = typer.Option(1, min=1, help="Worker processes (with --ray local: Ray CPUs)."),
+    ray_address: str = typer.Option(None, "--ray", help="Run the episodes as Ray tasks: 'local', 'auto' or "
+                                                        "'ray://host:port'."),
     json_out: Path = typer.Option(None, "--json", help="Write the report as JSON."),
     plot_out: Path = typer.Option(None, "--plot", help="Write a bar chart (PNG) of success per task."),
+    room: str = typer.Option(None, help="Run in a room: a room seed, or 'random' (a room drawn from each episode's "
+                                        "seed); the task and its plan run unchanged (scenes.frames)."),
 ) -> None:
     """Run each task's reference plan on randomized seeds and report success rate and time per episode.
 
@@ -205,8 +265,15 @@ def bench(
     except (KeyError, ValueError, FileNotFoundError) as exc:
         _fail(str(exc).strip("'\""))
         return
-    reports = run_bench(specs, episodes, seed=seed, workers=workers,
-                        progress=lambda t, k, n: console.print(f"{t}: {k}/{n}"))
+    from humanoidgen.episodes.ray_session import RaySetupError
+
+    try:
+        reports = run_bench(specs, episodes, seed=seed, workers=workers,
+                            progress=lambda t, k, n: console.print(f"{t}: {k}/{n}"), ray_address=ray_address,
+                            room=room)
+    except RaySetupError as exc:
+        _fail(str(exc))
+        return
     table = Table("task", "arms", "horizon", "success", "s / successful episode", "planning s", "main failure")
     for r in reports:
         reasons = [f.split(": ", 1)[-1] for f in r.failures]  # without the "seed N: " prefix

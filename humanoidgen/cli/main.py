@@ -36,12 +36,15 @@ def render(
     height: int = typer.Option(240, min=16, max=960, help="Height of each camera image (pixels)."),
     modality: str = typer.Option("rgb", help="What to show: rgb, depth or segmentation."),
     settle: float = typer.Option(0.5, min=0.0, help="Seconds to simulate before rendering, so objects come to rest."),
+    room: int = typer.Option(None, help="Put the table in room SEED (scenes.room), the robot at its work surface."),
+    visuals: int = typer.Option(None, help="Randomize the look with this seed (scenes.visuals)."),
 ) -> None:
     """Render the default scene (the robot at its table with one cube) from all six cameras as one mosaic.
 
     Cameras: head (first person, D435-like), left_wrist, right_wrist, front, left, right.
 
     Example: hgen render --out scene.png --width 640 --height 480 --modality depth
+    Example: hgen render --room 7 --out room7.png
     """
     os.environ.setdefault("MUJOCO_GL", "egl")
     from humanoidgen.assets.robot_files import AssetsError
@@ -52,8 +55,11 @@ def render(
 
     if modality not in ("rgb", "depth", "segmentation"):
         raise typer.BadParameter("use rgb, depth or segmentation", param_hint="--modality")
+    from humanoidgen.scenes.dressing import SceneDressing
+
+    dressing = SceneDressing.from_seeds(room, visuals)
     try:
-        builder = SceneBuilder(msaa_samples=4)
+        builder = SceneBuilder(msaa_samples=4, surface_height=dressing.surface_height, dressing=dressing)
     except AssetsError as exc:
         typer.secho(str(exc), fg=typer.colors.RED, err=True)
         raise typer.Exit(1) from None
@@ -67,7 +73,8 @@ def render(
     images = {name: frame_image(frames[name], modality) for name in CAMERA_NAMES}
     out.parent.mkdir(parents=True, exist_ok=True)
     mosaic(images).save(out)
-    typer.echo(f"wrote {out} ({len(images)} cameras, {width}x{height} each, {modality})")
+    where = f", room {room} ({dressing.room.style}, surface {dressing.room.surface_height:.3f} m)" if room is not None else ""
+    typer.echo(f"wrote {out} ({len(images)} cameras, {width}x{height} each, {modality}{where})")
 
 
 if __name__ == "__main__":

@@ -49,8 +49,10 @@ def _errors():
     from humanoidgen.policies.data import DataError
     from humanoidgen.policies.eval import EvalError
 
+    from humanoidgen.episodes.ray_session import RaySetupError, TaskLost
+
     return (DataError, CheckpointError, EvalError, DatasetError, ValidationError, ValueError, KeyError,
-            FileNotFoundError)
+            FileNotFoundError, RaySetupError, TaskLost)
 
 
 def _one_line(exc: Exception) -> str:
@@ -116,6 +118,9 @@ def eval(  # noqa: A001 - the command is called eval
     threads: int | None = typer.Option(None, min=1, help="CPU threads for torch."),
     max_steps: int | None = typer.Option(None, min=1, help="Cut episodes at N actions (default: the task's "
                                                            "time limit)."),
+    ray_address: str | None = typer.Option(None, "--ray", help="Each episode a Ray task: 'local', 'auto' or "
+                                                               "'ray://host:port' (checkpoints on a shared folder)."),
+    ray_gpus: float = typer.Option(0.0, min=0.0, help="With --ray, GPUs per episode."),
 ) -> None:
     """Run the policy in its task and report success mean and std over seeds and checkpoints.
 
@@ -135,7 +140,7 @@ def eval(  # noqa: A001 - the command is called eval
         return
     try:
         report = evaluate(run, task, episodes, seed_list, checkpoints=checkpoint or None, device=device,
-                          video_dir=video, max_steps=max_steps)
+                          video_dir=video, max_steps=max_steps, ray_address=ray_address, ray_gpus=ray_gpus)
     except _errors() as exc:
         _fail(_one_line(exc))
         return

@@ -45,28 +45,66 @@ def _one(req: EpisodeRequest) -> dict:
 
 
 def run_bench(tasks: list, episodes: int, seed: int = 0, workers: int = 1,
-              progress: Callable[[str, int, int], None] | None = None) -> list[TaskReport]:
+              progress: Callable[[str, int, int], None] | None = None,
+              ray_address: str | None = None, room: str | int | None = None) -> list[TaskReport]:
+    """`ray_address`: run every episode as a Ray task (`ray_session.connect`), all tasks' episodes at once.
+    `room`: a room seed or "random" (each episode its own room; `scenes.dressing.episode_dressing`)."""
+    if ray_address is not None:
+        return _ray_bench(tasks, episodes, seed, workers, progress, ray_address, room)
     # Each episode runs in its own locked-down worker process; threads here only wait on them.
     pool = ThreadPoolExecutor(workers) if workers > 1 else None
     reports = []
     try:
         for spec in tasks:
-            reqs = [EpisodeRequest(spec.name, seed + i) for i in range(episodes)]
+            reqs = [_request(spec.name, seed + i, room) for i in range(episodes)]
             outs = list(pool.map(_one, reqs)) if pool is not None else [_one(r) for r in reqs]
-            ok = [o for o in outs if o["success"]]
-            reports.append(TaskReport(
-                spec.name, spec.arms, spec.horizon, episodes, len(ok),
-                float(np.mean([o["wall"] for o in ok])) if ok else float("nan"),
-                float(np.mean([o["plan"] for o in outs])), float(np.mean([o["sim"] for o in ok])) if ok else float("nan"),
-                # each failure names its seed, so that `hgen run TASK --seed S --video x.mp4` shows it
-                [f"seed {r.seed}: {o['error'][:400]}" for r, o in zip(reqs, outs) if not o["success"]],
-            ))
+            reports.append(_report(spec, reqs, outs))
             if progress is not None:
-                progress(spec.name, len(ok), episodes)
+                progress(spec.name, reports[-1].successes, episodes)
     finally:
         if pool is not None:
             pool.shutdown(wait=True, cancel_futures=True)
     return reports
+
+
+def _request(task: str, seed: int, room: str | int | None) -> EpisodeRequest:
+    from humanoidgen.scenes.dressing import episode_dressing
+
+    return EpisodeRequest(task, seed, dressing=episode_dressing(room, False, seed))
+
+
+def _ray_bench(tasks: list, episodes: int, seed: int, workers: int | None, progress, address: str,
+               room: str | int | None = None) -> list[TaskReport]:
+    from humanoidgen.episodes.ray_session import TASK_RETRIES, OrderedRunner, connect
+
+    reqs = [_request(spec.name, seed + i, room) for spec in tasks for i in range(episodes)]
+    outs: list[dict] = []
+    with connect(address, workers if address == "local" else None) as session:
+        fn = session.ray.remote(num_cpus=1, max_retries=TASK_RETRIES, retry_exceptions=False)(_one)
+        lost = lambda e: {"success": False, "error": f"lost on the cluster: {e.reason}", "wall": 0.0, "plan": 0.0,  # noqa: E731
+                          "sim": 0.0}
+        runner = OrderedRunner(session.ray, fn.remote, 2 * session.cpu_slots(1.0), on_lost=lost)
+        reports = []
+        for req, out in runner.results(reqs):
+            outs.append(out)
+            if len(outs) % episodes == 0:  # a task's episodes are all in
+                spec = tasks[len(outs) // episodes - 1]
+                reports.append(_report(spec, reqs[len(outs) - episodes:len(outs)], outs[-episodes:]))
+                if progress is not None:
+                    progress(spec.name, reports[-1].successes, episodes)
+    return reports
+
+
+def _report(spec, reqs: list[EpisodeRequest], outs: list[dict]) -> TaskReport:
+    ok = [o for o in outs if o["success"]]
+    episodes = len(reqs)
+    return TaskReport(
+        spec.name, spec.arms, spec.horizon, episodes, len(ok),
+        float(np.mean([o["wall"] for o in ok])) if ok else float("nan"),
+        float(np.mean([o["plan"] for o in outs])), float(np.mean([o["sim"] for o in ok])) if ok else float("nan"),
+        # each failure names its seed, so that `hgen run TASK --seed S --video x.mp4` shows it
+        [f"seed {r.seed}: {o['error'][:400]}" for r, o in zip(reqs, outs) if not o["success"]],
+    )
 
 
 def plot(reports: list[TaskReport], path: Path) -> None:

@@ -2,7 +2,8 @@
 worker; successful ones are kept until N, written one by one by this process (workers cannot write).
 `workers` attempts run at once (threads here, each waiting on its worker process). Kept episodes are the
 first N successful seeds in seed order, so the dataset is the same whatever the number of workers;
-`resume` continues after the last attempted seed."""
+`resume` continues after the last attempted seed. `ray_collect` runs the same attempts as Ray tasks and
+keeps them by the same rule (`SeedTally`)."""
 
 from __future__ import annotations
 
@@ -30,8 +31,9 @@ class CollectStats:
         return self.kept / self.tried if self.tried else 0.0
 
 
-def _attempt(req: EpisodeRequest) -> tuple[dict, dict | None]:
-    """One attempt, as a plain record plus the arrays of a kept episode."""
+def attempt(req: EpisodeRequest) -> tuple[dict, dict | None]:
+    """One attempt, as a plain record plus the arrays of a kept episode (local and Ray collection both run
+    this; its plan runs in a locked-down plan worker)."""
     try:
         result, arrays = run_task_episode(req)
     except Exception as exc:  # a broken attempt is a failed attempt, not a dead collection
@@ -43,13 +45,46 @@ def _attempt(req: EpisodeRequest) -> tuple[dict, dict | None]:
         "error": (f"step {failed.index} ({failed.title}): {failed.error}" if failed else
                   "; ".join(c["detail"] for c in result.checks if not c["ok"])),
     }
+    if req.dressing is not None:
+        record["dressing"] = req.dressing  # the room and look, whole: the episode re-renders from it
     return record, (arrays if result.success else None)
 
 
-def collect(task: str, n: int, out: Path, workers: int = 1, seed: int = 0, resume: bool = False,
-            recorder: RecorderConfig | None = None, plan_path: str | None = None, max_attempts: int | None = None,
-            progress: Callable[[int, int], None] | None = None) -> CollectStats:
-    """Collect `n` successful episodes of `task` into `out` (see the module docstring)."""
+_attempt = attempt  # what `collect` calls (looked up at call time, so tests can replace it)
+
+
+@dataclass
+class SeedTally:
+    """The dataset's rule, the same for local and Ray collection: attempts are taken in seed order, and the
+    dataset ends with the n-th success (or when `limit` attempts were made), whatever ran past it."""
+
+    n: int
+    limit: int
+    kept: int
+    tried: int
+    next_seed: int  # the first seed not attempted yet
+
+    @property
+    def done(self) -> bool:
+        return self.kept >= self.n or self.tried >= self.limit
+
+    def take(self, record: dict) -> bool:
+        """Count the next attempt in seed order; False if it lies past the end of the dataset."""
+        if self.done:
+            return False
+        self.tried += 1
+        self.kept += bool(record["success"])
+        return True
+
+    def seeds(self) -> range:
+        """The seeds that may still be attempted, in order."""
+        return range(self.next_seed, self.next_seed + max(self.limit - self.tried, 0))
+
+
+def open_collection(task: str, n: int, out: Path, seed: int = 0, resume: bool = False,
+                    recorder: RecorderConfig | None = None, plan_path: str | None = None,
+                    max_attempts: int | None = None) -> tuple[EpisodeStore, SeedTally, RecorderConfig]:
+    """The store (created, or repaired when resuming) and where the collection stands."""
     from humanoidgen.episodes.task_episode import load_spec
 
     spec = load_spec(task)  # fail early on a bad task name
@@ -61,10 +96,21 @@ def collect(task: str, n: int, out: Path, workers: int = 1, seed: int = 0, resum
                   "cameras": list(recorder.cameras), "recorder": asdict(recorder),
                   "plan": plan_path or spec.plan}, resume=resume)
     attempts = store.attempts()
-    kept = len(store.kept())
-    tried = len(attempts)
-    next_seed = max((a["seed"] for a in attempts), default=seed - 1) + 1
     limit = max_attempts if max_attempts is not None else max(20, 10 * n)
+    tally = SeedTally(n, limit, len(store.kept()), len(attempts),
+                      max((a["seed"] for a in attempts), default=seed - 1) + 1)
+    return store, tally, recorder
+
+
+def collect(task: str, n: int, out: Path, workers: int = 1, seed: int = 0, resume: bool = False,
+            recorder: RecorderConfig | None = None, plan_path: str | None = None, max_attempts: int | None = None,
+            progress: Callable[[int, int], None] | None = None, room: str | int | None = None,
+            randomize_visuals: bool = False) -> CollectStats:
+    """Collect `n` successful episodes of `task` into `out` (see the module docstring). `room` (a seed or
+    "random") and `randomize_visuals` dress each attempt (`scenes.dressing.episode_dressing`)."""
+    from humanoidgen.scenes.dressing import episode_dressing
+
+    store, tally, recorder = open_collection(task, n, out, seed, resume, recorder, plan_path, max_attempts)
     t0 = time.perf_counter()
     pool = ThreadPoolExecutor(workers) if workers > 1 else None
     # Episode files are compressed and written by one thread while the next attempts run, in seed order;
@@ -72,19 +118,19 @@ def collect(task: str, n: int, out: Path, workers: int = 1, seed: int = 0, resum
     writer = ThreadPoolExecutor(1, thread_name_prefix="hgen-write")
     writing: list[Future] = []
     try:
-        while kept < n and tried < limit:
-            batch = [EpisodeRequest(task, s, plan_path, recorder) for s in range(next_seed, next_seed + max(workers, 1))]
-            next_seed += len(batch)
+        while not tally.done:
+            seeds = tally.seeds()[: max(workers, 1)]
+            batch = [EpisodeRequest(task, s, plan_path, recorder, dressing=episode_dressing(room, randomize_visuals, s))
+                     for s in seeds]
+            tally.next_seed += len(batch)
             results = list(pool.map(_attempt, batch)) if pool is not None else [_attempt(r) for r in batch]
             for done in writing:
                 done.result()  # the previous batch is on disk (or its error is raised here)
             writing = []
             for record, arrays in results:  # in seed order
-                if kept >= n:
+                if not tally.take(record):
                     break  # attempts past the n-th success are not part of the dataset
-                tried += 1
-                kept += bool(record["success"])
-                writing.append(writer.submit(_write, store, record, arrays, progress, kept, tried))
+                writing.append(writer.submit(_write, store, record, arrays, progress, tally.kept, tally.tried))
         for done in writing:
             done.result()
     except BaseException:
@@ -96,7 +142,7 @@ def collect(task: str, n: int, out: Path, workers: int = 1, seed: int = 0, resum
         if pool is not None:
             pool.shutdown(wait=True, cancel_futures=True)  # each attempt's worker ends with its attempt
         writer.shutdown(wait=True)  # an episode being written is finished, never left half-written
-    return CollectStats(kept, tried, time.perf_counter() - t0)
+    return CollectStats(tally.kept, tally.tried, time.perf_counter() - t0)
 
 
 def _write(store: EpisodeStore, record: dict, arrays: dict | None, progress: Callable[[int, int], None] | None,
@@ -106,4 +152,5 @@ def _write(store: EpisodeStore, record: dict, arrays: dict | None, progress: Cal
         progress(kept, tried)
 
 
-__all__ = ["collect", "CollectStats", "CAMERA_NAMES"]
+
+__all__ = ["attempt", "collect", "open_collection", "SeedTally", "CollectStats", "CAMERA_NAMES"]

@@ -3,6 +3,7 @@
     DIR/meta.json                 task, recorder settings, names of the action/state entries
     DIR/index.jsonl               one line per attempted seed: success, episode file, length, timings
     DIR/episodes/episode_000000.npz   arrays of one kept episode (see EpisodeRecorder)
+    DIR/incoming/                 episode files written by Ray tasks, not yet indexed (`adopt`)
 
 Episode files are plain npz (zip of .npy members, deflate level `DEFLATE_LEVEL`). Depth is stored as uint16
 millimetres (`episodes.depth_units`; `load` gives float32 metres back), and image stacks (rgb/*, depth/*) are
@@ -103,22 +104,36 @@ class EpisodeStore:
         index = self._read_index()
         if arrays is not None:
             i = _next_episode(index.records)
-            path = self.episode_path(i)
-            path.parent.mkdir(parents=True, exist_ok=True)
-            tmp = path.with_name(path.name + ".tmp.npz")
-            with open(tmp, "wb") as f:
-                write_episode(f, arrays)
-                f.flush()
-                os.fsync(f.fileno())  # the rename must never publish a file whose bytes are not on disk
-            os.replace(tmp, path)
+            write_episode_file(self.episode_path(i), arrays)
             record["episode"] = i
             record["length"] = int(len(arrays["action"]))
+        self._append(index, record)
+        return record
+
+    @property
+    def staging_dir(self) -> Path:
+        """Where Ray tasks put finished episode files (`write_episode_file`) for `adopt` to index; what is
+        left there was never published, and `repair` removes it."""
+        return self.root / "incoming"
+
+    def adopt(self, record: dict, staged: Path, length: int) -> dict:
+        """Append a kept attempt whose episode file was already written (synced) at `staged`, in this
+        store's folder: it is renamed into place, then its index line is appended."""
+        record = dict(record)
+        index = self._read_index()
+        i = _next_episode(index.records)
+        os.replace(staged, self.episode_path(i))
+        record["episode"] = i
+        record["length"] = int(length)
+        self._append(index, record)
+        return record
+
+    def _append(self, index: _Index, record: dict) -> None:
         with open(self.index_path, "a") as f:
             # A line cut short by an interruption must not swallow this record too.
             f.write(("\n" if index.torn_tail else "") + json.dumps(record) + "\n")
             f.flush()
             os.fsync(f.fileno())
-        return record
 
     # -- reading ------------------------------------------------------------------------------------
     def meta(self) -> dict:
@@ -177,6 +192,8 @@ class EpisodeStore:
         name (an interruption between writing a file and its index line) are renamed to *.npz.orphan.
         Returns what was done, one sentence each (also in `self.repaired`)."""
         self.repaired = []
+        if self.staging_dir.is_dir():
+            shutil.rmtree(self.staging_dir)  # staged by Ray tasks of an interrupted run, never indexed
         if not self.index_path.exists():
             return self.repaired
         index = self._read_index()
@@ -253,6 +270,18 @@ def _next_episode(records: list[dict]) -> int:
     episode's slot is never reused by a file a reader could mistake for it."""
     used = [r[k] for r in records for k in ("episode", "dropped_episode") if isinstance(r.get(k), int)]
     return max(used, default=-1) + 1
+
+
+def write_episode_file(path: Path, arrays: dict[str, np.ndarray]) -> None:
+    """An episode file at `path`, written to a temporary name, synced and renamed: never seen half-written."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(path.name + ".tmp.npz")
+    with open(tmp, "wb") as f:
+        write_episode(f, arrays)
+        f.flush()
+        os.fsync(f.fileno())  # the rename must never publish a file whose bytes are not on disk
+    os.replace(tmp, path)
 
 
 def write_episode(f, arrays: dict[str, np.ndarray]) -> None:

@@ -37,6 +37,7 @@ class EpisodeSetup:
     recorder: Any = None  # RecorderConfig or None
     video: VideoSpec | None = None
     control_hz: float = 50.0
+    dressing: dict | None = None  # scenes.dressing.SceneDressing.to_dict(): a room and/or a look
 
     def __call__(self) -> dict[str, Any]:
         os.environ.setdefault("MUJOCO_GL", "egl")
@@ -49,8 +50,11 @@ class EpisodeSetup:
         from humanoidgen.tasks.registry import parse_task
         from humanoidgen.tasks.scene import build_scene
 
+        from humanoidgen.scenes.dressing import SceneDressing
+
         spec = parse_task(self.spec_data, "<task>")
-        _, env = build_scene(spec, self.seed)
+        dressing = SceneDressing.from_dict(self.dressing) if self.dressing else None
+        _, env = build_scene(spec, self.seed, dressing=dressing)
         if self.control_hz != env.control_hz:
             env = HumanoidEnv(env.scene, control_hz=self.control_hz)
         recorder = EpisodeRecorder(env, self.recorder) if self.recorder is not None else None
@@ -93,6 +97,7 @@ class EpisodeSetup:
         """The model the recording's images are drawn with: the simulator's own at full detail, else the
         same layout built again with the recording's visual meshes (no settling: only poses are replayed)."""
         from humanoidgen.episodes.recorder import matching_render_model
+        from humanoidgen.scenes.dressing import SceneDressing
         from humanoidgen.sim.meshes import visual_detail, visual_faces
         from humanoidgen.tasks.scene import build_layout
 
@@ -100,7 +105,8 @@ class EpisodeSetup:
         if faces == visual_faces():
             return env.model
         with visual_detail(faces):
-            scene, _ = build_layout(spec.sample_layout(self.seed), settle_s=0.0, aliases=spec.aliases())
+            scene, _ = build_layout(spec.sample_layout(self.seed), settle_s=0.0, aliases=spec.aliases(),
+                                    dressing=SceneDressing.from_dict(self.dressing) if self.dressing else None)
         return matching_render_model(env.model, scene.model)
 
 

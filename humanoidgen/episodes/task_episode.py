@@ -45,6 +45,7 @@ class EpisodeRequest:
     control_hz: float = 50.0
     step_timeout_s: float = DEFAULT_STEP_TIMEOUT_S
     video: VideoSpec | None = None
+    dressing: dict | None = None  # scenes.dressing.SceneDressing.to_dict(): a room and/or a randomized look
 
 
 def load_spec(task: str):
@@ -96,7 +97,7 @@ def worker_for(req: EpisodeRequest, spec, plan_text: str, on_frame: Callable[[np
     if req.recorder is not None and req.recorder.renders:
         _cache_visual_meshes(req.recorder.faces)
     setup = EpisodeSetup(spec.model_dump(mode="json"), plan_text, req.seed, req.recorder,
-                         req.video if on_frame is not None else None, req.control_hz)
+                         req.video if on_frame is not None else None, req.control_hz, req.dressing)
     cameras = req.recorder is not None and (req.recorder.cameras or req.recorder.point_cloud)
     limit = MEMORY_LIMIT_CAMERAS if cameras or on_frame is not None else MEMORY_LIMIT
 

@@ -114,9 +114,11 @@ def rollout(model, env, scene_seed: int, generator: torch.Generator, device: str
 
 def evaluate(run: Path, task: str | None = None, episodes: int = 20, seeds: tuple[int, ...] = (0, 1, 2),
              checkpoints: list[Path] | None = None, device: str = "auto", video_dir: Path | None = None,
-             progress: bool = True, max_steps: int | None = None) -> EvalReport:
+             progress: bool = True, max_steps: int | None = None, ray_address: str | None = None,
+             ray_gpus: float = 0.0) -> EvalReport:
     """Evaluate a run's checkpoints (all kept ones, or `checkpoints`) on its task; `max_steps` shortens
-    episodes below the task's time limit (for quick checks)."""
+    episodes below the task's time limit (for quick checks); `ray_address`: each episode a Ray task
+    (`ray_eval`), with the same outcomes."""
     from tqdm import tqdm
 
     from humanoidgen.envs.task_env import HumanoidTaskEnv
@@ -135,9 +137,17 @@ def evaluate(run: Path, task: str | None = None, episodes: int = 20, seeds: tupl
     if task is not None and task != trained:
         raise EvalError(f"{paths[0]} was trained on task {trained!r}, not {task!r}")
     policy = loaded[0][1].name
+    report = EvalReport(trained, policy, [str(p) for p in paths], list(seeds), episodes)
+    if ray_address is not None:
+        from humanoidgen.policies.ray_eval import ray_outcomes
+
+        with tqdm(total=len(paths) * len(seeds) * episodes, unit="episode", desc=f"eval {policy} {trained} (ray)",
+                  disable=not progress, dynamic_ncols=True) as bar:
+            report.outcomes = ray_outcomes(ray_address, paths, tuple(seeds), episodes, device, max_steps, video_dir,
+                                           bar, ray_gpus)
+        return report
     env = HumanoidTaskEnv(trained, config=env_config_for(policy, loaded[0][1].cfg, loaded[0][2], max_steps),
                           render_mode="rgb_array" if video_dir is not None else None)
-    report = EvalReport(trained, policy, [str(p) for p in paths], list(seeds), episodes)
     bar = tqdm(total=len(paths) * len(seeds) * episodes, unit="episode", desc=f"eval {policy} {trained}",
                disable=not progress, dynamic_ncols=True)
     try:

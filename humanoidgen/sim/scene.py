@@ -7,6 +7,7 @@ objects to bodies and geoms to segmentation labels).
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -70,6 +71,10 @@ class SceneBuilder:
     timestep: float = DEFAULT_TIMESTEP
     offscreen_size: tuple[int, int] = (1280, 960)
     msaa_samples: int = 0  # multisample anti-aliasing for pictures; it costs ~40% of a software-rendered frame
+    # Table top above the floor: the robot's feet stand on the floor, so its base follows (scenes.room).
+    surface_height: float = TABLE_TOP_Z - FLOOR_Z
+    # Applied to the spec once the table scene is built: a room and a look (scenes.dressing.SceneDressing).
+    dressing: Callable[[mujoco.MjSpec], None] | None = None
     spec: mujoco.MjSpec = field(init=False, repr=False)
     _objects: list[SceneObject] = field(default_factory=list, init=False, repr=False)
 
@@ -91,6 +96,10 @@ class SceneBuilder:
         self._add_floor_and_table()
         self._add_lights()
         add_cameras(self.spec)
+        base_dz = self.surface_height - (TABLE_TOP_Z - FLOOR_Z)
+        self.spec.body("pelvis").pos = (ROBOT_BASE_POS - [0.0, 0.0, base_dz]).tolist()
+        if self.dressing is not None:
+            self.dressing(self.spec)
 
     # -- static world -------------------------------------------------------------------------------------
     def _add_floor_and_table(self) -> None:
@@ -105,14 +114,15 @@ class SceneBuilder:
         spec.add_material(name="table_mat", rgba=[0.62, 0.48, 0.34, 1.0])
         spec.add_material(name="table_leg_mat", rgba=[0.3, 0.3, 0.32, 1.0])
         world = spec.worldbody
-        world.add_geom(name="floor", type=mujoco.mjtGeom.mjGEOM_PLANE, size=[4, 4, 0.05], pos=[0, 0, FLOOR_Z],
+        floor_z = TABLE_TOP_Z - self.surface_height
+        world.add_geom(name="floor", type=mujoco.mjtGeom.mjGEOM_PLANE, size=[4, 4, 0.05], pos=[0, 0, floor_z],
                        material="floor_mat")
         cx, cy = np.mean(TABLE_X), np.mean(TABLE_Y)
         hx, hy, ht = (TABLE_X[1] - TABLE_X[0]) / 2, (TABLE_Y[1] - TABLE_Y[0]) / 2, TABLE_THICKNESS / 2
         table = world.add_body(name="table", pos=[cx, cy, TABLE_TOP_Z])
         table.add_geom(name="table_top", type=mujoco.mjtGeom.mjGEOM_BOX, size=[hx, hy, ht], pos=[0, 0, -ht],
                        material="table_mat", friction=[1.0, 0.01, 0.001])  # as grippy as the fingertips
-        leg_h = (TABLE_TOP_Z - TABLE_THICKNESS - FLOOR_Z) / 2
+        leg_h = (TABLE_TOP_Z - TABLE_THICKNESS - floor_z) / 2
         for sx in (-1, 1):
             for sy in (-1, 1):
                 table.add_geom(

@@ -17,6 +17,7 @@ from humanoidgen.sim.env import HumanoidEnv
 from humanoidgen.sim.scene import Scene, SceneBuilder, SceneObject
 
 if TYPE_CHECKING:
+    from humanoidgen.scenes.dressing import SceneDressing
     from humanoidgen.tasks.spec import ResolvedObject, TaskSpec
     from humanoidgen.tasks.targets import SceneTargets
 
@@ -114,10 +115,12 @@ def overlapping_pairs(layout: list[ResolvedObject], skip: Iterable[tuple[int, in
 
 
 def build_layout(layout: list[ResolvedObject], settle_s: float = SETTLE_S,
-                 aliases: dict[str, tuple[str, int]] | None = None) -> tuple[TaskScene, HumanoidEnv]:
+                 aliases: dict[str, tuple[str, int]] | None = None, dressing: SceneDressing | None = None
+                 ) -> tuple[TaskScene, HumanoidEnv]:
     """Add the objects in order, set the articulated ones' openness, and let everything settle with the robot
-    holding its initial posture."""
-    builder = SceneBuilder()
+    holding its initial posture. `dressing`: a room around the table and/or a randomized look."""
+    builder = SceneBuilder() if dressing is None else \
+        SceneBuilder(surface_height=dressing.surface_height, dressing=dressing)
     objs = [builder.add_object(o.type, o.type_id, pos=tuple(o.pos), yaw=o.yaw) for o in layout]
     scene = TaskScene.wrap(builder.build(), aliases)
     env = HumanoidEnv(scene)
@@ -131,11 +134,12 @@ def build_layout(layout: list[ResolvedObject], settle_s: float = SETTLE_S,
     return scene, env
 
 
-def build_scene(spec: TaskSpec, seed: int | None = None, settle_s: float = SETTLE_S) -> tuple[TaskScene, HumanoidEnv]:
+def build_scene(spec: TaskSpec, seed: int | None = None, settle_s: float = SETTLE_S,
+                dressing: SceneDressing | None = None) -> tuple[TaskScene, HumanoidEnv]:
     """The task's scene for episode `seed` (None: the default layout), with the task's aliases and targets."""
     from humanoidgen.tasks.targets import SceneTargets
 
-    scene, env = build_layout(spec.sample_layout(seed), settle_s=settle_s, aliases=spec.aliases())
+    scene, env = build_layout(spec.sample_layout(seed), settle_s=settle_s, aliases=spec.aliases(), dressing=dressing)
     # After settling: a target anchored at an object's start is where the object came to rest.
     scene.targets = SceneTargets(list(spec.targets), seed, env)
     return scene, env

@@ -1,0 +1,1 @@
+"""Beyond the table: room-level scenes (the paper's O -> O' scene scaling) and visual randomization."""
