@@ -5,6 +5,7 @@ carries the part through its arc."""
 from __future__ import annotations
 
 import os
+from pathlib import Path
 
 import numpy as np
 
@@ -17,18 +18,8 @@ from humanoidgen.tasks.registry import load_task  # noqa: E402
 from humanoidgen.tasks.scene import build_scene  # noqa: E402
 from plan_runs import run_plan  # noqa: E402
 
-PINCH_OPEN = """
-planner.hand_pre_pinch("right")
-c = planner.generate_constraints(obj_name="laptop", obj_id=0, action="pinch", hand_name="right")
-_, pose = planner.generate_end_effector_pose(c, "right")
-planner.move_to_pose_with_screw(pose, "right", attach_obj=False)
-planner.hand_pinch("right", pinch_object="laptop", obj_id=0)
-c = planner.generate_constraints(obj_name="laptop", obj_id=0, action="pinch", hand_name="right", openness=0.85)
-_, pose = planner.generate_end_effector_pose(c, "right")
-planner.move_to_pose_with_screw(pose, "right", attach_obj=True, object_name="laptop", object_id=0)
-planner.open_hand("right")
-planner.move_to_pose_with_screw(planner.right_hand_init_pose, "right", attach_obj=False)
-"""
+# A corpus plan written from the paper's API (bench/foreign_plans): pinch the screen's edge, lift it to 0.85.
+PINCH_OPEN = Path(__file__).parent.parent / "bench" / "foreign_plans" / "open_laptop_easy" / "alt_pinch_open.py"
 
 
 def test_a_half_open_screens_top_edge_is_pinched_with_the_fingers_slanted_and_the_pads_over_the_screen():
@@ -50,5 +41,5 @@ def test_a_half_open_screens_top_edge_is_pinched_with_the_fingers_slanted_and_th
 
 
 def test_a_pinched_screen_is_lifted_open(tmp_path):
-    result = run_plan(tmp_path, "open_laptop_easy", 0, PINCH_OPEN)
+    result = run_plan(tmp_path, "open_laptop_easy", 0, PINCH_OPEN.read_text())
     assert result.success, [s.error for s in result.steps if not s.ok] + [c["detail"] for c in result.checks]

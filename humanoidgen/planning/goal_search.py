@@ -46,7 +46,7 @@ ARC_GOOD = 1.8  # a grasp posture that can move its part this far (of 2: both wa
 ARC_MARGIN = 0.1  # another posture is taken only if it reaches this much more of the arc
 # A held part the arm can move at least this share of the way is moved that far, gripped again and moved on.
 REGRIP_MIN_SHARE = 0.25
-PARTIAL_ENOUGH = 0.5  # from this share of the way on, it is moved that far only (as a part that stops short: arm_moves)
+PARTIAL_ENOUGH = 0.5  # from this share of the way on, a part that stays put need not be gripped again (regrip.py)
 ON_POINT = 0.025  # a fingertip this near a push point is on it: a push from there rides with the part
 PUSH_MIN_COS = 0.3  # a fingertip drives a part only where the part gives way within ~70 deg of the push
 
@@ -112,7 +112,7 @@ class GoalSearch:
             pose.follow = dict(gen.follow, q_target=q_reached)
         return result, pose
 
-    def _partial_goal(self, side: Side, follow: dict, failed: GoalResult) -> tuple[GoalResult, tuple[float, dict | None]]:
+    def _partial_goal(self, side: Side, follow: dict, failed: GoalResult) -> tuple[GoalResult, tuple[float, dict]]:
         """A held part the arm can move only partway: the goal as far as it gets, the part's joint value there, and
         what the move does after it (`Pose.regrip`): it lets go, grips the part again and takes it on to the
         openness asked (planning/regrip.py). Where the part went PARTIAL_ENOUGH of the way and stays where the hand

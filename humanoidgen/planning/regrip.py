@@ -25,12 +25,11 @@ def go_on(planner: HumanoidMotionPlanner, side: Side, regrip: dict) -> None:
     (the part went most of the way and stays there): then the part is left where it is, with an event."""
     from humanoidgen.planning.arm_moves import PlanningError
 
-    if not regrip.get("optional"):
-        _go_on(planner, side, regrip)
-        return
     try:
         _go_on(planner, side, regrip)
     except PlanningError as exc:
+        if not regrip.get("optional"):
+            raise
         from humanoidgen.objects.describe import openness
 
         obj = planner.env.scene.object(*regrip["obj"])

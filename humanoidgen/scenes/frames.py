@@ -19,7 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from humanoidgen.sim.geometry import mat_to_quat, quat_to_mat
+from humanoidgen.sim.geometry import axis_angle_mat, mat_to_quat, quat_to_mat
 from humanoidgen.sim.layout import TABLE_TOP_Z, TABLE_X
 
 
@@ -40,8 +40,7 @@ class Rigid:
 
 def frame(origin: np.ndarray, yaw: float) -> Rigid:
     """A frame with z up, turned by `yaw` about z, at `origin` (frame -> world)."""
-    c, s = math.cos(yaw), math.sin(yaw)
-    return Rigid(np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]]), np.asarray(origin, float))
+    return Rigid(axis_angle_mat(np.array([0.0, 0.0, 1.0]), yaw), np.asarray(origin, float))
 
 
 def table_frame() -> Rigid:
