@@ -1,0 +1,65 @@
+"""Every object family's models as data: the compiled MuJoCo model and the annotations of each (family, type_id).
+
+The object families moved from Python literals into data files (humanoidgen/objects/families/); this dump, taken
+before the move (tests/data/family_snapshot.json), pins that the move changed nothing. Regenerate it only for an
+intended change of a model: `python3 tests/family_snapshot.py`.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import sys
+from pathlib import Path
+
+os.environ.setdefault("MUJOCO_GL", "egl")
+
+import mujoco  # noqa: E402
+import numpy as np  # noqa: E402
+
+SNAPSHOT = Path(__file__).parent / "data" / "family_snapshot.json"
+# The families that lived in objects/rigid.py and objects/articulated.py; families added later in their own
+# modules are not part of the move.
+FAMILIES = ("cube", "bottle", "can", "plate", "cup", "bowl", "pot", "drawer", "laptop", "box", "safe", "toaster")
+
+# Compiled arrays that carry everything a family's build decides: bodies, geoms, joints, their dynamics, masses
+# (split over the primitives), contact settings and excluded pairs.
+_FIELDS = ("body_parentid", "body_pos", "body_quat", "body_ipos", "body_iquat", "body_mass", "body_inertia",
+           "geom_type", "geom_bodyid", "geom_size", "geom_pos", "geom_quat", "geom_rgba", "geom_friction",
+           "geom_condim", "geom_solref", "geom_solimp", "jnt_type", "jnt_bodyid", "jnt_pos", "jnt_axis",
+           "jnt_range", "jnt_limited", "dof_damping", "dof_frictionloss", "dof_armature", "dof_solref",
+           "dof_solimp", "exclude_signature")
+
+
+def dump_model(family: str, type_id: int) -> dict:
+    """One model built alone into a fresh spec (body "<family>_0" at the origin), compiled, plus annotations."""
+    from humanoidgen.objects import library
+
+    fam = library.family(family)
+    spec = mujoco.MjSpec()
+    body = spec.worldbody.add_body(name=f"{family}_0", pos=[0.0, 0.0, 0.0])
+    fam.build(spec, body, type_id)
+    model = spec.compile()
+    arrays = {f: np.asarray(getattr(model, f)).tolist() for f in _FIELDS}
+    names = {kind: [mujoco.mj_id2name(model, obj, i) for i in range(n)] for kind, obj, n in (
+        ("body", mujoco.mjtObj.mjOBJ_BODY, model.nbody), ("geom", mujoco.mjtObj.mjOBJ_GEOM, model.ngeom),
+        ("joint", mujoco.mjtObj.mjOBJ_JOINT, model.njnt), ("exclude", mujoco.mjtObj.mjOBJ_EXCLUDE, model.nexclude))}
+    model_meta = library.model(family, type_id)
+    return {"description": model_meta.description, "articulated": fam.articulated, "names": names,
+            "arrays": arrays, "xml": spec.to_xml(),
+            "annotations": library.annotations(family, type_id).model_dump(mode="json")}
+
+
+def dump_all() -> dict:
+    from humanoidgen.objects import library
+
+    out = {}
+    for family in FAMILIES:
+        for m in library.family(family).models():
+            out[f"{family}/{m.type_id}"] = dump_model(family, m.type_id)
+    return out
+
+
+if __name__ == "__main__":
+    SNAPSHOT.write_text(json.dumps(dump_all(), indent=None, sort_keys=True))
+    print(f"wrote {SNAPSHOT} ({SNAPSHOT.stat().st_size} bytes)", file=sys.stderr)
