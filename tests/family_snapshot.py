@@ -31,11 +31,18 @@ _FIELDS = ("body_parentid", "body_pos", "body_quat", "body_ipos", "body_iquat", 
            "dof_solimp", "exclude_signature")
 
 
+def families() -> dict:
+    """The rigid and articulated families by name, from their modules: the library may let a later module's
+    family take a name over (objects/safe.py's safe), which is not what this snapshot pins."""
+    from humanoidgen.objects.articulated import ARTICULATED_FAMILIES
+    from humanoidgen.objects.rigid import RIGID_FAMILIES
+
+    return {**RIGID_FAMILIES, **ARTICULATED_FAMILIES}
+
+
 def dump_model(family: str, type_id: int) -> dict:
     """One model built alone into a fresh spec (body "<family>_0" at the origin), compiled, plus annotations."""
-    from humanoidgen.objects import library
-
-    fam = library.family(family)
+    fam = families()[family]
     spec = mujoco.MjSpec()
     body = spec.worldbody.add_body(name=f"{family}_0", pos=[0.0, 0.0, 0.0])
     fam.build(spec, body, type_id)
@@ -44,20 +51,38 @@ def dump_model(family: str, type_id: int) -> dict:
     names = {kind: [mujoco.mj_id2name(model, obj, i) for i in range(n)] for kind, obj, n in (
         ("body", mujoco.mjtObj.mjOBJ_BODY, model.nbody), ("geom", mujoco.mjtObj.mjOBJ_GEOM, model.ngeom),
         ("joint", mujoco.mjtObj.mjOBJ_JOINT, model.njnt), ("exclude", mujoco.mjtObj.mjOBJ_EXCLUDE, model.nexclude))}
-    model_meta = library.model(family, type_id)
+    (model_meta,) = [m for m in fam.models() if m.type_id == type_id]
     return {"description": model_meta.description, "articulated": fam.articulated, "names": names,
-            "arrays": arrays, "xml": spec.to_xml(),
-            "annotations": library.annotations(family, type_id).model_dump(mode="json")}
+            "arrays": arrays, "xml": spec.to_xml(), "annotations": fam.annotations(type_id).model_dump(mode="json")}
 
 
 def dump_all() -> dict:
-    from humanoidgen.objects import library
-
     out = {}
     for family in FAMILIES:
-        for m in library.family(family).models():
+        for m in families()[family].models():
             out[f"{family}/{m.type_id}"] = dump_model(family, m.type_id)
     return out
+
+
+def differences(old, new, path: str = "", tol: float = 1e-12) -> list[str]:
+    """Where `new` differs from the snapshot `old` (floats to `tol`). A key the snapshot lacks is no difference
+    when its value is empty (None or []): a field the annotation schema gained later, at its default."""
+    if isinstance(old, dict) and isinstance(new, dict):
+        out = [f"{path}/{k}: missing" for k in old if k not in new]
+        out += [f"{path}/{k}: new field = {new[k]!r}" for k in new if k not in old and new[k] not in (None, [])]
+        for k in old.keys() & new.keys():
+            out += differences(old[k], new[k], f"{path}/{k}", tol)
+        return out
+    if isinstance(old, list) and isinstance(new, list):
+        if len(old) != len(new):
+            return [f"{path}: {len(old)} items, now {len(new)}"]
+        return [d for i, (a, b) in enumerate(zip(old, new)) for d in differences(a, b, f"{path}[{i}]", tol)]
+    if isinstance(old, float) or isinstance(new, float):
+        if isinstance(old, (int, float)) and isinstance(new, (int, float)) and abs(old - new) <= tol:
+            return []
+    elif old == new and type(old) is type(new):
+        return []
+    return [f"{path}: {old!r} -> {new!r}"]
 
 
 if __name__ == "__main__":

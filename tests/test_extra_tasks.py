@@ -30,9 +30,9 @@ def test_toaster_press_annotation_and_lever_travel(type_id):
     assert lever.joint.range == (0.0, p["travel"]) and ann.articulation.open == p["travel"]
     # The lever sticks out >= 5 cm from the front face, so the curled fingers clear the body on the way down.
     front = -p["depth"] / 2
-    assert lever.pos[0] - fam._LEVER[0] <= front - 0.05
+    assert lever.pos[0] - p["lever_half"][0] <= front - 0.05
     # ...and its bottom stays above the table at full travel.
-    assert lever.pos[2] - fam._LEVER[2] - p["travel"] > 0.0
+    assert lever.pos[2] - p["lever_half"][2] - p["travel"] > 0.0
 
 
 def test_press_toaster_spec_matches_the_paper():

@@ -9,7 +9,9 @@ import mujoco
 import numpy as np
 import pytest
 
-from humanoidgen.objects.rigid import CERAMIC, WOOD
+from humanoidgen.objects.family_data import material
+
+CERAMIC, WOOD = material("ceramic"), material("wood")  # families/materials.yaml
 
 
 def _slide(slope_deg: float, below: tuple, cube: tuple, seconds: float = 0.6) -> float:

@@ -50,8 +50,12 @@ def table_scene():
 
 
 def _falls_shut(family, type_id) -> bool:
-    """A model with a free-running hinge (its params set hinge_friction): its part falls shut when let go low."""
-    return "hinge_friction" in ARTICULATED_FAMILIES[family]._p(type_id)
+    """A model with a free-running hinge (its file gives the hinge less friction than its family's default): its
+    part falls shut when let go low."""
+    fam = ARTICULATED_FAMILIES[family]
+    own = next(m for m in fam.models() if m.type_id == type_id).params
+    default = fam._data().info.defaults.get("hinge")
+    return "hinge" in own and default is not None and own["hinge"]["frictionloss"] < default["frictionloss"]
 
 
 def _hold(model, data, body, ann, openness, seconds):

@@ -12,7 +12,8 @@ from humanoidgen.objects.schema import ObjectAnnotations
 
 @dataclass(frozen=True)
 class ObjectModel:
-    """One model of a family: `type_id` selects it; `params` are its dimensions (metres), colour, mass."""
+    """One model of a family: `type_id` selects it; `params` are its dimensions (metres), colour, mass, ... as
+    its model file gives them (objects/families/; the family's defaults fill in the rest when it is built)."""
 
     family: str
     type_id: int

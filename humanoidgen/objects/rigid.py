@@ -5,6 +5,10 @@ objects (cup, bowl, pot) are a bottom disc plus a ring of thin box walls, so the
 concave. The primitives are shifted so that the origin is the centre of their bounding box, which is computed
 exactly from the primitives (and reported in the annotations). Masses are split over the primitives by volume.
 
+The models (dimensions, colours, masses, materials) and each family's annotation vocabulary (axes, operations,
+functions) are data: humanoidgen/objects/families/<family>/ (objects/family_data.py). This module builds a
+model's primitives from its parameters and derives its annotated points from that geometry.
+
 World: table top at z = 0, +x forward (away from the robot), +y left, +z up. A hand coming from the robot
 approaches along +x.
 """
@@ -17,40 +21,23 @@ from dataclasses import dataclass, replace
 import mujoco
 import numpy as np
 
-from humanoidgen.sim.geometry import quat_to_mat
 from humanoidgen.objects.family import ObjectFamily, ObjectModel
-from humanoidgen.objects.schema import (
-    FunctionAnnotation,
-    KeyAxis,
-    KeyPoint,
-    ObjectAnnotations,
-    OperationAnnotation,
+from humanoidgen.objects.family_data import FamilyData, ModelData, family_data, material
+from humanoidgen.objects.params import (
+    BottleParams,
+    BowlParams,
+    CanParams,
+    CubeParams,
+    CupParams,
+    PlateParams,
+    PotParams,
+    RigidParams,
 )
+from humanoidgen.objects.schema import FunctionAnnotation, KeyPoint, ObjectAnnotations, OperationAnnotation
+from humanoidgen.sim.geometry import quat_to_mat
 
 Vec3 = tuple[float, float, float]
 RGBA = tuple[float, float, float, float]
-
-GREEN: RGBA = (0.2, 0.7, 0.25, 1.0)
-YELLOW: RGBA = (0.95, 0.8, 0.15, 1.0)
-BLUE: RGBA = (0.2, 0.35, 0.85, 1.0)
-RED: RGBA = (0.85, 0.2, 0.15, 1.0)
-ORANGE: RGBA = (0.95, 0.5, 0.1, 1.0)
-WHITE: RGBA = (0.93, 0.93, 0.9, 1.0)
-GREY: RGBA = (0.6, 0.62, 0.65, 1.0)
-DARK: RGBA = (0.2, 0.2, 0.22, 1.0)
-BROWN: RGBA = (0.55, 0.35, 0.2, 1.0)
-CLEAR_GREEN: RGBA = (0.3, 0.6, 0.35, 0.85)
-CLEAR_BLUE: RGBA = (0.45, 0.65, 0.9, 0.85)
-
-# Sliding, torsional, rolling friction per material. MuJoCo takes the larger of two touching geoms' values, and
-# fingertips and the table top (1.0 both) are grippier than any of these, so an object's own value decides only
-# its contacts with other objects: a cube on a cube, cubes in a tipped cup. Wood and glazed ceramic are 0.4 (the
-# dry wood-on-wood range is 0.25-0.5); at 1.0 two cubes stayed wedged in a cup tipped 122 deg, mouth well down.
-# (The table was 0.8: a block pinched off it then sat differently in the hand and a hand-over let it slip.)
-WOOD = (0.4, 0.01, 0.001)
-PLASTIC = (0.8, 0.01, 0.001)
-CERAMIC = (0.4, 0.01, 0.001)
-METAL = (0.6, 0.01, 0.001)
 
 
 # -- primitives -----------------------------------------------------------------------------------------------
@@ -64,7 +51,7 @@ class Prim:
     size: Vec3
     pos: Vec3
     quat: tuple[float, float, float, float] = (1.0, 0.0, 0.0, 0.0)
-    rgba: RGBA = GREY
+    rgba: RGBA = (0.6, 0.62, 0.65, 1.0)
 
     def volume(self) -> float:
         if self.kind == "box":
@@ -140,7 +127,7 @@ def _finish(prims: list[Prim], points: dict[str, Vec3], **container) -> Geometry
     return Geometry(prims, lo, hi, pts, **container)
 
 
-# A box this much longer along z than across is a block with two ends (see CubeFamily._semantics).
+# A box this much longer along z than across is a block with two ends (see families/cube/family.yaml).
 ELONGATED_RATIO = 1.5
 # The other end's pinch sits deeper than the top's: a block held by one end lies across the hand (a hand-over),
 # and 1.5 cm in, thumb and index hold it level where nearer the end it droops out of the fingers (measured).
@@ -229,8 +216,8 @@ def _cup_like(p: dict, handles: tuple[str, ...]) -> Geometry:
 
 def _bowl_geometry(p: dict) -> Geometry:
     """Bottom disc + ring of walls tilted outward by `tilt`."""
-    Rb, L, tilt, t, tb, n, rgba = (p["bottom_radius"], p["wall_length"], p["tilt"], p["wall"], p["bottom"],
-                                   p["n_walls"], p["rgba"])
+    Rb, L, t, tb, n, rgba = p["bottom_radius"], p["wall_length"], p["wall"], p["bottom"], p["n_walls"], p["rgba"]
+    tilt = math.radians(p["tilt_deg"])
     r_top = Rb + L * math.sin(tilt)
     half_w = (r_top + t) * math.tan(math.pi / n) * 1.02
     prims = [Prim("bottom", "cylinder", (Rb, tb / 2), (0, 0, tb / 2), rgba=rgba)]
@@ -251,32 +238,27 @@ def _bowl_geometry(p: dict) -> Geometry:
 
 
 # -- families -------------------------------------------------------------------------------------------------------
-_AXES: dict[str, Vec3] = {
-    "x": (1.0, 0.0, 0.0), "y": (0.0, 1.0, 0.0), "z": (0.0, 0.0, 1.0),
-    "down": (0.0, 0.0, -1.0), "-x": (-1.0, 0.0, 0.0), "-y": (0.0, -1.0, 0.0),
-}
-
-
 class RigidFamily:
-    """A parametric rigid family; subclasses give `_params`, `_geometry`, the semantic annotation tables."""
+    """A parametric rigid family: its models and annotation vocabulary are data (families/<name>/), validated
+    against `Params`; subclasses give the geometry built from a model's parameters."""
 
     name: str = ""
     articulated: bool = False
-    friction: Vec3 = PLASTIC
-    _params: list[tuple[str, dict]] = []
+    Params: type[RigidParams] = RigidParams
 
     # -- ObjectFamily ------------------------------------------------------------------------------------------
     def models(self) -> list[ObjectModel]:
-        return [ObjectModel(self.name, k, desc, dict(p)) for k, (desc, p) in enumerate(self._params)]
+        return [ObjectModel(self.name, m.type_id, m.description, {k: v for k, v in m.params.items() if k in m.own})
+                for m in self._data().models.values()]
 
     def geometry(self, type_id: int) -> Geometry:
-        return self._geometry(self._model_params(type_id))
+        return self._geometry(self._model(type_id).params)
 
     def build(self, spec: mujoco.MjSpec, body: mujoco.MjsBody, type_id: int) -> None:
-        p = self._model_params(type_id)
+        p = self._model(type_id).params
         geo = self._geometry(p)
         total = sum(g.volume() for g in geo.prims)
-        friction = list(p.get("friction", self.friction))
+        friction = list(material(p["material"]))
         for g in geo.prims:
             kind = mujoco.mjtGeom.mjGEOM_BOX if g.kind == "box" else mujoco.mjtGeom.mjGEOM_CYLINDER
             size = list(g.size) if g.kind == "box" else [g.size[0], g.size[1], 0.0]
@@ -284,43 +266,38 @@ class RigidFamily:
                           rgba=list(g.rgba), mass=p["mass"] * g.volume() / total, friction=friction, condim=4)
 
     def annotations(self, type_id: int) -> ObjectAnnotations:
-        desc, p = self._params[self._check(type_id)]
-        geo = self._geometry(p)
-        ops, fns = self._semantics(geo)
-        used = {"x", "y", "z"}
-        used |= {a for o in ops for a in (o[2], o[3], o[4])} | {f[2] for f in fns}
-        axes = [KeyAxis(name=n, direction=d) for n, d in _AXES.items() if n in used]
-        axes += [KeyAxis(name=n, direction=d) for n, d in self._extra_axes(geo).items()]
-        pnames = {"center"} | {o[1] for o in ops} | {f[1] for f in fns}
+        m = self._model(type_id)
+        geo = self._geometry(m.params)
+        info = self._data().info
+        # An operation or function that `requires` a point only some models have (a long block's second end) is
+        # left out of the others.
+        ops = [o for o in info.operations if o.requires is None or o.requires in geo.points]
+        fns = [f for f in info.functions if f.requires is None or f.requires in geo.points]
+        pnames = {"center"} | {o.point for o in ops} | {f.point for f in fns}
         points = [KeyPoint(name=n, position=tuple(float(v) for v in geo.points[n]))
                   for n in geo.points if n in pnames]
         return ObjectAnnotations(
-            family=self.name, type_id=type_id, description=desc,
+            family=self.name, type_id=type_id, description=m.description,
             bbox_min=tuple(float(v) for v in geo.bmin), bbox_max=tuple(float(v) for v in geo.bmax),
-            points=points, axes=axes,
-            operations=[OperationAnnotation(operation=o[0], point=o[1], approach_axis=o[2], attach_axis=o[3],
-                                            parallel_axis=o[4], width=o[5] if len(o) > 5 else None) for o in ops],
-            functions=[FunctionAnnotation(function=f[0], point=f[1], axis=f[2]) for f in fns],
+            points=points, axes=list(info.axes),
+            operations=[OperationAnnotation(operation=o.operation, point=o.point, approach_axis=o.approach_axis,
+                                            attach_axis=o.attach_axis, parallel_axis=o.parallel_axis,
+                                            width=_diameter(geo) if o.wrap else None) for o in ops],
+            functions=[FunctionAnnotation(function=f.function, point=f.point, axis=f.axis) for f in fns],
         )
 
     # -- helpers ---------------------------------------------------------------------------------------------
-    def _check(self, type_id: int) -> int:
-        if not 0 <= type_id < len(self._params):
-            raise ValueError(f"{self.name}: no type_id {type_id}; known 0..{len(self._params) - 1}")
-        return type_id
+    def _data(self) -> FamilyData:
+        return family_data(self.name, self.Params)
 
-    def _model_params(self, type_id: int) -> dict:
-        return self._params[self._check(type_id)][1]
+    def _model(self, type_id: int) -> ModelData:
+        models = self._data().models
+        if type_id not in models:
+            raise ValueError(f"{self.name}: no type_id {type_id}; known: {', '.join(map(str, models))}")
+        return models[type_id]
 
     def _geometry(self, p: dict) -> Geometry:
         raise NotImplementedError
-
-    def _semantics(self, geo: Geometry) -> tuple[list[tuple], list[tuple]]:
-        """(operations as (op, point, approach, attach, parallel[, width]), functions as (function, point, axis))."""
-        raise NotImplementedError
-
-    def _extra_axes(self, geo: Geometry) -> dict[str, Vec3]:
-        return {}
 
 
 def _diameter(geo: Geometry) -> float:
@@ -330,153 +307,48 @@ def _diameter(geo: Geometry) -> float:
 
 class CubeFamily(RigidFamily):
     name = "cube"
-    friction = WOOD
-    _params = [
-        ("green 4 cm cube", {"size": (0.04, 0.04, 0.04), "rgba": GREEN, "mass": 0.05}),
-        ("yellow 4 cm cube", {"size": (0.04, 0.04, 0.04), "rgba": YELLOW, "mass": 0.05}),
-        ("blue 4 cm cube", {"size": (0.04, 0.04, 0.04), "rgba": BLUE, "mass": 0.05}),
-        ("red 3 cm cube", {"size": (0.03, 0.03, 0.03), "rgba": RED, "mass": 0.025}),
-        ("orange 3x3x8 cm block, long axis vertical", {"size": (0.03, 0.03, 0.08), "rgba": ORANGE,
-                                                       "mass": 0.06}),
-    ]
+    Params = CubeParams
     _geometry = staticmethod(_box_geometry)
-
-    def _semantics(self, geo):
-        ops = [("pinch", "pinch", "down", "x", "y"), ("grasp", "top", "down", "x", "y")]
-        fns = [("support", "support", "z")]
-        if "pinch_bottom" in geo.points:
-            # A long block has two ends: one hand holds it by one end while the other takes the other end (a
-            # hand-over in mid-air), and it stands on either end ("rest": the face it can stand on, the axis
-            # pointing out of that face, down when it stands there).
-            ops.insert(1, ("pinch", "pinch_bottom", "z", "x", "y"))
-            fns += [("rest", "base", "down"), ("rest", "support", "z")]
-        return ops, fns
 
 
 class BottleFamily(RigidFamily):
     name = "bottle"
-    friction = PLASTIC
-    _params = [
-        ("clear green 0.5 l bottle", {"radius": 0.033, "body_height": 0.13, "neck_radius": 0.013,
-                                      "neck_height": 0.04, "rgba": CLEAR_GREEN, "cap_rgba": WHITE, "mass": 0.3}),
-        ("clear blue 0.33 l bottle", {"radius": 0.028, "body_height": 0.11, "neck_radius": 0.012,
-                                      "neck_height": 0.035, "rgba": CLEAR_BLUE, "cap_rgba": BLUE, "mass": 0.2}),
-        ("brown glass bottle", {"radius": 0.03, "body_height": 0.14, "neck_radius": 0.012, "neck_height": 0.06,
-                                "rgba": BROWN, "cap_rgba": YELLOW, "mass": 0.45, "friction": CERAMIC}),
-    ]
+    Params = BottleParams
     _geometry = staticmethod(_bottle_geometry)
-
-    def _semantics(self, geo):
-        w = _diameter(geo)
-        return ([("grasp", "side", "x", "y", "z", w), ("grasp", "side_left", "-y", "x", "z", w),
-                 ("grasp", "side_right", "y", "x", "z", w), ("pinch", "neck", "x", "y", "z")],
-                [("support", "top", "z")])
 
 
 class CanFamily(RigidFamily):
     name = "can"
-    friction = METAL
-    _params = [
-        ("red 330 ml soda can", {"radius": 0.033, "height": 0.122, "rgba": RED, "mass": 0.35}),
-        ("silver 250 ml slim can", {"radius": 0.0265, "height": 0.134, "rgba": GREY, "mass": 0.27}),
-        ("blue food tin", {"radius": 0.0375, "height": 0.11, "rgba": BLUE, "mass": 0.42}),
-    ]
+    Params = CanParams
     _geometry = staticmethod(_can_geometry)
-
-    def _semantics(self, geo):
-        # Grasps from the robot's side or from either flank (a hand wraps a can best from the side).
-        w = _diameter(geo)
-        return ([("grasp", "side", "x", "y", "z", w), ("grasp", "side_left", "-y", "x", "z", w),
-                 ("grasp", "side_right", "y", "x", "z", w)], [("support", "top", "z")])
 
 
 class PlateFamily(RigidFamily):
     name = "plate"
-    friction = CERAMIC
-    _params = [
-        ("white dinner plate", {"radius": 0.12, "thickness": 0.008, "rim_height": 0.012, "rgba": WHITE,
-                                "mass": 0.45}),
-        ("blue side plate", {"radius": 0.09, "thickness": 0.007, "rim_height": 0.01, "rgba": BLUE,
-                             "mass": 0.25}),
-        ("yellow flat board", {"radius": 0.1, "thickness": 0.012, "rim_height": 0.0, "rgba": YELLOW,
-                               "mass": 0.2, "friction": WOOD}),
-    ]
+    Params = PlateParams
     _geometry = staticmethod(_plate_geometry)
-
-    def _semantics(self, geo):
-        return ([("pinch", "rim", "down", "x", "y")], [("support", "support", "z")])
 
 
 class CupFamily(RigidFamily):
     name = "cup"
-    friction = CERAMIC
-    _params = [
-        ("white mug", {"radius": 0.04, "height": 0.09, "wall": 0.005, "bottom": 0.008, "n_walls": 14,
-                       "handle_reach": 0.03, "handle_thick": 0.008, "handle_style": "loop", "rgba": WHITE,
-                       "mass": 0.3}),
-        ("red mug", {"radius": 0.042, "height": 0.1, "wall": 0.005, "bottom": 0.008, "n_walls": 14,
-                     "handle_reach": 0.03, "handle_thick": 0.008, "handle_style": "loop", "rgba": RED,
-                     "mass": 0.32}),
-        ("small blue cup", {"radius": 0.035, "height": 0.075, "wall": 0.004, "bottom": 0.007, "n_walls": 12,
-                            "handle_reach": 0.025, "handle_thick": 0.007, "handle_style": "loop", "rgba": BLUE,
-                            "mass": 0.2}),
-    ]
+    Params = CupParams
 
-    def _geometry(self, p):
-        return _cup_like(p, ("left",))
-
-    def _semantics(self, geo):
-        w = _diameter(geo)
-        return ([("grasp", "side", "x", "y", "z", w), ("grasp", "side_right", "y", "x", "z", w),
-                 ("pinch", "handle_left", "x", "y", "z"),
-                 ("pinch", "rim", "down", "x", "y")],
-                [("pour", "lip", "pour_axis"), ("storage", "storage", "opening")])
-
-    def _extra_axes(self, geo):
-        return {"pour_axis": (0.0, -1.0, 0.0), "opening": (0.0, 0.0, 1.0)}
+    def _geometry(self, p: dict) -> Geometry:
+        return _cup_like(p, ("left",))  # the handle on the left (+y): the cup pours to the right
 
 
 class BowlFamily(RigidFamily):
     name = "bowl"
-    friction = CERAMIC
-    _params = [
-        ("white bowl", {"bottom_radius": 0.045, "wall_length": 0.065, "tilt": math.radians(35), "wall": 0.005,
-                        "bottom": 0.008, "n_walls": 16, "rgba": WHITE, "mass": 0.35}),
-        ("green salad bowl", {"bottom_radius": 0.06, "wall_length": 0.08, "tilt": math.radians(40),
-                              "wall": 0.005, "bottom": 0.008, "n_walls": 16, "rgba": GREEN, "mass": 0.5}),
-        ("small red bowl", {"bottom_radius": 0.035, "wall_length": 0.05, "tilt": math.radians(30),
-                            "wall": 0.004, "bottom": 0.007, "n_walls": 14, "rgba": RED, "mass": 0.2}),
-    ]
+    Params = BowlParams
     _geometry = staticmethod(_bowl_geometry)
-
-    def _semantics(self, geo):
-        return ([("pinch", "rim", "down", "x", "y")], [("storage", "storage", "opening")])
-
-    def _extra_axes(self, geo):
-        return {"opening": (0.0, 0.0, 1.0)}
 
 
 class PotFamily(RigidFamily):
     name = "pot"
-    friction = METAL
-    _params = [
-        ("steel cooking pot", {"radius": 0.09, "height": 0.1, "wall": 0.005, "bottom": 0.008, "n_walls": 16,
-                               "handle_reach": 0.04, "handle_thick": 0.01, "handle_width": 0.05,
-                               "handle_style": "bar", "rgba": GREY, "handle_rgba": DARK, "mass": 1.0}),
-        ("small red saucepan", {"radius": 0.07, "height": 0.08, "wall": 0.005, "bottom": 0.008, "n_walls": 16,
-                                "handle_reach": 0.035, "handle_thick": 0.01, "handle_width": 0.04,
-                                "handle_style": "bar", "rgba": RED, "handle_rgba": DARK, "mass": 0.7}),
-    ]
+    Params = PotParams
 
-    def _geometry(self, p):
+    def _geometry(self, p: dict) -> Geometry:
         return _cup_like(p, ("left", "right"))
-
-    def _semantics(self, geo):
-        return ([("grasp", "handle_left", "-y", "z", "x"), ("grasp", "handle_right", "y", "z", "x")],
-                [("storage", "storage", "opening")])
-
-    def _extra_axes(self, geo):
-        return {"opening": (0.0, 0.0, 1.0)}
 
 
 RIGID_FAMILIES: dict[str, ObjectFamily] = {

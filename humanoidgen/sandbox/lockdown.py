@@ -43,7 +43,7 @@ _ENV_KEEP = {"PATH", "LANG", "LANGUAGE", "TZ", "HOME", "TMPDIR", "LD_LIBRARY_PAT
              "NVIDIA_VISIBLE_DEVICES", "NVIDIA_DRIVER_CAPABILITIES", "__EGL_VENDOR_LIBRARY_FILENAMES",
              "__EGL_VENDOR_LIBRARY_DIRS", "__GLX_VENDOR_LIBRARY_NAME", "LP_NUM_THREADS", "OMP_NUM_THREADS",
              "MKL_NUM_THREADS", "NUMEXPR_NUM_THREADS", "XDG_CACHE_HOME", "HGEN_ASSETS", "HGEN_CACHE",
-             ENV_STRICT}
+             "HGEN_FAMILIES_PATH", ENV_STRICT}
 _ENV_KEEP_PREFIXES = ("LC_", "MESA_", "LIBGL_", "GALLIUM_", "OPENBLAS_", "GOTO_")
 # Forced in every worker: caches that write are off instead of getting a hole in the wall, one BLAS thread
 # (multithreaded OpenBLAS on small products is many times slower here, and threads are forked badly).
@@ -172,6 +172,9 @@ def default_read_paths() -> list[Path]:
         paths.add(cache_dir().parent)  # decimated meshes (read only; the parent warms them)
     except Exception:  # noqa: BLE001 - no robot files yet: the episode will fail with its own message
         pass
+    from humanoidgen.objects.family_data import extra_model_folders
+
+    paths.update(extra_model_folders())  # object models added as files ($HGEN_FAMILIES_PATH), by family folder
     for p in ("/usr/lib", "/usr/lib64", "/lib", "/lib64", "/usr/share/glvnd", "/usr/share/egl",
               "/usr/share/drirc.d", "/usr/share/zoneinfo", "/etc/ld.so.cache", "/etc/localtime", "/etc/drirc",
               "/etc/glvnd", "/sys/devices/system/cpu", "/sys/devices/system/node", "/proc/cpuinfo",

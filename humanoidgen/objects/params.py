@@ -1,0 +1,211 @@
+"""The schema of the family data files (humanoidgen/objects/families/): a family's `family.yaml` and its models.
+
+A model file is one model (`type_id`) of a family: its description and parameters (dimensions in metres,
+colours as RGBA in [0, 1], masses in kg, materials, joint dynamics). `family.yaml` holds what the family's
+models share: `defaults` (parameters a model file may leave out or override) and the family's annotation
+vocabulary (axes, operations, functions, and for articulated families the annotated points' parts and
+descriptions). Point positions are not data: the family code derives them from the parameters, so that they
+follow the geometry. Every model is validated against its family's parameter model below (unknown fields are
+errors, numbers must be numbers).
+"""
+
+from __future__ import annotations
+
+from typing import Annotated, Any, Literal
+
+from pydantic import Field
+
+from humanoidgen.objects.schema import KeyAxis, Operation, _Strict
+
+# Numbers are strict: a quoted "0.04" in a file is an error, not silently a float.
+Num = Annotated[float, Field(strict=True)]
+Pos = Annotated[float, Field(strict=True, gt=0.0)]
+NonNeg = Annotated[float, Field(strict=True, ge=0.0)]
+Unit = Annotated[float, Field(strict=True, ge=0.0, le=1.0)]
+Count = Annotated[int, Field(strict=True, ge=3)]
+Vec3 = tuple[Num, Num, Num]
+Size3 = tuple[Pos, Pos, Pos]
+RGBA = tuple[Unit, Unit, Unit, Unit]
+
+
+# -- family.yaml ------------------------------------------------------------------------------------------------
+class PointSpec(_Strict):
+    """An annotated point of an articulated family; its position comes from the family code."""
+
+    name: str = Field(min_length=1)
+    part: str | None = None
+    description: str = ""
+
+
+class OperationSpec(_Strict):
+    operation: Operation
+    point: str
+    approach_axis: str
+    attach_axis: str
+    parallel_axis: str
+    # A grasp around a round body: its width is the body's diameter at the point, computed from the geometry.
+    wrap: bool = False
+    # Only for models whose geometry has this point (a long block's second end); others leave it out.
+    requires: str | None = None
+
+
+class FunctionSpec(_Strict):
+    function: str
+    point: str
+    axis: str
+    requires: str | None = None
+
+
+class FamilyFile(_Strict):
+    """A family's `family.yaml`."""
+
+    family: str = Field(min_length=1)
+    articulated: bool
+    defaults: dict[str, Any] = Field(default_factory=dict)
+    points: list[PointSpec] = Field(default_factory=list)
+    axes: list[KeyAxis]
+    operations: list[OperationSpec]
+    functions: list[FunctionSpec] = Field(default_factory=list)
+
+
+# -- model files --------------------------------------------------------------------------------------------------
+class ModelFile(_Strict):
+    """What every model file has; each family's parameter model adds its own fields."""
+
+    type_id: Annotated[int, Field(strict=True, ge=0)]
+    description: str = Field(min_length=1)
+
+
+class RigidParams(ModelFile):
+    rgba: RGBA
+    mass: Pos
+    material: str  # a name in families/materials.yaml (sliding, torsional, rolling friction)
+
+
+class CubeParams(RigidParams):
+    size: Size3  # full edge lengths x, y, z
+
+
+class BottleParams(RigidParams):
+    radius: Pos
+    body_height: Pos
+    neck_radius: Pos
+    neck_height: Pos
+    cap_rgba: RGBA
+
+
+class CanParams(RigidParams):
+    radius: Pos
+    height: Pos
+
+
+class PlateParams(RigidParams):
+    radius: Pos
+    thickness: Pos
+    rim_height: NonNeg  # 0: a flat board
+
+
+class _Container(RigidParams):
+    radius: Pos
+    height: Pos
+    wall: Pos
+    bottom: Pos
+    n_walls: Count
+    handle_reach: Pos
+    handle_thick: Pos
+
+
+class CupParams(_Container):
+    handle_style: Literal["loop"]
+
+
+class PotParams(_Container):
+    handle_style: Literal["bar"]
+    handle_width: Pos
+    handle_rgba: RGBA
+
+
+class BowlParams(RigidParams):
+    bottom_radius: Pos
+    wall_length: Pos
+    tilt_deg: Annotated[float, Field(strict=True, ge=0.0, lt=90.0)]
+    wall: Pos
+    bottom: Pos
+    n_walls: Count
+
+
+class JointDynamics(_Strict):
+    damping: NonNeg
+    frictionloss: NonNeg
+    armature: NonNeg = 0.005
+
+
+class ArticulatedParams(ModelFile):
+    rgba: RGBA
+    # Mass of each box geom (kg) by its name without the object prefix; the build checks that every geom has one.
+    masses: dict[str, Pos]
+
+
+class DrawerParams(ArticulatedParams):
+    depth: Pos
+    width: Pos
+    height: Pos
+    travel: Pos
+    drawer_rgba: RGBA
+    handle_rgba: RGBA
+    shell_wall: Pos
+    clearance: Pos
+    drawer_wall: Pos
+    handle_offset: Pos  # the bar's centre in front of the drawer's front face
+    handle_drop: Pos  # the bar's centre below the drawer's top
+    handle_bar_half: Size3  # half sizes of the bar (x, y, z)
+    handle_post_half: Size3
+    handle_post_y: Pos  # the two posts at +-this from the middle
+    slide: JointDynamics
+
+
+class LaptopParams(ArticulatedParams):
+    depth: Pos
+    width: Pos
+    base_h: Pos
+    screen_t: Pos
+    open_deg: Pos
+    screen_rgba: RGBA
+    grip_depth: Pos  # a grasp over the screen's top edge centres this far in from the edge
+    hinge: JointDynamics
+
+
+class BoxParams(ArticulatedParams):
+    depth: Pos
+    width: Pos
+    height: Pos
+    open_deg: Pos
+    lid_rgba: RGBA
+    wall: Pos
+    lid_thick: Pos
+    tab_half: Pos  # half length of the tab on the lid's front edge
+    hinge: JointDynamics
+
+
+class SafeParams(ArticulatedParams):
+    depth: Pos
+    width: Pos
+    height: Pos
+    open_deg: Pos
+    door_rgba: RGBA
+    knob_rgba: RGBA
+    wall: Pos
+    door_thick: Pos
+    hinge: JointDynamics
+    knob_hinge: JointDynamics
+
+
+class ToasterParams(ArticulatedParams):
+    depth: Pos
+    width: Pos
+    height: Pos
+    travel: Pos
+    lever_half: Size3  # half sizes of the lever (x: how far it sticks out of the front face)
+    lever_rgba: RGBA
+    slot_rgba: RGBA
+    slide: JointDynamics
