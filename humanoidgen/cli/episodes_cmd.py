@@ -250,6 +250,9 @@ def bench(
     plot_out: Path = typer.Option(None, "--plot", help="Write a bar chart (PNG) of success per task."),
     room: str = typer.Option(None, help="Run in a room: a room seed, or 'random' (a room drawn from each episode's "
                                         "seed); the task and its plan run unchanged (scenes.frames)."),
+    randomize_visuals: bool = typer.Option(False, help="Randomize each episode's look (colours, textures, lights, "
+                                                       "camera jitter, distractors), drawn from its seed and stored "
+                                                       "in its record of the --json report."),
 ) -> None:
     """Run each task's reference plan on randomized seeds and report success rate and time per episode.
 
@@ -270,7 +273,7 @@ def bench(
     try:
         reports = run_bench(specs, episodes, seed=seed, workers=workers,
                             progress=lambda t, k, n: console.print(f"{t}: {k}/{n}"), ray_address=ray_address,
-                            room=room)
+                            room=room, randomize_visuals=randomize_visuals)
     except RaySetupError as exc:
         _fail(str(exc))
         return

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from concurrent.futures import ThreadPoolExecutor
 from collections.abc import Callable
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -24,6 +24,9 @@ class TaskReport:
     mean_plan_s: float  # motion planning per episode
     mean_sim_s: float
     failures: list[str]
+    # One record per episode, in seed order, as collection's index.jsonl has them: seed, success, error, and the
+    # episode's dressing (room and/or randomized look) when it had one, so that it re-runs exactly.
+    records: list[dict] = field(default_factory=list)
 
     @property
     def success_rate(self) -> float:
@@ -46,17 +49,19 @@ def _one(req: EpisodeRequest) -> dict:
 
 def run_bench(tasks: list, episodes: int, seed: int = 0, workers: int = 1,
               progress: Callable[[str, int, int], None] | None = None,
-              ray_address: str | None = None, room: str | int | None = None) -> list[TaskReport]:
+              ray_address: str | None = None, room: str | int | None = None,
+              randomize_visuals: bool = False) -> list[TaskReport]:
     """`ray_address`: run every episode as a Ray task (`ray_session.connect`), all tasks' episodes at once.
-    `room`: a room seed or "random" (each episode its own room; `scenes.dressing.episode_dressing`)."""
+    `room`: a room seed or "random" (each episode its own room); `randomize_visuals`: each episode's look drawn
+    from its seed (`scenes.dressing.episode_dressing`, as `hgen collect` does)."""
     if ray_address is not None:
-        return _ray_bench(tasks, episodes, seed, workers, progress, ray_address, room)
+        return _ray_bench(tasks, episodes, seed, workers, progress, ray_address, room, randomize_visuals)
     # Each episode runs in its own locked-down worker process; threads here only wait on them.
     pool = ThreadPoolExecutor(workers) if workers > 1 else None
     reports = []
     try:
         for spec in tasks:
-            reqs = [_request(spec.name, seed + i, room) for i in range(episodes)]
+            reqs = [_request(spec.name, seed + i, room, randomize_visuals) for i in range(episodes)]
             outs = list(pool.map(_one, reqs)) if pool is not None else [_one(r) for r in reqs]
             reports.append(_report(spec, reqs, outs))
             if progress is not None:
@@ -67,17 +72,17 @@ def run_bench(tasks: list, episodes: int, seed: int = 0, workers: int = 1,
     return reports
 
 
-def _request(task: str, seed: int, room: str | int | None) -> EpisodeRequest:
+def _request(task: str, seed: int, room: str | int | None, randomize_visuals: bool) -> EpisodeRequest:
     from humanoidgen.scenes.dressing import episode_dressing
 
-    return EpisodeRequest(task, seed, dressing=episode_dressing(room, False, seed))
+    return EpisodeRequest(task, seed, dressing=episode_dressing(room, randomize_visuals, seed))
 
 
 def _ray_bench(tasks: list, episodes: int, seed: int, workers: int | None, progress, address: str,
-               room: str | int | None = None) -> list[TaskReport]:
+               room: str | int | None = None, randomize_visuals: bool = False) -> list[TaskReport]:
     from humanoidgen.episodes.ray_session import TASK_RETRIES, OrderedRunner, connect
 
-    reqs = [_request(spec.name, seed + i, room) for spec in tasks for i in range(episodes)]
+    reqs = [_request(spec.name, seed + i, room, randomize_visuals) for spec in tasks for i in range(episodes)]
     outs: list[dict] = []
     with connect(address, workers if address == "local" else None) as session:
         fn = session.ray.remote(num_cpus=1, max_retries=TASK_RETRIES, retry_exceptions=False)(_one)
@@ -104,7 +109,15 @@ def _report(spec, reqs: list[EpisodeRequest], outs: list[dict]) -> TaskReport:
         float(np.mean([o["plan"] for o in outs])), float(np.mean([o["sim"] for o in ok])) if ok else float("nan"),
         # each failure names its seed, so that `hgen run TASK --seed S --video x.mp4` shows it
         [f"seed {r.seed}: {o['error'][:400]}" for r, o in zip(reqs, outs) if not o["success"]],
+        [_record(r, o) for r, o in zip(reqs, outs)],
     )
+
+
+def _record(req: EpisodeRequest, out: dict) -> dict:
+    record = {"seed": req.seed, "success": out["success"], "error": out["error"]}
+    if req.dressing is not None:
+        record["dressing"] = req.dressing  # the room and look, whole (as collection's index records it)
+    return record
 
 
 def plot(reports: list[TaskReport], path: Path) -> None:
