@@ -209,3 +209,27 @@ def test_hgen_run_with_a_model_from_an_extra_folder(tmp_path):
     assert r.returncode == 0, r.stdout[-2000:] + r.stderr[-2000:]
     result = json.loads(out.read_text())
     assert result["success"] is True and result["steps"]
+
+
+@pytest.mark.parametrize("edit,field", [
+    (lambda t: t.replace("defaults: {material: wood}", "defaults: {material: wood, colour: red}"),
+     "defaults: ['colour'] are not parameters of cube"),
+    (lambda t: t.replace("approach_axis: down, attach_axis: x, parallel_axis: y}\n  # A long",
+                         "approach_axis: dwn, attach_axis: x, parallel_axis: y}\n  # A long"),
+     "operations.0.approach_axis: no axis 'dwn'"),
+])
+def test_a_bad_family_file_is_refused_naming_it(tmp_path, monkeypatch, edit, field):
+    """family.yaml's own mistakes are reported against it (the packaged folder swapped for a copy)."""
+    import shutil
+
+    from humanoidgen.objects import family_data
+
+    shutil.copytree(FAMILIES_DIR, tmp_path / "families")
+    path = tmp_path / "families" / "cube" / "family.yaml"
+    text = path.read_text()
+    assert edit(text) != text
+    path.write_text(edit(text))
+    monkeypatch.setattr(family_data, "FAMILIES_DIR", tmp_path / "families")
+    with pytest.raises(FamilyDataError) as exc:
+        library.family("cube").models()
+    assert str(exc.value).startswith(f"{path}: {field}"), str(exc.value)

@@ -100,6 +100,7 @@ def _load(name: str, params_model: type[ModelFile], folders: tuple[Path, ...]) -
     info = _validated(FamilyFile, _read(info_path), info_path)
     if info.family != name:
         raise FamilyDataError(f"{info_path}: family: {info.family!r} but the folder is {name!r}")
+    _check_family(info, info_path, params_model)
     models: dict[int, ModelData] = {}
     for folder in folders:
         for path in _model_files(folder / name, packaged=folder == folders[0]):
@@ -110,6 +111,21 @@ def _load(name: str, params_model: type[ModelFile], folders: tuple[Path, ...]) -
     if not models:
         raise FamilyDataError(f"{home}: family {name!r} has no model files")
     return FamilyData(info, dict(sorted(models.items())), info_path)
+
+
+def _check_family(info: FamilyFile, path: Path, params_model: type[ModelFile]) -> None:
+    """What a family.yaml gets wrong is reported against it, not against the first model file that uses it."""
+    unknown = sorted(set(info.defaults) - set(params_model.model_fields))
+    if unknown:
+        raise FamilyDataError(f"{path}: defaults: {unknown} are not parameters of {info.family} "
+                              f"(known: {sorted(params_model.model_fields)})")
+    axes = {a.name for a in info.axes}
+    refs = [(f"operations.{i}.{f}", getattr(o, f)) for i, o in enumerate(info.operations)
+            for f in ("approach_axis", "attach_axis", "parallel_axis")]
+    refs += [(f"functions.{i}.axis", f.axis) for i, f in enumerate(info.functions)]
+    for where, axis in refs:
+        if axis not in axes:
+            raise FamilyDataError(f"{path}: {where}: no axis {axis!r} in axes (known: {sorted(axes)})")
 
 
 def _model_files(folder: Path, packaged: bool) -> list[Path]:
