@@ -1,12 +1,14 @@
-"""Ray against local processes: episodes per minute of `collect` with 1 and 2 Ray workers vs `--workers 1|2`,
+"""Ray against local processes: episodes per minute of `collect` with 1 and 2 Ray workers (warm actors,
+`episodes.ray_pool`) vs `--workers 1|2`,
 and how a kept camera episode best reaches the dataset (object store vs the task writing into the shared
 folder), in MB/s of raw arrays per episode.
 
-    python bench/ray_scaling.py --episodes 4 --rounds 2                 # a local Ray with 2 CPUs
+    python bench/ray_scaling.py --episodes 6 --rounds 6                 # a local Ray with 2 CPUs
     python bench/ray_scaling.py --ray auto --workers 1,8,32 --episodes 64   # unchanged on a cluster
 
 The configurations run interleaved (round 1: each of them, round 2: each again), after one warm-up run each
-(plan-worker servers started, Ray workers up), so that the machine's other load falls on all of them alike.
+(plan-worker servers started, Ray actors up), so that the machine's other load falls on all of them alike;
+each run records the machine's 1-minute load average when it started.
 Writes bench/results/ray_scaling.json (+ .png) and, with --transport, bench/results/ray_transport.json."""
 
 from __future__ import annotations
@@ -36,6 +38,7 @@ NO_CAMERAS = RecorderConfig(every=10, cameras=(), point_cloud=False)
 
 def _run(kind: str, workers: int, episodes: int, seed: int, scratch: Path) -> dict:
     out = Path(tempfile.mkdtemp(dir=scratch))
+    load = os.getloadavg()[0]  # other work on the machine: the comparison holds only within one run
     t0 = time.perf_counter()
     if kind == "local":
         stats = collect(TASK, episodes, out, workers=workers, seed=seed, recorder=NO_CAMERAS)
@@ -44,7 +47,7 @@ def _run(kind: str, workers: int, episodes: int, seed: int, scratch: Path) -> di
     wall = time.perf_counter() - t0
     shutil.rmtree(out)
     return {"kind": kind, "workers": workers, "kept": stats.kept, "tried": stats.tried, "wall_s": round(wall, 2),
-            "episodes_per_min": round(60 * stats.kept / wall, 2)}
+            "episodes_per_min": round(60 * stats.kept / wall, 2), "load_1min": round(load, 2)}
 
 
 def scaling(args, ray) -> dict:
@@ -55,8 +58,11 @@ def scaling(args, ray) -> dict:
     try:
         for kind, w in configs:  # warm-up, not counted
             _run(kind, w, max(w, 1), 10_000, scratch)
+        from humanoidgen.episodes.ray_pool import pool_for
+
+        ray.get(pool_for(ray, max(workers)).ready_refs)  # every actor up: none is starting during a timed run
         for r in range(args.rounds):
-            for kind, w in configs:
+            for kind, w in configs if r % 2 == 0 else configs[::-1]:  # neither kind always runs first
                 row = {**_run(kind, w, args.episodes, args.seed + 1000 * r, scratch), "round": r}
                 print(row, flush=True)
                 runs.append(row)
@@ -64,13 +70,21 @@ def scaling(args, ray) -> dict:
         shutil.rmtree(scratch, ignore_errors=True)
     summary = []
     for w in workers:
-        rate = {k: float(np.mean([x["episodes_per_min"] for x in runs if x["kind"] == k and x["workers"] == w]))
-                for k in ("local", "ray")}
+        # episodes over wall time of all rounds, and the paired per-round ratio (the same load on both runs)
+        rate = {}
+        for k in ("local", "ray"):
+            rows = [x for x in runs if x["kind"] == k and x["workers"] == w]
+            rate[k] = 60 * sum(x["kept"] for x in rows) / sum(x["wall_s"] for x in rows)
+        per_round = [a["episodes_per_min"] / b["episodes_per_min"] - 1 for r in range(args.rounds)
+                     for a in runs if (a["kind"], a["workers"], a["round"]) == ("local", w, r)
+                     for b in runs if (b["kind"], b["workers"], b["round"]) == ("ray", w, r)]
         summary.append({"workers": w, "local_episodes_per_min": round(rate["local"], 2),
                         "ray_episodes_per_min": round(rate["ray"], 2),
-                        "ray_overhead_per_episode": round(rate["local"] / rate["ray"] - 1, 3)})
+                        "ray_overhead_per_episode": round(rate["local"] / rate["ray"] - 1, 3),
+                        "ray_overhead_median_of_rounds": round(float(np.median(per_round)), 3)})
     return {"task": TASK, "recorder": "no cameras, every 10", "episodes_per_run": args.episodes,
-            "rounds": args.rounds, "cluster_cpus": ray.cluster_resources().get("CPU"), "summary": summary,
+            "rounds": args.rounds, "cluster_cpus": ray.cluster_resources().get("CPU"), "machine_cpus": os.cpu_count(),
+            "mean_load_1min": round(float(np.mean([x["load_1min"] for x in runs])), 2), "summary": summary,
             "runs": runs}
 
 
@@ -148,7 +162,10 @@ def plot(result: dict, path: Path) -> None:
                 va="bottom", fontsize=8)
     ax.set_xticks(x, [f"K={r['workers']}" for r in rows])
     ax.set_ylabel("episodes / minute")
-    ax.set_title(f"{result['task']}: local processes vs Ray", fontsize=10)
+    top = max(max(r["local_episodes_per_min"], r["ray_episodes_per_min"]) for r in rows)
+    ax.set_ylim(0, 1.35 * top)  # room for the legend above the bars
+    load = f", load {result['mean_load_1min']:g} on {result['machine_cpus']} CPUs" if "mean_load_1min" in result else ""
+    ax.set_title(f"{result['task']}: local processes vs Ray{load}", fontsize=9)
     ax.legend(fontsize=8, loc="upper left")
     fig.tight_layout()
     fig.savefig(path, dpi=120)

@@ -1,7 +1,8 @@
 """Collection and benchmarks on Ray: a local Ray head on 127.0.0.1 with 2 worker CPUs is started for this module
-(and stopped after). `--ray` keeps exactly the episodes of `--workers 1`; a worker killed during an attempt is
-retried and the dataset has no duplicate or gap; an interrupted Ray collection resumes; a bad address is one
-line and exit 1."""
+(and stopped after). `--ray` keeps exactly the episodes of `--workers 1`, in a room and with a randomized look
+too; the warm actors serve every collection without restarting their plan workers' fork server; a worker
+killed during an attempt is retried and the dataset has no duplicate or gap; an interrupted Ray collection
+resumes, and closing a runner stops the attempts it had in flight; a bad address is one line and exit 1."""
 
 import json
 import os
@@ -137,6 +138,89 @@ def test_episodes_written_by_the_task_to_the_shared_folder_are_the_same(head, re
     assert stats.staged == N and stats.through_store == 0
     _same_episodes(reference, out)
     _no_duplicate_or_gap(out)
+
+
+def _same_dressing(a: Path, b: Path) -> None:
+    ra, rb = EpisodeStore(a).attempts(), EpisodeStore(b).attempts()
+    assert [r["dressing"] for r in ra] == [r["dressing"] for r in rb]
+    assert all(r["dressing"]["room"] is not None and r["dressing"]["visuals"] is not None for r in ra)
+
+
+def test_ray_collect_in_a_room_with_a_random_look_keeps_the_local_episodes(head, tmp_path):
+    """`hgen collect --ray local --room 3 --randomize-visuals`: the dressing reaches each attempt as it does
+    locally (same seeds, same recorded room and look, same state arrays as `--workers 1`)."""
+    n = 2
+    local = tmp_path / "room_local"
+    assert collect(TASK, n, local, workers=1, recorder=REC, room=3, randomize_visuals=True).kept == n
+    out = tmp_path / "room_ray"
+    r = CliRunner().invoke(app, ["collect", TASK, "-n", str(n), "--out", str(out), "--ray", "local", "--room", "3",
+                                 "--randomize-visuals", "--cameras", "none", "--no-point-cloud", "--every", "10"])
+    assert r.exit_code == 0, r.output
+    _same_episodes(local, out)
+    _same_dressing(local, out)
+    _no_duplicate_or_gap(out)
+
+
+def _traced_attempt(req):
+    """The attempt, with the process it ran in and whether that process's fork server was already up."""
+    import multiprocessing.forkserver as fs
+    import os
+
+    from humanoidgen.episodes.collect import attempt
+
+    server = getattr(fs._forkserver, "_forkserver_pid", None)
+    record, arrays = attempt(req)
+    return {**record, "pid": os.getpid(), "warm": server is not None, "server": server}, arrays
+
+
+def test_the_actors_stay_warm_from_one_collection_to_the_next(head, tmp_path):
+    """The cause of Ray's overhead was a fresh worker process (imports, fork server, mesh cache: 5-11 s) for
+    about every other collection; the pool's actors serve every collection of a connection instead."""
+    first = ray_collect(TASK, 2, tmp_path / "a", head, recorder=REC, attempt_fn=_traced_attempt, max_attempts=2)
+    second = ray_collect(TASK, 2, tmp_path / "b", head, recorder=REC, attempt_fn=_traced_attempt, max_attempts=2,
+                         seed=5)
+    assert first.tried == second.tried == 2
+    a, b = EpisodeStore(tmp_path / "a").attempts(), EpisodeStore(tmp_path / "b").attempts()
+    assert all(r["warm"] for r in a + b), "an attempt had to start its fork server"
+    from humanoidgen.episodes.ray_pool import _pool
+
+    assert _pool is not None
+    pids = set(ray.get([actor.run.remote(-1, os.getpid, ()) for actor in _pool.actors]))
+    assert {r["pid"] for r in a + b} <= pids
+    servers = {(r["pid"], r["server"]) for r in a + b}
+    assert len(servers) == len({pid for pid, _ in servers}), "a fork server was restarted between collections"
+
+
+def _spin_in_a_plan_worker(i: int) -> float:
+    """Item 0 returns at once; the others run a plan step that loops until its 60 s budget."""
+    import time
+
+    from humanoidgen.sandbox import SandboxWorker
+
+    t0 = time.perf_counter()
+    if i > 0:
+        with SandboxWorker(dict) as worker:
+            worker.run_step("x = 0\nwhile True:\n    x += 1", timeout_s=60)
+    return time.perf_counter() - t0
+
+
+def test_closing_a_runner_stops_the_attempts_it_has_in_flight(head):
+    """Ctrl-C or the end of a dataset: queued calls are dropped and running ones lose their plan worker, so the
+    actors are free at once (a sync actor's running call cannot be cancelled by Ray itself)."""
+    import time
+
+    from humanoidgen.episodes.ray_pool import PoolRunner, pool_for
+
+    pool = pool_for(ray, 2)
+    runner = PoolRunner(pool, 2, _spin_in_a_plan_worker, lambda i: (i,))
+    for item, _ in runner.results(range(6)):
+        assert item == 0
+        time.sleep(3)  # items 1.. are spinning on both actors, others are queued
+        break  # closes the runner
+    t0 = time.perf_counter()
+    quick = PoolRunner(pool, 2, _spin_in_a_plan_worker, lambda i: (0,))
+    assert [item for item, _ in quick.results(range(2))] == [0, 1]
+    assert time.perf_counter() - t0 < 20, "an actor was still running a spinning step"
 
 
 def _dying_attempt(marker: str, victim: int, req):

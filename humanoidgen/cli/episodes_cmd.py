@@ -192,9 +192,6 @@ def collect(
     except ValueError as exc:
         _fail(str(exc))
         return
-    if ray_address is not None and (room is not None or randomize_visuals):
-        _fail("--room and --randomize-visuals are not supported with --ray yet; collect locally")
-        return
     if ray_address is not None:
         try:
             check_address(ray_address)
@@ -219,7 +216,8 @@ def collect(
 
             stats = ray_collect(task, n, out, ray_address, workers=workers, seed=seed, resume=resume, recorder=rec,
                                 plan_path=str(script) if script else None, progress=progress,
-                                transport=ray_results, gpus_per_task=ray_gpus)
+                                transport=ray_results, gpus_per_task=ray_gpus, room=room,
+                                randomize_visuals=randomize_visuals)
     except RaySetupError as exc:
         bar.close()
         _fail(str(exc))

@@ -51,7 +51,7 @@ def run_bench(tasks: list, episodes: int, seed: int = 0, workers: int = 1,
               progress: Callable[[str, int, int], None] | None = None,
               ray_address: str | None = None, room: str | int | None = None,
               randomize_visuals: bool = False) -> list[TaskReport]:
-    """`ray_address`: run every episode as a Ray task (`ray_session.connect`), all tasks' episodes at once.
+    """`ray_address`: run every episode on Ray's warm workers (`ray_pool`), all tasks' episodes at once.
     `room`: a room seed or "random" (each episode its own room); `randomize_visuals`: each episode's look drawn
     from its seed (`scenes.dressing.episode_dressing`, as `hgen collect` does)."""
     if ray_address is not None:
@@ -80,15 +80,16 @@ def _request(task: str, seed: int, room: str | int | None, randomize_visuals: bo
 
 def _ray_bench(tasks: list, episodes: int, seed: int, workers: int | None, progress, address: str,
                room: str | int | None = None, randomize_visuals: bool = False) -> list[TaskReport]:
-    from humanoidgen.episodes.ray_session import TASK_RETRIES, OrderedRunner, connect
+    from humanoidgen.episodes.ray_pool import PoolRunner, pool_for
+    from humanoidgen.episodes.ray_session import connect
 
     reqs = [_request(spec.name, seed + i, room, randomize_visuals) for spec in tasks for i in range(episodes)]
     outs: list[dict] = []
     with connect(address, workers if address == "local" else None) as session:
-        fn = session.ray.remote(num_cpus=1, max_retries=TASK_RETRIES, retry_exceptions=False)(_one)
+        slots = session.cpu_slots(1.0)
         lost = lambda e: {"success": False, "error": f"lost on the cluster: {e.reason}", "wall": 0.0, "plan": 0.0,  # noqa: E731
                           "sim": 0.0}
-        runner = OrderedRunner(session.ray, fn.remote, 2 * session.cpu_slots(1.0), on_lost=lost)
+        runner = PoolRunner(pool_for(session.ray, slots), slots, _one, lambda req: (req,), on_lost=lost)
         reports = []
         for req, out in runner.results(reqs):
             outs.append(out)

@@ -1,6 +1,6 @@
-"""Collection on a Ray cluster (`hgen collect --ray ADDRESS`): each attempt (seed) is a Ray task that runs
-`collect.attempt`, so its plan runs in a locked-down plan worker on the task's node exactly as it does
-locally. The driver (this process) takes the results in seed order by the same rule as local collection
+"""Collection on a Ray cluster (`hgen collect --ray ADDRESS`): each attempt (seed) is a call to a warm Ray actor
+(`ray_pool`, one per CPU slot) that runs `collect.attempt`, so its plan runs in a locked-down plan worker on
+the actor's node exactly as it does locally, dressed (`--room`, `--randomize-visuals`) as it is locally. The driver (this process) takes the results in seed order by the same rule as local collection
 (`collect.SeedTally`): the kept episodes are those of `--workers 1`, written as they arrive; `--resume`
 continues after the last attempt written.
 
@@ -13,8 +13,8 @@ A kept episode's arrays reach the dataset one of two ways (`transport`):
 that cannot see the driver's folder (`--out` not on a shared file system) returns the arrays instead; a
 marker file written by the driver tells it. See the README and bench/results/ray_transport.json.
 
-A worker killed mid-attempt (OOM killer, a lost node) is rerun by Ray (`max_retries`); only the result of
-the run that finished is written, so no seed is duplicated or missing. A seed lost beyond its retries stops
+A worker killed mid-attempt (OOM killer, a lost node) is restarted by Ray and the attempt rerun
+(`max_task_retries`); only the result of the run that finished is written, so no seed is duplicated or missing. A seed lost beyond its retries stops
 the collection with what came before it written (continue with --resume). Ctrl-C cancels the tasks in flight."""
 
 from __future__ import annotations
@@ -28,7 +28,8 @@ from pathlib import Path
 from humanoidgen.episodes import collect as collect_mod
 from humanoidgen.episodes.collect import CollectStats, open_collection
 from humanoidgen.episodes.dataset import DatasetError, write_episode_file
-from humanoidgen.episodes.ray_session import TASK_RETRIES, NodeRates, OrderedRunner, TaskLost, connect, node_label
+from humanoidgen.episodes.ray_pool import PoolRunner, pool_for
+from humanoidgen.episodes.ray_session import TASK_RETRIES, NodeRates, TaskLost, connect, node_label
 from humanoidgen.episodes.recorder import RecorderConfig
 from humanoidgen.episodes.task_episode import EpisodeRequest
 
@@ -66,7 +67,7 @@ class Staging:
 
 def remote_attempt(req: EpisodeRequest, staging: Staging | None,
                    attempt_fn: Callable[[EpisodeRequest], tuple[dict, dict | None]]) -> dict:
-    """The body of one Ray task: the attempt, then its kept arrays staged on the shared folder or returned."""
+    """The body of one attempt on a Ray actor: the attempt, then its kept arrays staged on the shared folder or returned."""
     record, arrays = attempt_fn(req)
     out: dict = {"record": record, "node": node_label()}
     if arrays is None:
@@ -97,11 +98,15 @@ def ray_collect(task: str, n: int, out: Path, address: str = "local", workers: i
                 resume: bool = False, recorder: RecorderConfig | None = None, plan_path: str | None = None,
                 max_attempts: int | None = None, progress: Callable[[int, int, NodeRates], None] | None = None,
                 transport: str = "auto", gpus_per_task: float = 0.0,
-                attempt_fn: Callable[[EpisodeRequest], tuple[dict, dict | None]] | None = None) -> RayCollectStats:
+                attempt_fn: Callable[[EpisodeRequest], tuple[dict, dict | None]] | None = None,
+                room: str | int | None = None, randomize_visuals: bool = False) -> RayCollectStats:
     """Collect `n` successful episodes of `task` into `out` on Ray (see the module docstring). `workers`: the
-    CPUs of a `local` Ray, or at most this many attempts at once on a cluster (default: its CPUs).
+    CPUs of a `local` Ray, or at most this many attempts at once on a cluster (default: its CPUs). `room` and
+    `randomize_visuals` dress each attempt as `collect.collect` does (`scenes.dressing.episode_dressing`).
     `attempt_fn` replaces `collect.attempt` (tests); it must be importable or picklable by value."""
     import time
+
+    from humanoidgen.scenes.dressing import episode_dressing
 
     recorder = recorder or RecorderConfig()
     shared = uses_shared_folder(transport, recorder)
@@ -113,15 +118,10 @@ def ray_collect(task: str, n: int, out: Path, address: str = "local", workers: i
     with connect(address, workers) as session:  # before the store: a bad address leaves no empty dataset behind
         store, tally, recorder = open_collection(task, n, out, seed, resume, recorder, plan_path, max_attempts)
         stats = RayCollectStats(tally.kept, tally.tried, 0.0)
-        options = {"num_cpus": 1, "max_retries": TASK_RETRIES, "retry_exceptions": False}
-        if gpus_per_task > 0:
-            # A fresh worker per attempt: its renderer then sees the GPU Ray gave this task (CUDA_VISIBLE_DEVICES
-            # is read once, when the worker's plan-worker server starts).
-            options.update(num_gpus=gpus_per_task, max_calls=1)
-        task_fn = session.ray.remote(**options)(remote_attempt)
         slots = session.cpu_slots(1.0)
         if workers and address != "local":
             slots = min(slots, workers)
+        pool = pool_for(session.ray, slots, gpus_per_task)
         staging = None
         if shared:
             store.staging_dir.mkdir(parents=True, exist_ok=True)
@@ -129,11 +129,11 @@ def ray_collect(task: str, n: int, out: Path, address: str = "local", workers: i
             staging.marker.touch()
         rates = NodeRates()
 
-        def submit(s: int):
-            return task_fn.remote(EpisodeRequest(task_ref, s, plan_ref, recorder), staging, attempt_fn)
+        def args_of(s: int) -> tuple:
+            dressing = episode_dressing(room, randomize_visuals, s)
+            return EpisodeRequest(task_ref, s, plan_ref, recorder, dressing=dressing), staging, attempt_fn
 
-        # Twice the slots in flight: a worker that finishes starts a queued attempt without waiting on the driver.
-        runner = OrderedRunner(session.ray, submit, 2 * slots)
+        runner = PoolRunner(pool, slots, remote_attempt, args_of)
         try:
             for _, res in runner.results(tally.seeds()):
                 rates.add(res["node"])

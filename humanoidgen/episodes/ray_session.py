@@ -1,12 +1,11 @@
-"""Running attempts as Ray tasks: connecting to a Ray cluster (`--ray ADDRESS`) and a runner that keeps a
-window of tasks in flight and hands their results back in submission order.
+"""Connecting to a Ray cluster (`--ray ADDRESS`); the attempts run on warm actors (`ray_pool`).
 
 ADDRESS is `local` (start a Ray instance on this machine, stopped at the end), `auto` (the cluster this
 machine belongs to, started with `ray start`), `ray://host:port` (Ray Client) or `host:port` (a head's GCS).
 Ray is an optional extra (`pip install "humanoidgen[ray]"`); it is imported only here and only when asked for.
 
-Each task runs in a Ray worker process with one BLAS/OpenMP thread: the plan worker it starts is
-single-threaded, and several BLAS threads per task on a shared node only fight for the cores."""
+Each Ray worker process runs with one BLAS/OpenMP thread: the plan worker it starts is single-threaded, and
+several BLAS threads per worker on a shared node only fight for the cores."""
 
 from __future__ import annotations
 
@@ -14,8 +13,7 @@ import contextlib
 import os
 import re
 import time
-from collections import deque
-from collections.abc import Callable, Iterable, Iterator
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -24,7 +22,7 @@ WORKER_ENV = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THRE
 # Ray starts its workers at niceness +15 (so that its own daemons come first); on a machine shared with other
 # work that starves the attempts (measured here: 3x slower than `--workers`), so a local Ray keeps ours.
 LOCAL_SYSTEM_CONFIG = {"worker_niceness": 0}
-TASK_RETRIES = 3  # a worker killed mid-attempt (OOM killer, a lost node) is rerun this many times
+TASK_RETRIES = 3  # an attempt whose worker was killed (OOM killer, a lost node) is rerun this many times
 _ADDRESS = re.compile(r"^(ray://)?[A-Za-z0-9._\-\[\]:]+:\d{1,5}$")
 
 
@@ -94,6 +92,9 @@ def connect(address: str, workers: int | None = None) -> Iterator[RaySession]:
     try:
         yield RaySession(ray, address, started_here=True)
     finally:
+        from humanoidgen.episodes.ray_pool import release_pool
+
+        release_pool()  # the warm actors end with the connection (they would die with it anyway)
         ray.shutdown()
 
 
@@ -135,57 +136,3 @@ class NodeRates:
 
     def text(self) -> str:
         return ", ".join(f"{node} {rate:.1f}/min" for node, rate in self.per_minute().items())
-
-
-class OrderedRunner:
-    """Keeps up to `window` tasks in flight (started by `submit(item)`, which returns an ObjectRef) and yields
-    `(item, result)` in the order of `items`, pulling the next item only when there is room, so a caller that
-    stops iterating submits nothing more. `close()` (also on an exception or Ctrl-C in the loop) cancels the
-    tasks still in flight; Ray does not retry a cancelled task."""
-
-    def __init__(self, ray, submit: Callable[[Any], Any], window: int,
-                 on_lost: Callable[[TaskLost], Any] | None = None) -> None:
-        self.ray, self.submit, self.window = ray, submit, max(1, window)
-        self.on_lost = on_lost  # the result of a lost task; None: raise TaskLost and stop
-        self._pending: deque[tuple[Any, Any]] = deque()  # (item, ref) in submission order
-
-    def results(self, items: Iterable[Any]) -> Iterator[tuple[Any, Any]]:
-        source = iter(items)
-        exhausted = False
-        try:
-            while True:
-                while not exhausted and len(self._pending) < self.window:
-                    item = next(source, _END)
-                    if item is _END:
-                        exhausted = True
-                        break
-                    self._pending.append((item, self.submit(item)))
-                if not self._pending:
-                    return
-                item, ref = self._pending[0]
-                yield item, self._get(ref, item)
-                self._pending.popleft()
-        finally:
-            self.close()
-
-    def _get(self, ref, item: Any) -> Any:
-        # ray.wait with a timeout keeps Ctrl-C responsive (a bare ray.get can sit in C code).
-        while not self.ray.wait([ref], timeout=0.5)[0]:
-            pass
-        try:
-            return self.ray.get(ref)
-        except self.ray.exceptions.RayError as exc:
-            first = (str(exc).strip().splitlines() or [type(exc).__name__])[0][:300]
-            lost = TaskLost(item, f"{type(exc).__name__}: {first}")
-            if self.on_lost is None:
-                raise lost from None
-            return self.on_lost(lost)
-
-    def close(self) -> None:
-        for _, ref in self._pending:
-            with contextlib.suppress(Exception):
-                self.ray.cancel(ref, force=True)
-        self._pending.clear()
-
-
-_END = object()

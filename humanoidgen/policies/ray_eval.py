@@ -1,6 +1,7 @@
-"""`hgen policy eval --ray ADDRESS`: each evaluation episode is a Ray task. A worker loads the checkpoint (from
-its path: on a cluster a shared folder) and builds the task's environment once, then reuses both for the
-episodes it is given; episode (checkpoint, seed, i) meets the same scene and sampling noise as locally."""
+"""`hgen policy eval --ray ADDRESS`: each evaluation episode is a call to a warm Ray actor (`ray_pool`). An
+actor loads the checkpoint (from its path: on a cluster a shared folder) and builds the task's environment
+once, then reuses both for the episodes it is given; episode (checkpoint, seed, i) meets the same scene and
+sampling noise as locally."""
 
 from __future__ import annotations
 
@@ -8,7 +9,7 @@ import os
 import time
 from pathlib import Path
 
-_loaded: dict[tuple, tuple] = {}  # per Ray worker process: the checkpoint in use and its environment
+_loaded: dict[tuple, tuple] = {}  # per Ray actor process: the checkpoint in use and its environment
 
 
 def _model_and_env(path: str, device: str, max_steps: int | None, render: bool):
@@ -29,7 +30,7 @@ def _model_and_env(path: str, device: str, max_steps: int | None, render: bool):
 
 
 def remote_episode(path: str, seed: int, i: int, device: str, max_steps: int | None, video_dir: str | None):
-    """The body of one Ray task: one closed-loop episode, as an EpisodeOutcome."""
+    """The body of one call on a Ray actor: one closed-loop episode, as an EpisodeOutcome."""
     try:  # see tests/conftest.py: torch's triton must be imported before an EGL context exists
         import diffusers.utils.torch_utils  # noqa: F401
     except ImportError:
@@ -55,19 +56,17 @@ def remote_episode(path: str, seed: int, i: int, device: str, max_steps: int | N
 
 def ray_outcomes(address: str, paths: list[Path], seeds: tuple[int, ...], episodes: int, device: str,
                  max_steps: int | None, video_dir: Path | None, bar, gpus_per_task: float = 0.0) -> list:
-    """Every (checkpoint, seed, episode) as a Ray task; outcomes in the local order."""
-    from humanoidgen.episodes.ray_session import TASK_RETRIES, OrderedRunner, connect
+    """Every (checkpoint, seed, episode) on Ray's warm actors; outcomes in the local order."""
+    from humanoidgen.episodes.ray_pool import PoolRunner, pool_for
+    from humanoidgen.episodes.ray_session import connect
 
     items = [(str(Path(p).resolve()), s, i) for p in paths for s in seeds for i in range(episodes)]
     video = str(Path(video_dir).resolve()) if video_dir is not None else None
     outcomes = []
     with connect(address) as session:
-        options = {"num_cpus": 1, "max_retries": TASK_RETRIES, "retry_exceptions": False}
-        if gpus_per_task > 0:
-            options["num_gpus"] = gpus_per_task
-        fn = session.ray.remote(**options)(remote_episode)
-        runner = OrderedRunner(session.ray, lambda it: fn.remote(*it, device, max_steps, video),
-                               2 * session.cpu_slots(1.0))
+        slots = session.cpu_slots(1.0)
+        runner = PoolRunner(pool_for(session.ray, slots, gpus_per_task), slots, remote_episode,
+                            lambda it: (*it, device, max_steps, video))
         for _, outcome in runner.results(items):
             outcome.checkpoint = str(paths[[str(Path(p).resolve()) for p in paths].index(outcome.checkpoint)])
             outcomes.append(outcome)

@@ -4,6 +4,12 @@ starts in milliseconds with warm imports and no secret in its memory or in `/pro
 
 This is the standard library's multiprocessing "forkserver" start method. Its server is a process of its
 own, spawned (fork + exec) from the parent; it runs no plan code itself and forks one worker per request.
+
+A forked worker would also re-run the parent's `__main__` script before anything else (multiprocessing's
+"main fixup"): the `hgen` console script, or in a Ray worker Ray's `default_worker.py`, which imports all of
+Ray, 0.3 s per worker here (bench/results/ray_scaling.json). Workers named `WORKER_NAME` skip it: their
+target and setup are importable by name. A setup defined in a script's `__main__` (bench/sandbox.py) gets
+`WORKER_NAME_MAIN`, which keeps the fixup.
 """
 
 from __future__ import annotations
@@ -11,6 +17,7 @@ from __future__ import annotations
 import contextlib
 import multiprocessing as mp
 import multiprocessing.forkserver as mp_forkserver
+import multiprocessing.spawn as mp_spawn
 import os
 import threading
 from collections.abc import Iterator
@@ -18,8 +25,29 @@ from collections.abc import Iterator
 from humanoidgen.sandbox.lockdown import scrubbed_environ
 
 PRELOAD = ["humanoidgen.sandbox.preload"]
+WORKER_NAME = "humanoidgen-plan-worker"
+WORKER_NAME_MAIN = "humanoidgen-plan-worker-main"
 _lock = threading.Lock()
 _started_env: dict[str, str] | None = None
+
+
+def worker_name(setup: object) -> str:
+    """The process name for a worker holding `setup`: whether it needs the parent's `__main__`."""
+    setup = getattr(setup, "func", setup)  # a functools.partial: where its function lives
+    defined_in = getattr(setup, "__module__", None) or type(setup).__module__
+    return WORKER_NAME_MAIN if defined_in == "__main__" else WORKER_NAME
+
+
+def _preparation_data(name: str, _original=mp_spawn.get_preparation_data) -> dict:
+    data = _original(name)
+    if name == WORKER_NAME:
+        data.pop("init_main_from_path", None)
+        data.pop("init_main_from_name", None)
+    return data
+
+
+# popen_forkserver looks the function up on the module at each start, so this covers every worker started here.
+mp_spawn.get_preparation_data = _preparation_data
 
 
 def context() -> mp.context.BaseContext:

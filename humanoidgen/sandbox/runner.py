@@ -106,13 +106,13 @@ class SandboxWorker:
         if self.alive:
             return False
         self._kill()
-        from humanoidgen.sandbox.forkserver import context
+        from humanoidgen.sandbox.forkserver import context, worker_name
 
         ctx = context()
         down_r, down_w = ctx.Pipe(duplex=False)
         up_r, up_w = ctx.Pipe(duplex=False)
         self._proc = ctx.Process(target=_worker_main, args=(down_r, up_w, self.setup, self.limits),
-                                 daemon=True, name="humanoidgen-plan-worker")
+                                 daemon=True, name=worker_name(self.setup))
         self._proc.start()
         _live.add(self)
         down_r.close()
