@@ -14,12 +14,16 @@ from humanoidgen.objects.articulated import get_openness
 from humanoidgen.sim.scene import SceneObject
 
 
-def openness(model: mujoco.MjModel, data: mujoco.MjData, obj: SceneObject) -> float | None:
-    """The object's openness in [0, 1] (None for objects without a moving part)."""
+def openness(model: mujoco.MjModel, data: mujoco.MjData, obj: SceneObject, part: str | None = None) -> float | None:
+    """The object's openness in [0, 1] (None for objects without a moving part); with `part`, the openness of the
+    joint that moves that part (its own where it has one: a safe's knob)."""
     ann = obj.annotations
     if ann is None or ann.articulation is None:
         return None
-    return get_openness(model, data, obj.body, ann)
+    if part is None:
+        return get_openness(model, data, obj.body, ann)
+    art = ann.articulation_for(part)
+    return art.openness_of(float(data.qpos[model.jnt_qposadr[model.joint(f"{obj.body}_{art.joint}").id]]))
 
 
 def _r(x: np.ndarray, nd: int = 3) -> list[float]:
@@ -72,6 +76,8 @@ def object_status(model: mujoco.MjModel, data: mujoco.MjData, obj: SceneObject, 
     out = {"type": obj.type_name, "obj_id": obj.obj_id, "p": _r(data.xpos[bid]), "q": _r(data.xquat[bid])}
     if (o := openness(model, data, obj)) is not None:
         out["openness"] = round(o, 3)
+        for art in obj.annotations.part_articulations:  # a part with a joint of its own: "knob openness"
+            out[f"{art.part} openness"] = round(openness(model, data, obj, art.part), 3)
     if env is not None and (targets := _targets(env.scene, obj)):
         out["targets"] = {_target_key(t): _r(t.position(env)) for t in targets}
     return out

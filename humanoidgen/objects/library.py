@@ -12,8 +12,10 @@ from humanoidgen.objects.schema import ObjectAnnotations
 def families() -> dict[str, ObjectFamily]:
     from humanoidgen.objects.articulated import ARTICULATED_FAMILIES
     from humanoidgen.objects.rigid import RIGID_FAMILIES
+    from humanoidgen.objects.safe import SAFE_FAMILIES
 
-    return {**RIGID_FAMILIES, **ARTICULATED_FAMILIES}
+    # The safe with a handle and a turning knob (objects/safe.py) replaces articulated.py's earlier safe.
+    return {**RIGID_FAMILIES, **ARTICULATED_FAMILIES, **SAFE_FAMILIES}
 
 
 def family(name: str) -> ObjectFamily:

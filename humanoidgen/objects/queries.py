@@ -22,8 +22,9 @@ def _frame(model: mujoco.MjModel, data: mujoco.MjData, body: str) -> tuple[np.nd
     return data.xpos[bid].copy(), data.xmat[bid].reshape(3, 3).copy()
 
 
-def _data_at_openness(env, obj: SceneObject, openness: float | None) -> mujoco.MjData:
-    """The current state, or a copy with the object's joint moved to `openness` (where its parts will be)."""
+def _data_at_openness(env, obj: SceneObject, openness: float | None, part: str | None = None) -> mujoco.MjData:
+    """The current state, or a copy with the joint that moves `part` (the object's main one, unless that part
+    has a joint of its own: a safe's knob) at `openness` (where its parts will be)."""
     if openness is None:
         return env.data
     ann = obj.annotations
@@ -33,7 +34,7 @@ def _data_at_openness(env, obj: SceneObject, openness: float | None) -> mujoco.M
         raise ValueError(f"openness must be in [0, 1], got {openness}")
     d = mujoco.MjData(env.model)
     d.qpos[:], d.qvel[:] = env.data.qpos, 0.0
-    art = ann.articulation
+    art = ann.articulation_for(part)
     joint = env.model.joint(f"{obj.body}_{art.joint}")
     d.qpos[env.model.jnt_qposadr[joint.id]] = art.joint_position(openness)
     mujoco.mj_kinematics(env.model, d)
@@ -77,14 +78,16 @@ def get_point_in_env(env, point_name: str = "center", type_name: str | None = No
                 f"Hand points: {', '.join(HAND_POINT_NAMES)}"
             )
         obj, ann = _object(env, type_name, obj_id)
-        d = _data_at_openness(env, obj, openness)
-        root_pos, root_R = _frame(env.model, d, obj.body)
-        if point_name == "center":
-            p = root_pos + root_R @ offset
-        else:
+        kp = None
+        if point_name != "center":
             if ann is None:
                 raise KeyError(f"{type_name}[{obj_id}] has no annotations; only 'center' applies")
             kp = ann.point(point_name)
+        d = _data_at_openness(env, obj, openness, kp.part if kp is not None else None)
+        root_pos, root_R = _frame(env.model, d, obj.body)
+        if kp is None:
+            p = root_pos + root_R @ offset
+        else:
             pos, R = _frame(env.model, d, f"{obj.body}_{kp.part}" if kp.part else obj.body)
             p = pos + R @ np.asarray(kp.position) + root_R @ offset
     return p
@@ -102,11 +105,11 @@ def get_axis_in_env(env, axis_name: str, obj_type: str | None = None, obj_id: in
             f"{axis_name!r} is not a hand axis; give obj_type for an object axis. Hand axes: {', '.join(HAND_AXIS_NAMES)}"
         )
     obj, ann = _object(env, obj_type, obj_id)
-    d = _data_at_openness(env, obj, openness)
     if axis_name in LOCAL_AXES:
-        return _frame(env.model, d, obj.body)[1] @ LOCAL_AXES[axis_name]
+        return _frame(env.model, _data_at_openness(env, obj, openness), obj.body)[1] @ LOCAL_AXES[axis_name]
     if ann is None:
         raise KeyError(f"{obj_type}[{obj_id}] has no annotations; only 'x', 'y', 'z' apply")
     ax = ann.axis(axis_name)
+    d = _data_at_openness(env, obj, openness, ax.part)
     _, R = _frame(env.model, d, f"{obj.body}_{ax.part}" if ax.part else obj.body)
     return R @ np.asarray(ax.direction)

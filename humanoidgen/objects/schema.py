@@ -75,6 +75,9 @@ class Articulation(_Strict):
     joint: str  # joint suffix; the full name is "<type>_<obj_id>_<joint>"
     closed: float
     open: float
+    # The moving part this joint turns or slides (a point or axis with this `part` moves with it). Only needed
+    # for a part with a joint of its own besides the object's main one (`ObjectAnnotations.part_articulations`).
+    part: str | None = None
 
     def joint_position(self, openness: float) -> float:
         """Joint position for an openness (0 closed, 1 open; values outside extrapolate)."""
@@ -96,9 +99,20 @@ class ObjectAnnotations(_Strict):
     operations: list[OperationAnnotation] = Field(default_factory=list)
     functions: list[FunctionAnnotation] = Field(default_factory=list)
     articulation: Articulation | None = None
+    # Parts with a joint of their own besides the main one (a safe's knob on its door): an openness asked for a
+    # point or axis on such a part is that joint's (`articulation_for`). The object's openness stays the main one.
+    part_articulations: list[Articulation] = Field(default_factory=list)
 
     @model_validator(mode="after")
     def _references(self) -> "ObjectAnnotations":
+        if self.part_articulations and self.articulation is None:
+            raise ValueError("part_articulations need a main articulation")
+        parts = [a.part for a in self.part_articulations]
+        if None in parts or len(set(parts)) != len(parts):
+            raise ValueError(f"each part articulation names its own part, got {parts}")
+        joints = [self.articulation.joint] + [a.joint for a in self.part_articulations] if self.articulation else []
+        if len(set(joints)) != len(joints):
+            raise ValueError(f"part articulations need joints of their own, got {joints}")
         for kind, items in (("point", self.points), ("axis", self.axes)):
             names = [i.name for i in items]
             dup = {n for n in names if names.count(n) > 1}
@@ -127,6 +141,13 @@ class ObjectAnnotations(_Strict):
             if a.name == name:
                 return a
         raise KeyError(f"{self.family}: no axis {name!r}; axes: {', '.join(a.name for a in self.axes)}")
+
+    def articulation_for(self, part: str | None) -> Articulation | None:
+        """The joint that moves `part` (a point's or axis's part): its own where it has one, else the main one."""
+        for a in self.part_articulations:
+            if part is not None and a.part == part:
+                return a
+        return self.articulation
 
     def operations_of(self, operation: str) -> list[OperationAnnotation]:
         return [o for o in self.operations if o.operation == operation]

@@ -10,7 +10,6 @@ import numpy as np
 
 from humanoidgen.objects.hands import HAND_POSTURES
 from humanoidgen.planning.approach import APPROACH_DISTANCES, WRAP_TOUCH, Approaches  # noqa: F401 (re-exported)
-from humanoidgen.objects.describe import openness as openness_of
 from humanoidgen.planning.feedback import motion_advice
 from humanoidgen.planning import placing
 from humanoidgen.planning.hand_ops import contents, finger_contacts, is_held
@@ -21,6 +20,7 @@ from humanoidgen.planning.motion import (
     time_dense_path,
 )
 from humanoidgen.planning.part_grip import FOLLOW_ENOUGH, PartFollowing  # noqa: F401 (FOLLOW_ENOUGH re-exported)
+from humanoidgen.planning.part_joint import follow_articulation, follow_openness
 from humanoidgen.planning.paths import time_parametrize
 from humanoidgen.planning.poses import Pose
 from humanoidgen.sim.action import ARM_SLICE, HAND_SLICE
@@ -272,8 +272,7 @@ class ArmMoves(PartFollowing, Approaches):
     def _part_openness(self, target: Pose) -> float | None:
         if target.follow is None:
             return None
-        obj = self.env.scene.object(*target.follow["obj"])
-        return openness_of(self.env.model, self.env.data, obj)
+        return follow_openness(self.env, target.follow)  # the followed joint's (a knob's own, on a door)
 
     def _check_part_followed(self, side: Side, target: Pose, start: float) -> None:
         """After a move that rides with a part: did the part get to the openness asked? One more push from where
@@ -281,14 +280,17 @@ class ArmMoves(PartFollowing, Approaches):
         event, when it went most of the way)."""
         f = target.follow
         obj = self.env.scene.object(*f["obj"])
-        wanted = obj.annotations.articulation.openness_of(f["q_target"])
+        wanted = follow_articulation(self.env, f).openness_of(f["q_target"])
         got = self._part_openness(target)
         way = wanted - start
         if abs(got - wanted) <= FOLLOW_TOL or abs(way) < 1e-6:
             return
         if (got - start) / way >= FOLLOW_RETRY:
-            self._run_arm_samples({side: self._plan_side(side, target)})
-            self._settle(0.2)
+            try:
+                self._run_arm_samples({side: self._plan_side(side, target)})
+                self._settle(0.2)
+            except (MotionError, PlanningError):
+                pass  # no way on from where the part stopped: it stays there, judged below as it is
             got = self._part_openness(target)
             if abs(got - wanted) <= FOLLOW_TOL:
                 self.events.append(f"pushed {obj.type_name} {obj.obj_id} a second time to reach openness {round(wanted, 2):g}")

@@ -29,6 +29,7 @@ from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env, wrist
 from humanoidgen.objects.schema import OperationAnnotation
 from humanoidgen.planning import placing
 from humanoidgen.planning.constraints import Const, Constraint
+from humanoidgen.planning.part_joint import point_articulation
 from humanoidgen.sim.geometry import axis_angle_mat
 from humanoidgen.sim.layout import HAND_BASE_FRAME, Side
 
@@ -301,16 +302,16 @@ def _ride_with_part(env, gen: Generated, obj_name: str, obj_id: int, point: str,
     where it touches it now (the solved goal is a fallback) and comes in along no approach axis. `grip_axis`:
     the part's axis a holding grip may roll about on the way, up to `roll_deg` (part_grip.track_rolling)."""
     obj = env.scene.object(obj_name, obj_id)
-    art = obj.annotations.articulation if obj.annotations is not None else None
+    art = point_articulation(obj, point)  # the joint that moves the point's part (a knob's own, on a door)
     if art is None:
         return
     if openness is None:
         gen.grip_part = {"body": obj.body, "joint": f"{obj.body}_{art.joint}", "obj": (obj_name, obj_id),
-                         "grip_axis": grip_axis, "roll_deg": roll_deg}
+                         "grip_axis": grip_axis, "roll_deg": roll_deg, "articulation": art}
         return
     gen.follow = {"body": obj.body, "joint": f"{obj.body}_{art.joint}", "q_target": art.joint_position(openness),
                   "part_point": point, "obj": (obj_name, obj_id), "grip_axis": grip_axis,
-                  "roll_deg": roll_deg}
+                  "roll_deg": roll_deg, "articulation": art}
     gen.approach_axis = None
 
 

@@ -25,12 +25,12 @@ from contextlib import nullcontext
 import mujoco
 import numpy as np
 
-from humanoidgen.objects.describe import openness as openness_of
 from humanoidgen.planning.arm_moves import PlanningError
 from humanoidgen.planning.feedback import body_label, contact_advice, push_advice, range_advice
 from humanoidgen.planning.goal_solver import GoalResult
 from humanoidgen.planning.goal_targets import AxisWithin
 from humanoidgen.planning.motion import track_poses
+from humanoidgen.planning.part_joint import follow_articulation, follow_openness
 from humanoidgen.planning.poses import Pose
 from humanoidgen.sim.layout import HAND_PREFIX, OPERABLE_RANGE, Side
 
@@ -119,9 +119,8 @@ class GoalSearch:
         leaves it, that second grip is optional: if it cannot be taken, the part stays there (an event says so: the
         plan's next steps may push it on); otherwise its failure is the move's."""
         q, q_reached = failed.partial
-        obj = self.env.scene.object(*follow["obj"])
-        art = obj.annotations.articulation
-        now, reached, wanted = (openness_of(self.env.model, self.env.data, obj), art.openness_of(q_reached),
+        art = follow_articulation(self.env, follow)  # the held part's own joint (a knob's, on a door)
+        now, reached, wanted = (follow_openness(self.env, follow), art.openness_of(q_reached),
                                 art.openness_of(follow["q_target"]))
         share = (reached - now) / (wanted - now) if wanted != now else 1.0
         # A part already most of the way that stays put is worth going on with (a lid left at 0.88 of a task's
@@ -180,8 +179,8 @@ class GoalSearch:
             return self._goal_at(side, path[-1], time.perf_counter() - t0)
         obj = self.env.scene.object(*follow["obj"])
         held = self.holding[side] is not None
-        art = obj.annotations.articulation
-        now = openness_of(self.env.model, self.env.data, obj)
+        art = follow_articulation(self.env, follow)
+        now = follow_openness(self.env, follow)
         got = art.openness_of(q_steps[len(path) - 1]) if len(path) else now
         wanted = art.openness_of(follow["q_target"])
         pushes = self._pushes_toward(side, obj, wanted, skip_point=None if held else follow["part_point"])
@@ -343,8 +342,8 @@ class GoalSearch:
 
         f = gen.follow
         obj = self.env.scene.object(*f["obj"])
-        now = openness_of(self.env.model, self.env.data, obj)
-        wanted = obj.annotations.articulation.openness_of(f["q_target"])
+        now = follow_openness(self.env, f)
+        wanted = follow_articulation(self.env, f).openness_of(f["q_target"])
         step = float(np.clip(wanted - now, -0.05, 0.05))
         op = self._push_op(gen)
         if abs(step) < 1e-3 or op is None:
@@ -388,7 +387,7 @@ class GoalSearch:
             return
         f = gen.follow
         obj = self.env.scene.object(*f["obj"])
-        wanted = obj.annotations.articulation.openness_of(f["q_target"])
+        wanted = follow_articulation(self.env, f).openness_of(f["q_target"])
         ignored = set(self.collisions.ignored_bodies)
         try:
             usable = self._pushes_toward(side, obj, wanted, skip_point=f["part_point"])

@@ -16,10 +16,10 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
-from humanoidgen.objects.describe import openness as openness_of
 from humanoidgen.objects.hands import hand_points
 from humanoidgen.planning.kinematics import Kinematics
 from humanoidgen.planning.motion import ROT_WEIGHT, MotionError, track_poses
+from humanoidgen.planning.part_joint import follow_articulation, follow_openness, rolls_about_joint
 from humanoidgen.planning.poses import Pose
 from humanoidgen.sim.geometry import axis_angle_mat, rotation_error
 from humanoidgen.sim.layout import Side
@@ -152,6 +152,8 @@ class PartFollowing:
         wrist = self.kin.arms[side].wrist
         centre = d.xpos[wrist] + d.xmat[wrist].reshape(3, 3) @ hand_points(side)[f"{kind}_point_base_{side}_hand"]
         axis = get_axis_in_env(self.env, f["grip_axis"], obj_type=obj.type_name, obj_id=obj.obj_id)
+        if rolls_about_joint(m, d, f["joint"], axis, centre):
+            return None
         R0, p0 = d.xmat[body].reshape(3, 3).copy(), d.xpos[body].copy()
         c_local, a_local = R0.T @ (centre - p0), R0.T @ axis
         base = d.qpos.copy()
@@ -185,9 +187,8 @@ class PartFollowing:
         the openness interval reachable toward closed and toward open, as a share of the way to each end,
         summed (2.0: the whole arc both ways). For choosing among grasp postures: a grasp of a part is nearly
         always followed by moving it, and the arm cannot change posture family while it holds it."""
-        obj = self.env.scene.object(*part["obj"])
-        art = obj.annotations.articulation
-        now = openness_of(self.env.model, self.env.data, obj)
+        art = follow_articulation(self.env, part)  # the gripped part's own joint (a knob's, on a door)
+        now = follow_openness(self.env, part)
         self.kin.sync(self.env.data.qpos)
         total = 0.0
         try:

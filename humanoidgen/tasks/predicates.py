@@ -10,6 +10,7 @@ import math
 import re
 from typing import Annotated, Any, Literal
 
+import mujoco
 import numpy as np
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field
 
@@ -260,34 +261,50 @@ class Lifted(_Strict):
                                detail=f"{_name(self.obj)} is {_cm(h)} above the table (min {_cm(self.min_height)})")
 
 
+def _openness_check(env, ref: ObjRef, part: str | None, value: float, bound: str) -> PredicateResult:
+    """An openness at least ("min") or at most ("max") `value`: the object's, or that of `part`'s own joint."""
+    obj = _obj(env, ref)
+    o = _openness(env.model, env.data, obj, part)
+    if o is None:
+        return PredicateResult(ok=False, detail=f"{_name(ref)} has no moving part")
+    what = _name(ref) if part is None else f"{_name(ref)}'s {part}"
+    if part is not None:
+        art = obj.annotations.articulation_for(part)
+        if art.part != part:
+            return PredicateResult(ok=False, detail=f"{_name(ref)} has no joint of its own for part {part!r}")
+        what += f" (turned {math.degrees(abs(art.joint_position(o) - art.closed)):.0f} deg)" if _is_hinge(env, obj, art) else ""
+    ok = o >= value if bound == "min" else o <= value
+    return PredicateResult(ok=ok, detail=f"{what} openness {o:.2f} ({bound} {value:.2f})")
+
+
+def _is_hinge(env, obj: SceneObject, art) -> bool:
+    return env.model.jnt_type[env.model.joint(f"{obj.body}_{art.joint}").id] == mujoco.mjtJoint.mjJNT_HINGE
+
+
 class OpennessAtLeast(_Strict):
     type: Literal["openness_at_least"] = "openness_at_least"
     obj: Ref
     value: float = Field(ge=0, le=1)
+    part: str | None = None  # a part with a joint of its own (a safe's knob); None: the object's openness
 
     def refs(self) -> list[ObjRef]:
         return [self.obj]
 
     def evaluate(self, env) -> PredicateResult:
-        o = _openness(env.model, env.data, _obj(env, self.obj))
-        if o is None:
-            return PredicateResult(ok=False, detail=f"{_name(self.obj)} has no moving part")
-        return PredicateResult(ok=o >= self.value, detail=f"{_name(self.obj)} openness {o:.2f} (min {self.value:.2f})")
+        return _openness_check(env, self.obj, self.part, self.value, "min")
 
 
 class OpennessAtMost(_Strict):
     type: Literal["openness_at_most"] = "openness_at_most"
     obj: Ref
     value: float = Field(ge=0, le=1)
+    part: str | None = None  # a part with a joint of its own (a safe's knob); None: the object's openness
 
     def refs(self) -> list[ObjRef]:
         return [self.obj]
 
     def evaluate(self, env) -> PredicateResult:
-        o = _openness(env.model, env.data, _obj(env, self.obj))
-        if o is None:
-            return PredicateResult(ok=False, detail=f"{_name(self.obj)} has no moving part")
-        return PredicateResult(ok=o <= self.value, detail=f"{_name(self.obj)} openness {o:.2f} (max {self.value:.2f})")
+        return _openness_check(env, self.obj, self.part, self.value, "max")
 
 
 class Upright(_Strict):

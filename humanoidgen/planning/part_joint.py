@@ -1,0 +1,54 @@
+"""Which joint a hand on an articulated part moves, and how far along it that joint is.
+
+Most articulated objects have one moving part (a drawer, a lid), whose joint is the object's openness. A part
+with a joint of its own on top of that (a safe's knob, on its door: `ObjectAnnotations.part_articulations`) is
+moved by its own joint: a grip on a knob point turned "to openness 0.75" turns the knob, not the door. The
+planner's follow records (`Generated.follow` / `grip_part`) carry that articulation, and these helpers read it.
+"""
+
+from __future__ import annotations
+
+import mujoco
+import numpy as np
+
+from humanoidgen.objects.schema import Articulation
+from humanoidgen.sim.scene import SceneObject
+
+
+def point_articulation(obj: SceneObject, point: str) -> Articulation | None:
+    """The articulation that moves an annotated point of `obj` (None for an object without a moving part)."""
+    ann = obj.annotations
+    if ann is None or ann.articulation is None:
+        return None
+    return ann.articulation_for(ann.point(point).part)
+
+
+def follow_articulation(env, follow: dict) -> Articulation:
+    """The articulation a follow (or grip_part) record moves: its own, else the object's main one."""
+    art = follow.get("articulation")
+    return art if art is not None else env.scene.object(*follow["obj"]).annotations.articulation
+
+
+def follow_openness(env, follow: dict, data: mujoco.MjData | None = None) -> float:
+    """That joint's openness now (in `data`, default the simulation's), clipped to [0, 1]."""
+    d = env.data if data is None else data
+    q = float(d.qpos[env.model.jnt_qposadr[env.model.joint(follow["joint"]).id]])
+    return follow_articulation(env, follow).openness_of(q)
+
+
+def rolls_about_joint(model: mujoco.MjModel, data: mujoco.MjData, joint: str, axis: np.ndarray,
+                      centre: np.ndarray, tol_m: float = 0.015, tol_deg: float = 10.0) -> bool:
+    """Whether a grip's roll axis (through `centre`) is the part's own hinge axis: a pinched knob. Rolling the
+    grip about it would only undo the part's turn, so such a grip does not roll."""
+    jid = model.joint(joint).id
+    if model.jnt_type[jid] != mujoco.mjtJoint.mjJNT_HINGE:
+        return False
+    body = model.jnt_bodyid[jid]
+    R = data.xmat[body].reshape(3, 3)
+    hinge = R @ model.jnt_axis[jid]
+    anchor = data.xpos[body] + R @ model.jnt_pos[jid]
+    a = np.asarray(axis, float) / np.linalg.norm(axis)
+    if abs(float(a @ hinge)) < np.cos(np.radians(tol_deg)):
+        return False
+    off = np.asarray(centre, float) - anchor
+    return float(np.linalg.norm(off - (off @ hinge) * hinge)) < tol_m
