@@ -266,6 +266,46 @@ def test_an_interrupted_ray_collection_resumes(head, reference, tmp_path):
     _no_duplicate_or_gap(out)
 
 
+def _session_processes(sid: int) -> list[str]:
+    found = []
+    for proc in Path("/proc").iterdir():
+        try:
+            if proc.name.isdigit() and os.getsid(int(proc.name)) == sid:
+                found.append((proc / "cmdline").read_bytes().replace(b"\0", b" ")[:100].decode(errors="replace"))
+        except OSError:
+            continue
+    return found
+
+
+def test_ctrl_c_on_the_command_line_stops_everything(tmp_path):
+    """SIGINT to `hgen collect --ray local`: one line, exit 1, the attempts written so far without a gap, and
+    no process of the command left (driver, its Ray, the actors, their fork servers and plan workers)."""
+    import signal
+    import time
+
+    out = tmp_path / "sigint"
+    hgen = str(Path(sys.executable).with_name("hgen"))
+    # its own session, to find every process it started; SIGINT as a terminal would deliver it
+    proc = subprocess.Popen([hgen, "collect", TASK, "-n", "20", "--out", str(out), "--ray", "local", "--workers", "2",
+                             "--cameras", "none", "--no-point-cloud", "--every", "10"], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True, start_new_session=True,
+                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    index = out / "index.jsonl"
+    deadline = time.monotonic() + 240
+    while not (index.exists() and len(index.read_text().splitlines()) >= 1) and time.monotonic() < deadline:
+        assert proc.poll() is None, proc.communicate()
+        time.sleep(0.2)
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=120)
+    assert proc.returncode == 1 and "interrupted" in err and "--resume" in err, err[-2000:]
+    assert len(EpisodeStore(out).attempts()) < 20
+    _no_duplicate_or_gap(out)
+    deadline = time.monotonic() + 15
+    while _session_processes(proc.pid) and time.monotonic() < deadline:
+        time.sleep(0.5)
+    assert _session_processes(proc.pid) == []
+
+
 def test_cli_collect_and_bench_over_ray(head, reference, tmp_path):
     runner = CliRunner()
     out = tmp_path / "cli"
