@@ -84,9 +84,12 @@ def test_release_lift_and_neighbours(handover_env):
     cube = get_point_in_env(env, "center", "cube", 1)
     goal, note = placing.release_lift(env, block, cube + [0, 0, 0.06], R)
     assert goal[2] == pytest.approx(cube[2] + 0.06 + placing.RELEASE_CLEARANCE_M, abs=1e-3) and "cube 1" in note
-    # Already high enough: unchanged, no note.
+    # A little above it (2 cm): lowered to the clearance, set down rather than dropped.
     goal, note = placing.release_lift(env, block, cube + [0, 0, 0.08], R)
-    assert note is None and goal[2] == pytest.approx(cube[2] + 0.08)
+    assert goal[2] == pytest.approx(cube[2] + 0.06 + placing.RELEASE_CLEARANCE_M, abs=1e-3) and "lowered" in note
+    # Held well above it (4 cm, past DROP_LIMIT_M): where the plan wants it, unchanged, no note.
+    goal, note = placing.release_lift(env, block, cube + [0, 0, 0.10], R)
+    assert note is None and goal[2] == pytest.approx(cube[2] + 0.10)
     # Beside the target cube, touching it: that cube is a neighbour, not a support.
     support, what = placing.support_below(env, block, cube + [0, -0.035, 0.04], R)
     assert what == "the table" and support == 0.0

@@ -261,6 +261,19 @@ def test_pyramid(env):
     _yes_no(env, P.Pyramid(base1="cube[4]", base2="cube[5]", top="cube[6]"), "cube_5", (-0.45, -0.09, 0.02))
 
 
+def test_pyramid_top_between_the_bases(env):
+    """The paper authors' check: the top's centre between the two bases' centres along their line (here 2.1 cm
+    of the 2.25 cm to either), and near that line across it."""
+    pred = P.Pyramid(base1="cube[4]", base2="cube[5]", top="cube[6]")
+    _move(env, "cube_6", (-0.45, -0.0225 + 0.021, 0.06))
+    assert pred.evaluate(env).ok, pred.evaluate(env).detail
+    _move(env, "cube_6", (-0.45, -0.0225 - 0.024, 0.06))  # past base2's centre
+    no = pred.evaluate(env)
+    assert not no.ok and "2.4 cm from their midpoint along them" in no.detail, no.detail
+    _move(env, "cube_6", (-0.45 + 0.025, -0.0225, 0.06))  # off the line
+    assert not pred.evaluate(env).ok
+
+
 def test_inside(env):
     _yes_no(env, P.Inside(obj="cube[3]", container="bowl[0]"), "cube_3", (-0.30, 0.42, 0.02))
 

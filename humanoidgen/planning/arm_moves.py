@@ -23,6 +23,7 @@ from humanoidgen.planning.part_grip import FOLLOW_ENOUGH, PartFollowing  # noqa:
 from humanoidgen.planning.part_joint import follow_articulation, follow_openness
 from humanoidgen.planning.paths import time_parametrize
 from humanoidgen.planning.poses import Pose
+from humanoidgen.planning.finger_room import FingerRoom
 from humanoidgen.sim.action import ARM_SLICE, HAND_SLICE
 from humanoidgen.sim.geometry import rotation_angle
 from humanoidgen.sim.layout import SIDES, Side
@@ -56,7 +57,7 @@ class PlanningError(RuntimeError):
         self.reason = reason
 
 
-class ArmMoves(PartFollowing, Approaches):
+class ArmMoves(PartFollowing, Approaches, FingerRoom):
     """Arm motion planning for HumanoidMotionPlanner (uses its env, kin, collisions, holding, log, seed).
 
     A planned move is an (n, 13) array per arm: 7 arm joint targets and the hand's 6 finger targets per

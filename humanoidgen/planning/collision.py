@@ -175,6 +175,20 @@ class CollisionWorld:
                     best, pair = dd, (g1, g2)
         return best, pair
 
+    def closest_pair(self, movers, obstacles) -> tuple[float, tuple[int, int] | None]:
+        """Smallest distance between any geom of `movers` and any of `obstacles` at the scratch state (no slack),
+        and that pair of geoms."""
+        best, pair = FAR, None
+        m, d = self.kin.model, self.kin.data
+        mv, ob = np.asarray(movers, int), np.asarray(obstacles, int)
+        if not len(mv) or not len(ob):
+            return best, pair
+        for i, j in self._near_pairs(mv, ob):
+            dd = mujoco.mj_geomDistance(m, d, int(mv[i]), int(ob[j]), self.influence, self._fromto)
+            if dd < best:
+                best, pair = dd, (int(mv[i]), int(ob[j]))
+        return best, pair
+
     def arm_arm_distance(self) -> float:
         """Smallest distance between anything moving with the left arm and anything moving with the right."""
         m, d = self.kin.model, self.kin.data

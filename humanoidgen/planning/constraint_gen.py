@@ -291,16 +291,19 @@ def _grip_variants(env, side: Side, obj_name: str, obj_id: int, operation: str, 
         gen = Generated(cons, approach_axis=lead, approach_object=body, posture="wrap" if wrap else None)
         # The hand is already on the part; a grasp around a bar or tab may roll about the part's parallel axis.
         _ride_with_part(env, gen, obj_name, obj_id, op.point, openness, grip_axis=op.parallel_axis,
-                        roll_deg=GRASP_ROLL_DEG if kind == "grasp" else PINCH_ROLL_DEG)
+                        roll_deg=GRASP_ROLL_DEG if kind == "grasp" else PINCH_ROLL_DEG,
+                        unhook_axis=op.attach_axis if kind == "grasp" else None)
         out.append(gen)
     return out
 
 
 def _ride_with_part(env, gen: Generated, obj_name: str, obj_id: int, point: str, openness: float | None,
-                    grip_axis: str | None = None, roll_deg: float = 0.0) -> None:
+                    grip_axis: str | None = None, roll_deg: float = 0.0, unhook_axis: str | None = None) -> None:
     """Moving an articulated part to `openness` with the hand on it: the hand follows the part's joint path from
     where it touches it now (the solved goal is a fallback) and comes in along no approach axis. `grip_axis`:
-    the part's axis a holding grip may roll about on the way, up to `roll_deg` (part_grip.track_rolling)."""
+    the part's axis a holding grip may roll about on the way, up to `roll_deg` (part_grip.track_rolling).
+    `unhook_axis`: the part's axis along which the hand came onto a handle it hooks (a grasp's attach axis); the
+    hand lets go along it (finger_room.FingerRoom._unhook)."""
     obj = env.scene.object(obj_name, obj_id)
     art = point_articulation(obj, point)  # the joint that moves the point's part (a knob's own, on a door)
     if art is None:
@@ -311,7 +314,7 @@ def _ride_with_part(env, gen: Generated, obj_name: str, obj_id: int, point: str,
         return
     gen.follow = {"body": obj.body, "joint": f"{obj.body}_{art.joint}", "q_target": art.joint_position(openness),
                   "part_point": point, "obj": (obj_name, obj_id), "grip_axis": grip_axis,
-                  "roll_deg": roll_deg, "articulation": art}
+                  "roll_deg": roll_deg, "articulation": art, "unhook_axis": unhook_axis}
     gen.approach_axis = None
 
 

@@ -28,6 +28,9 @@ from humanoidgen.sim.scene import SceneObject
 
 STAND_TILT_DEG = 30.0  # a held object tilted more than this from its upright is stood back up to be set down
 RELEASE_CLEARANCE_M = 0.006  # the held object's lowest corner ends this far above what it is set down on
+# A goal that would let the held object go less than this above what is under it is lowered to the clearance: let go
+# 2 cm above two bases, a pyramid's top cube dropped, tipped into the gap between them and ended 1.2 cm further off.
+DROP_LIMIT_M = 0.03
 # An object is under the goal when the footprints (world boxes) overlap by more than this and by more than this share
 # of the narrower one, along x and y: a neighbour set down against (a tilted box's footprint grows) is not under it.
 SUPPORT_OVERLAP_M = 0.005
@@ -118,11 +121,18 @@ def height_above_support(env, obj: SceneObject) -> float:
 
 
 def release_lift(env, obj: SceneObject, goal: np.ndarray, R: np.ndarray) -> tuple[np.ndarray, str | None]:
-    """The goal raised so that the held object ends RELEASE_CLEARANCE_M above its support, and a note saying so
-    (None when it is high enough already)."""
+    """The goal moved up or down so that the held object ends RELEASE_CLEARANCE_M above its support, and a note
+    saying so (None when it is left as it is). Up where it would reach into the support; down where it would be
+    let go less than DROP_LIMIT_M above it (a plan's "a little above" is a drop otherwise); higher goals are
+    where the plan wants the object held, and stay."""
     support, what = support_below(env, obj, goal, R)
     bottom = goal[2] - lowest_offset(obj, R)
     lift = support + RELEASE_CLEARANCE_M - bottom
+    if -DROP_LIMIT_M < lift < -1e-3:
+        out = goal.copy()
+        out[2] += lift
+        return out, (f"{obj.type_name} {obj.obj_id}'s goal lowered {-lift * 1000:.0f} mm, to be set down "
+                     f"{RELEASE_CLEARANCE_M * 1000:.0f} mm above {what} rather than dropped onto it")
     if lift <= 1e-4:
         return goal, None
     out = goal.copy()

@@ -107,6 +107,7 @@ class HumanoidMotionPlanner(GoalSearch, ArmMoves):
     grip: dict = field(default_factory=dict)  # side -> "grasp" or "pinch": how the held object is held
     closing: dict = field(default_factory=dict)  # side -> finger posture the next hand_grasp closes with
     wider_search: bool = True  # goal_search rungs 3-4 (fingers near the table, the wrist's freedom); off to compare
+    part_moved: dict = field(default_factory=dict)  # side -> the follow dict of the part the hand last moved
     regrips_left: int = MAX_REGRIPS  # how many more times a held part may be let go and gripped again on one move
 
     def __post_init__(self) -> None:
@@ -166,17 +167,17 @@ class HumanoidMotionPlanner(GoalSearch, ArmMoves):
     @_logged
     def hand_pre_grasp(self, hand_name: str = "all") -> None:
         """Turn the thumb to face the fingers, ready to grasp. Call before moving to a grasp pose."""
-        self._move_fingers(_sides(hand_name), "pre_grasp")
+        self._posture_with_room(_sides(hand_name), "pre_grasp")
 
     @_logged
     def hand_pre_pinch(self, hand_name: str = "all") -> None:
         """Oppose thumb and index and tuck the other fingers away, ready to pinch."""
-        self._move_fingers(_sides(hand_name), "pre_pinch")
+        self._posture_with_room(_sides(hand_name), "pre_pinch")
 
     @_logged
     def hand_press(self, hand_name: str = "all") -> None:
         """Extend the index finger and curl the others, to press with the fingertip."""
-        self._move_fingers(_sides(hand_name), "press")
+        self._posture_with_room(_sides(hand_name), "press")
 
     def _close_on(self, side: Side, obj_type: str, obj_id: int, posture: str, verb: str) -> None:
         obj = self.env.scene.object(obj_type, obj_id)
@@ -229,7 +230,8 @@ class HumanoidMotionPlanner(GoalSearch, ArmMoves):
             if held is not None and held.annotations is not None and held.annotations.articulation is not None:
                 # A hooked handle: back away while the fingers open, so they do not push the part back.
                 self.holding[s] = None
-                self._retreat(s, open_fingers=True)
+                if not self._unhook(s, held, self.part_moved.pop(s, None)):
+                    self._retreat(s, open_fingers=True)
                 continue
             self._move_fingers((s,), f"pre_{self.grip[s]}" if held is not None else "open")
             self.holding[s] = None
@@ -237,9 +239,12 @@ class HumanoidMotionPlanner(GoalSearch, ArmMoves):
         rigid = [(s, o) for s, o in released if o.annotations is None or o.annotations.articulation is None]
         if rigid:
             self._settle(0.3)
-            for side, _ in rigid:
+            backed = []
+            for side, obj in rigid:
+                axis = self.last_approach.get(side)
                 self._retreat(side)
-            self._move_fingers(tuple(s for s, _ in rigid), "open", seconds=0.5)
+                backed.append((side, obj, None if axis is None else -np.asarray(axis, float)))
+            self._open_clear_of(backed)
         if released:
             self._settle(0.2)
             for side, obj in released:
@@ -385,6 +390,8 @@ class HumanoidMotionPlanner(GoalSearch, ArmMoves):
             mine = [c for c in (path_constraints or []) if c.side == side]
             samples[side] = self._plan_side(side, target, mine)
             self.last_approach[side] = target.approach_axis if target.approach_axis is not None else self._turned_approach(side, target)
+            if target.follow is not None:
+                self.part_moved[side] = target.follow  # how the hand is on the part it moves: how to let go
             self.closing[side] = target.posture
             targets[side] = target
         if len(sides) == 2:

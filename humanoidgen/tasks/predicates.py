@@ -158,8 +158,9 @@ class Stacked(_Strict):
 
 
 class Pyramid(_Strict):
-    """Two bases side by side on the table (centres at most base_gap apart beyond touching), `top` on both:
-    over their midpoint within xy_tol, one base height (from bboxes) ± z_tol above them."""
+    """Two bases side by side on the table (centres at most base_gap apart beyond touching), `top` on both: its
+    centre between the bases' centres along the line joining them (the paper authors' own check: the top cube's y
+    between the two bases'), at most xy_tol off that line, one base height (from bboxes) ± z_tol above them."""
 
     type: Literal["pyramid"] = "pyramid"
     base1: Ref
@@ -178,13 +179,17 @@ class Pyramid(_Strict):
         w = float(_bbox(env, self.base1)[1][0] + _bbox(env, self.base2)[1][0])  # touching centre distance
         sep = float(np.linalg.norm(p1[:2] - p2[:2]))
         mid = (p1 + p2) / 2
-        dxy = float(np.linalg.norm(pt[:2] - mid[:2]))
+        line = (p2[:2] - p1[:2]) / max(sep, 1e-9)
+        rel = pt[:2] - mid[:2]
+        along = float(rel @ line)  # from the midpoint toward base2
+        across = float(abs(rel[0] * line[1] - rel[1] * line[0]))
         want = _support_height(env, self.base1) - float(_bbox(env, self.top)[0][2])
         dz = float(pt[2] - mid[2])
-        ok = (b1.ok and b2.ok and w - 0.005 <= sep <= w + self.base_gap and dxy <= self.xy_tol
-              and abs(dz - want) <= self.z_tol)
+        ok = (b1.ok and b2.ok and w - 0.005 <= sep <= w + self.base_gap and abs(along) < sep / 2
+              and across <= self.xy_tol and abs(dz - want) <= self.z_tol)
         return PredicateResult(ok=ok, detail=f"{b1.detail}; {b2.detail}; bases {_cm(sep)} apart (want {_cm(w)} to "
-                               f"{_cm(w + self.base_gap)}); {_name(self.top)} {_cm(dxy)} from their midpoint (max "
+                               f"{_cm(w + self.base_gap)}); {_name(self.top)} {_cm(along)} from their midpoint along "
+                               f"them (between them: under {_cm(sep / 2)}) and {_cm(across)} across (max "
                                f"{_cm(self.xy_tol)}), {_cm(dz)} above them (want {want * 100:.1f} ± {_cm(self.z_tol)})")
 
 
