@@ -169,12 +169,19 @@ def test_rotate_safe_knob_asks_for_a_90_degree_turn():
 
 
 def test_open_safe_door_reference_plan_succeeds(tmp_path):
-    """Seed 10: the arm's reach ends with the door 88% of the way open and a second pull cannot be planned from
-    there; the move then leaves the door where it is (an event), which is open enough for the task."""
     spec = load_task("open_safe_door")
     result = run_plan(tmp_path, "open_safe_door", 10, plan_path(spec).read_text())
     assert result.success, result
-    assert any("reached openness 0.8" in e for e in result.events), result.events
+
+
+def test_a_ride_cut_short_by_reach_leaves_the_part_where_it_is(tmp_path):
+    """Seed 10 pulled to openness 1: the arm's reach ends with the door 88% of the way and a second pull cannot be
+    planned from there; the move leaves the door where it is with an event (it used to fail the step)."""
+    text = plan_path(load_task("open_safe_door")).read_text().replace("openness=0.85)", "openness=1)")
+    assert "openness=1)" in text
+    result = run_plan(tmp_path, "open_safe_door", 10, text)
+    assert result.success, result
+    assert any("reached openness 0.8" in e and "of the 1 asked" in e for e in result.events), result.events
 
 
 def test_rotate_safe_knob_reference_plan_succeeds(tmp_path):

@@ -61,7 +61,7 @@ class SafeFamily(_ArticulatedFamily):
     KNOB_IN = 0.045  # the knob's axis this far in from the door's free edge
     KNOB_Z = 0.075  # above the door's middle
     BAR_Z = -0.045
-    BASE_HALF = (0.006, 0.014, 0.014)
+    BASE_HALF = (0.0125, 0.012, 0.012)
     FIN_HALF = (0.02, 0.03, 0.008)  # along the knob's axis (out of the door), across, thickness
 
     # -- geometry (design coordinates, closed) -------------------------------------------------------------
@@ -89,8 +89,8 @@ class SafeFamily(_ArticulatedFamily):
         # The door's hinge holds it where a hand leaves it; the knob turns stiffly enough not to spin on from a
         # flick, and its fin is symmetric about the axis, so gravity does not turn it.
         door_j = _Joint("hinge", "hinge", (0, 0, 1), (0.0, self.DOOR_OPEN_DEG * _DEG), damping=0.3, frictionloss=0.3)
-        knob_j = _Joint("knob_hinge", "hinge", (1, 0, 0), (0.0, self.KNOB_OPEN_DEG * _DEG), damping=0.02,
-                        frictionloss=0.03, armature=0.001)
+        knob_j = _Joint("knob_hinge", "hinge", (1, 0, 0), (0.0, self.KNOB_OPEN_DEG * _DEG), damping=0.01,
+                        frictionloss=0.015, armature=0.001)
         return _Design(_shell(D, W, H, self._T, p["rgba"]), [
             _Part("door", (-D / 2, -W / 2, 0), door_j, door),
             _Part("knob", (-td, W - self.KNOB_IN, self.KNOB_Z), knob_j, knob, parent="door"),
@@ -120,7 +120,6 @@ class SafeFamily(_ArticulatedFamily):
             _ax("door_across", (0, 1, 0), "door", "from the hinge toward the free edge"),
             _ax("door_toward_hinge", (0, -1, 0), "door", "from the free edge toward the hinge"),
             _ax("grip_from_hinge_side", (0.259, 0.966, 0), "door", "into the handle from in front, on the hinge's side"),
-            _ax("grip_from_free_side", (0.259, -0.966, 0), "door", "into the handle from in front, on the free edge's side"),
             _ax("door_hinge", (0, 0, 1), "door", "the door's hinge axis (vertical)"),
             _ax("knob_axis", (1, 0, 0), "knob", "the knob's rotation axis, into the door"),
             _ax("fin_leftward", (0, 1, 0), "knob", "along the fin toward its left end (knob at 0)"),
@@ -129,11 +128,12 @@ class SafeFamily(_ArticulatedFamily):
         ]
         ops = [
             # Around the bar, the fingers along it (the grip rolls about the bar while the door swings): from the
-            # hinge's side and in front (a right hand's handshake, the fingers pointing past the bar 45 deg off
-            # the door: open, they reach 10 cm beyond the grasp point, more than the bar's 8.5 cm off the door),
-            # from the free edge's side and in front (a left hand's), or with the palm toward the door.
+            # hinge's side and in front (a right hand's handshake, the fingers pointing past the bar 15 deg off the
+            # door's normal: open, they reach 10 cm beyond the grasp point, less than the bar's 11 cm off the
+            # door), or with the palm toward the door. Not from the free edge's side: that is a left hand's
+            # handshake, and a left hand cannot follow the bar where the door swings it (to the hinge's side, the
+            # robot's right); a right hand taking it so has its index down and its pre-grasp thumb in the bar.
             _op("grasp", "handle", "grip_from_hinge_side", "door_out", "door_hinge"),
-            _op("grasp", "handle", "grip_from_free_side", "door_out", "door_hinge"),
             _op("grasp", "handle", "door_in", "door_across", "door_hinge"),
             _op("pull", "handle", "door_in", "door_across", "door_hinge"),
             _op("push", "door_inner", "door_out", "door_across", "door_hinge"),
