@@ -90,7 +90,7 @@ class SafeFamily(_ArticulatedFamily):
         # flick, and its fin is symmetric about the axis, so gravity does not turn it.
         door_j = _Joint("hinge", "hinge", (0, 0, 1), (0.0, self.DOOR_OPEN_DEG * _DEG), damping=0.3, frictionloss=0.3)
         knob_j = _Joint("knob_hinge", "hinge", (1, 0, 0), (0.0, self.KNOB_OPEN_DEG * _DEG), damping=0.01,
-                        frictionloss=0.015, armature=0.001)
+                        frictionloss=0.02, armature=0.001)
         return _Design(_shell(D, W, H, self._T, p["rgba"]), [
             _Part("door", (-D / 2, -W / 2, 0), door_j, door),
             _Part("knob", (-td, W - self.KNOB_IN, self.KNOB_Z), knob_j, knob, parent="door"),
