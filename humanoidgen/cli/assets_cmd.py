@@ -104,7 +104,7 @@ def list_assets() -> None:
     from humanoidgen.objects import library
 
     for name, fam in sorted(library.families().items()):
-        kind = "articulated" if fam.articulated else "rigid"
+        kind = "articulated" if fam.articulated else "static" if getattr(fam, "static", False) else "rigid"
         typer.secho(f"{name} ({kind})", bold=True)
         for m in fam.models():
             ann = fam.annotations(m.type_id)

@@ -93,7 +93,9 @@ def assets_text() -> str:
 
     lines = []
     for name, fam in sorted(library.families().items()):
-        kind = "articulated, fixed to the table, has openness" if fam.articulated else "rigid, free"
+        kind = ("articulated, fixed to the table, has openness" if fam.articulated
+                else "static, fixed to the table: an obstacle to keep clear of" if getattr(fam, "static", False)
+                else "rigid, free")
         lines.append(f"- {name} ({kind}):")
         for m in fam.models():
             ann = library.annotations(name, m.type_id)

@@ -27,7 +27,8 @@ class ObjectFamily(Protocol):
     `build` fills `body` (already placed at the object's pose, named "<family>_<obj_id>") with geoms and, for
     articulated objects, child bodies named "<body>_<part>" and joints named "<body>_<joint>". The object's
     frame has its origin at the centre of its bounding box, z up when upright. Rigid families get a free joint
-    from the scene; articulated families are fixed to the table (`articulated = True`).
+    from the scene; articulated families are fixed to the table (`articulated = True`), and so are families
+    that say `static = True` (barriers; an attribute a family may leave out).
     """
 
     name: str

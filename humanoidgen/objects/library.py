@@ -11,11 +11,12 @@ from humanoidgen.objects.schema import ObjectAnnotations
 @cache
 def families() -> dict[str, ObjectFamily]:
     from humanoidgen.objects.articulated import ARTICULATED_FAMILIES
+    from humanoidgen.objects.barrier import BARRIER_FAMILIES
     from humanoidgen.objects.rigid import RIGID_FAMILIES
     from humanoidgen.objects.safe import SAFE_FAMILIES
 
     # The safe with a handle and a turning knob (objects/safe.py) replaces articulated.py's earlier safe.
-    return {**RIGID_FAMILIES, **ARTICULATED_FAMILIES, **SAFE_FAMILIES}
+    return {**RIGID_FAMILIES, **ARTICULATED_FAMILIES, **SAFE_FAMILIES, **BARRIER_FAMILIES}
 
 
 def family(name: str) -> ObjectFamily:

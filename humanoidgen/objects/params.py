@@ -61,6 +61,8 @@ class FamilyFile(_Strict):
 
     family: str = Field(min_length=1)
     articulated: bool
+    # Fixed to the table (no free joint), like an articulated object's root: a barrier the hands work around.
+    static: bool = False
     defaults: dict[str, Any] = Field(default_factory=dict)
     points: list[PointSpec] = Field(default_factory=list)
     axes: list[KeyAxis]
@@ -84,6 +86,10 @@ class RigidParams(ModelFile):
 
 class CubeParams(RigidParams):
     size: Size3  # full edge lengths x, y, z
+
+
+class BarrierParams(RigidParams):
+    size: Size3  # full extents x, y, z of the box (a static family: its mass is never simulated)
 
 
 class BottleParams(RigidParams):

@@ -182,7 +182,9 @@ class SceneBuilder:
         if pos is None:
             pos = (-0.30, 0.0)
         xyz = np.array([pos[0], pos[1], pos[2] if len(pos) > 2 else TABLE_TOP_Z - ann.bbox_min[2]], float)
-        obj, body = self.add_object_body(type_name, xyz, yaw_quat(yaw), type_id=type_id, free=not fam.articulated)
+        # Articulated objects and static families (barriers) stand fixed on the table: no free joint.
+        free = not (fam.articulated or getattr(fam, "static", False))
+        obj, body = self.add_object_body(type_name, xyz, yaw_quat(yaw), type_id=type_id, free=free)
         fam.build(self.spec, body, type_id)
         obj = replace(obj, annotations=ann)
         self._objects[-1] = obj
