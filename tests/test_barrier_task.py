@@ -172,3 +172,16 @@ def test_the_reference_plan_stacks_among_the_barriers(tmp_path):
     result, _ = run_task_episode(EpisodeRequest(TASK, seed=3))
     assert result.success, json.dumps(result.to_dict())[:2000]
     assert all(c["ok"] for c in result.checks)
+
+
+def test_the_scene_fixes_static_families_only():
+    """`static` is family data (family.yaml): no packaged rigid family but the barrier says yes; the scene follows."""
+    from humanoidgen.objects.rigid import RIGID_FAMILIES
+    from humanoidgen.sim.scene import SceneBuilder
+
+    assert all(f.static is False for f in RIGID_FAMILIES.values())
+    b = SceneBuilder()
+    b.add_object("cube", 0, pos=(-0.3, 0.0))
+    b.add_object("barrier", 2, pos=(-0.3, 0.2))
+    model = b.build().model
+    assert model.body_jntnum[model.body("cube_0").id] == 1 and model.body_jntnum[model.body("barrier_0").id] == 0

@@ -32,11 +32,7 @@ def _barrier_geometry(p: dict) -> Geometry:
 class BarrierFamily(RigidFamily):
     name = "barrier"
     Params = BarrierParams
-    _geometry = staticmethod(_barrier_geometry)
-
-    @property
-    def static(self) -> bool:
-        return self._data().info.static
+    _geometry = staticmethod(_barrier_geometry)  # static: from family.yaml (RigidFamily.static)
 
 
 BARRIER_FAMILIES: dict[str, ObjectFamily] = {f.name: f for f in (BarrierFamily(),)}

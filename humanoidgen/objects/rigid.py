@@ -247,6 +247,11 @@ class RigidFamily:
     Params: type[RigidParams] = RigidParams
 
     # -- ObjectFamily ------------------------------------------------------------------------------------------
+    @property
+    def static(self) -> bool:
+        """Fixed to the table (no free joint from the scene): what the family's `family.yaml` says (barriers)."""
+        return self._data().info.static
+
     def models(self) -> list[ObjectModel]:
         return [ObjectModel(self.name, m.type_id, m.description, {k: v for k, v in m.params.items() if k in m.own})
                 for m in self._data().models.values()]
