@@ -94,6 +94,15 @@ def default_scene(task):
     return build_scene(task, None)
 
 
+def test_spec_matches_the_paper_and_blocks_stack_hard(task):
+    """6 x 8 cm and +-10 deg (paper appendix), on the cubes only; the same success as blocks_stack_hard."""
+    r = task.randomization
+    assert r.position == pytest.approx((-0.03, 0.03, -0.04, 0.04)) and r.yaw_deg == pytest.approx((-10, 10))
+    assert [task.objects[i].type for i in r.per_object] == ["cube"] * 3
+    assert task.success == load_task("blocks_stack_hard").success
+    assert task.arms == "bimanual" and task.horizon == "long"
+
+
 def test_barriers_are_fixed_to_the_table_and_shown_as_obstacles(default_scene):
     scene, env = default_scene
     m, d = env.model, env.data
