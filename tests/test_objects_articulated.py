@@ -13,7 +13,7 @@ from humanoidgen.objects.schema import ObjectAnnotations  # noqa: E402
 
 MODELS = [(f.name, m.type_id) for f in ARTICULATED_FAMILIES.values() for m in f.models()]
 MODEL_IDS = [f"{n}-{t}" for n, t in MODELS]
-SCENE_Y = {"drawer": -0.45, "laptop": -0.2, "box": 0.05, "safe": 0.3, "toaster": 0.55}
+SCENE_Y = {"drawer": -0.45, "laptop": -0.2, "box": 0.05, "toaster": 0.55}  # the safe: tests/test_safe.py
 SCENE_X = -0.1  # clear of the robot's hands at their initial posture (x ~ -0.4)
 
 
@@ -84,8 +84,8 @@ def _dist_to_boxes(model, data, geoms, p):
 
 
 # -- families ---------------------------------------------------------------------------------------------------
-def test_registry_has_the_five_families():
-    assert set(ARTICULATED_FAMILIES) == {"drawer", "laptop", "box", "safe", "toaster"}
+def test_registry_has_the_four_families():
+    assert set(ARTICULATED_FAMILIES) == {"drawer", "laptop", "box", "toaster"}
     for name, fam in ARTICULATED_FAMILIES.items():
         assert fam.name == name and fam.articulated is True
         assert 1 <= len(fam.models()) <= 2
@@ -133,7 +133,6 @@ def test_required_operations_are_annotated():
     assert {"grasp", "pull", "push"} <= ops["drawer"]
     assert {"push", "flip", "pinch"} <= ops["laptop"]
     assert {"grasp", "pinch", "flip"} <= ops["box"]
-    assert {"pull", "pinch"} <= ops["safe"]
     assert "press" in ops["toaster"]
     drawer = ARTICULATED_FAMILIES["drawer"].annotations(0)
     assert {o.point for o in drawer.operations_of("grasp")} == {"handle_upper", "handle_lower"}

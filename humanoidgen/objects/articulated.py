@@ -1,4 +1,4 @@
-"""Parametric articulated object families: drawer, laptop, box, safe, toaster.
+"""Parametric articulated object families: drawer, laptop, box, toaster (the safe: objects/safe.py).
 
 Each family builds its object from box geoms into the object's (fixed) body: the root body holds the static
 shell, child bodies "<body>_<part>" hold the moving parts, joints are "<body>_<joint>". The object's frame has
@@ -35,7 +35,7 @@ from humanoidgen.objects.articulated_base import (  # noqa: F401
     _shell,
 )
 from humanoidgen.objects.family import ObjectFamily
-from humanoidgen.objects.params import BoxParams, DrawerParams, LaptopParams, SafeParams, ToasterParams
+from humanoidgen.objects.params import BoxParams, DrawerParams, LaptopParams, ToasterParams
 from humanoidgen.objects.schema import Articulation, ObjectAnnotations
 
 __all__ = ["ARTICULATED_FAMILIES", "set_openness", "get_openness", "openness_joint"]
@@ -139,33 +139,6 @@ class BoxFamily(_DataFamily):
         return Articulation(joint="hinge", closed=0.0, open=p["open_deg"] * _DEG)
 
 
-# -- safe: cabinet with a hinged door and a knob --------------------------------------------------------------
-class SafeFamily(_DataFamily):
-    name = "safe"
-    Params = SafeParams
-
-    def _design(self, p: dict) -> _Design:
-        D, W, H, td, m = p["depth"], p["width"], p["height"], p["door_thick"], p["masses"]
-        dc, metal = p["door_rgba"], p["knob_rgba"]
-        door = [_Geom("door", (td / 2, W / 2 - 0.002, H / 2 - 0.005), (-td / 2, W / 2, 0), dc, m["door"])]
-        knob = [_Geom("knob_shaft", (0.01, 0.006, 0.006), (-0.01, 0, 0), metal, m["knob_shaft"]),
-                _Geom("knob_dial", (0.006, 0.018, 0.018), (-0.026, 0, 0), metal, m["knob_dial"])]
-        door_j = _joint("hinge", "hinge", (0, 0, 1), (0.0, p["open_deg"] * _DEG), p["hinge"])
-        knob_j = _joint("knob_hinge", "hinge", (1, 0, 0), (0.0, np.pi), p["knob_hinge"])
-        return _Design(_shell(D, W, H, p["wall"], p["rgba"], m), [
-            _Part("door", (-D / 2, -W / 2, 0), door_j, door),
-            _Part("knob", (-td, 0.75 * W, 0), knob_j, knob, parent="door"),
-        ])
-
-    def _positions(self, p: dict) -> dict[str, Vec3]:
-        W, H, td = p["width"], p["height"], p["door_thick"]
-        return {"door_edge": (-td, W - 0.015, 0), "knob": (-0.032, 0, 0),
-                "storage": (0, 0, -H / 2 + p["wall"] + 0.005)}
-
-    def _articulation(self, p: dict) -> Articulation:
-        return Articulation(joint="hinge", closed=0.0, open=p["open_deg"] * _DEG)
-
-
 # -- toaster --------------------------------------------------------------------------------------------------
 class ToasterFamily(_DataFamily):
     name = "toaster"
@@ -192,7 +165,7 @@ class ToasterFamily(_DataFamily):
 
 
 ARTICULATED_FAMILIES: dict[str, ObjectFamily] = {
-    f.name: f for f in (DrawerFamily(), LaptopFamily(), BoxFamily(), SafeFamily(), ToasterFamily())
+    f.name: f for f in (DrawerFamily(), LaptopFamily(), BoxFamily(), ToasterFamily())
 }
 
 

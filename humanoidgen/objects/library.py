@@ -15,7 +15,6 @@ def families() -> dict[str, ObjectFamily]:
     from humanoidgen.objects.rigid import RIGID_FAMILIES
     from humanoidgen.objects.safe import SAFE_FAMILIES
 
-    # The safe with a handle and a turning knob (objects/safe.py) replaces articulated.py's earlier safe.
     return {**RIGID_FAMILIES, **ARTICULATED_FAMILIES, **SAFE_FAMILIES, **BARRIER_FAMILIES}
 
 

@@ -193,19 +193,6 @@ class BoxParams(ArticulatedParams):
     hinge: JointDynamics
 
 
-class SafeParams(ArticulatedParams):
-    depth: Pos
-    width: Pos
-    height: Pos
-    open_deg: Pos
-    door_rgba: RGBA
-    knob_rgba: RGBA
-    wall: Pos
-    door_thick: Pos
-    hinge: JointDynamics
-    knob_hinge: JointDynamics
-
-
 class ToasterParams(ArticulatedParams):
     depth: Pos
     width: Pos
