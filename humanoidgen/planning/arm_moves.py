@@ -30,7 +30,6 @@ from humanoidgen.sim.layout import SIDES, Side
 from humanoidgen.sim.scene import SceneObject
 
 RETREAT_DISTANCE = 0.10  # after letting go, the hand backs out along its approach axis this far
-RELEASE_IN_PLACE_S = 0.3  # letting go of a part: the fingers first half open this long, the arm still
 FOLLOW_TOL = 0.05  # openness: a part this near the asked openness after a move got there
 FOLLOW_RETRY = 0.3  # a part that moved at least this share of the way but stopped short is pushed again, once
 HAND_MOTION_TIME = 0.5  # seconds to change the fingers' posture on the way (as planner.HAND_MOTION_TIME)
@@ -90,14 +89,10 @@ class ArmMoves(PartFollowing, Approaches, FingerRoom):
             self.kin.sync(self.env.data.qpos)
         samples = time_dense_path(path.waypoints, 1.0 / self.env.control_hz, v_max=0.3)
         if open_fingers:
+            # Unhook in place first: backing out with the fingers still around a handle drags the part after the
+            # hand (a shut drawer pulled open again by ~7 mm).
+            self._loosen_in_place(side)
             start, goal = self.action[HAND_SLICE[side]].copy(), np.array(HAND_POSTURES["open"])
-            # Unhook in place first (the fingers half open, the arm still): backing out with the fingers still
-            # around a handle drags the part after the hand (a shut drawer pulled open again by ~7 mm).
-            n = int(round(RELEASE_IN_PLACE_S * self.env.control_hz))
-            for k in range(1, n + 1):
-                self.action[HAND_SLICE[side]] = start + (goal - start) * 0.5 * k / n
-                self._step()
-            start = self.action[HAND_SLICE[side]].copy()
             for k, q in enumerate(samples, 1):
                 self.action[ARM_SLICE[side]] = q
                 self.action[HAND_SLICE[side]] = start + (goal - start) * min(1.0, 2.0 * k / len(samples))

@@ -191,12 +191,7 @@ class CollisionWorld:
 
     def arm_arm_distance(self) -> float:
         """Smallest distance between anything moving with the left arm and anything moving with the right."""
-        m, d = self.kin.model, self.kin.data
-        left, right = self._geom_lists("left")[0], self._geom_lists("right")[0]
-        best = FAR
-        for i, j in self._near_pairs(left, right):
-            best = min(best, mujoco.mj_geomDistance(m, d, left[i], right[j], self.influence, self._fromto))
-        return best
+        return self.closest_pair(self._geom_lists("left")[0], self._geom_lists("right")[0])[0]
 
     def contact_pairs(self, sides: tuple[Side, ...], clearance: float = 0.0) -> list[tuple[int, int, float]]:
         """(moving body, obstacle body, distance) for each obstacle body closer than `clearance` to something

@@ -19,19 +19,19 @@ from __future__ import annotations
 import numpy as np
 
 from humanoidgen.objects.hands import HAND_POSTURES
+from humanoidgen.objects.queries import get_axis_in_env
 from humanoidgen.planning.collision import FAR, CollisionWorld
 from humanoidgen.planning.kinematics import Kinematics
 from humanoidgen.planning.motion import MotionError, first_collision, plan_arm_motion, time_dense_path
+from humanoidgen.planning.part_joint import follow_openness, point_motion
 from humanoidgen.sim.action import ARM_SLICE, HAND_SLICE
 from humanoidgen.sim.layout import Side
-from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env
-from humanoidgen.planning.part_joint import follow_openness
 from humanoidgen.sim.scene import SceneObject
 
 UNHOOK_M = (0.03, 0.06)  # a hand letting go of a handle moves this far along its grip's attach axis: opening, then on
 UNHOOK_MAX_COS = 0.5  # ... only where that axis is at least 60 deg off the way the part moves there
-UNHOOK_IN_PLACE_S = 0.3  # ... after loosening in place this long
 UNHOOK_BACK_M = 0.03  # ... and this far back out along its approach on the second leg
+RELEASE_IN_PLACE_S = 0.3  # letting go of a part: the fingers first half open this long, the arm still
 OPEN_CLEARANCE_M = 0.01  # a hand opening after it let go keeps at least this far from what it let go of
 PUSH_TOL_M = 0.002  # an empty hand's new posture may come this much deeper into something than it is now
 SWEEP_SAMPLES = 8  # finger postures checked between the current one and the new one
@@ -111,9 +111,10 @@ class FingerRoom:
                 in_place.append(side)
                 continue
             self.kin.sync(self.env.data.qpos)
-            now = self.action[HAND_SLICE[side]].copy()
             obstacles = self.collisions.obstacles(side)
-            current, _ = finger_sweep_clearance(self.kin, self.collisions, side, now, now, obstacles)
+            self.kin.set_hand(side, self.action[HAND_SLICE[side]])  # the posture the fingers are driven to now
+            self.kin.forward()
+            current, _ = self.collisions.closest_pair(self.collisions.finger_geoms(side), obstacles)
             floor = min(current, 0.0) - PUSH_TOL_M
             where = self._room_for(side, posture, obstacles, floor, None, come_back=True)
             if where is None:
@@ -179,6 +180,15 @@ class FingerRoom:
         self._run_arm_samples({side: self._timed(way_back)})
         return " and came back"
 
+    def _loosen_in_place(self, side: Side) -> None:
+        """Half open `side`'s fingers over RELEASE_IN_PLACE_S, the arm still: a grip on a part loosens before
+        the hand moves away (moving with the fingers still around a handle drags the part along)."""
+        start, goal = self.action[HAND_SLICE[side]].copy(), np.array(HAND_POSTURES["open"])
+        n = int(round(RELEASE_IN_PLACE_S * self.env.control_hz))
+        for k in range(1, n + 1):
+            self.action[HAND_SLICE[side]] = start + (goal - start) * 0.5 * k / n
+            self._step()
+
     def _timed(self, waypoints: np.ndarray) -> np.ndarray:
         return time_dense_path(waypoints, 1.0 / self.env.control_hz, v_max=BACK_OFF_SPEED)
 
@@ -191,7 +201,9 @@ class FingerRoom:
         if follow is None or not follow.get("unhook_axis") or self.env.scene.object(*follow["obj"]).body != part.body:
             return False
         u = get_axis_in_env(self.env, follow["unhook_axis"], obj_type=part.type_name, obj_id=part.obj_id)
-        if abs(float(u @ self._part_motion(part, follow))) > UNHOOK_MAX_COS:
+        # Either way along the part's arc (only the angle to it counts): a step into the range it has.
+        motion = point_motion(self.env, follow, 0.02 if follow_openness(self.env, follow) < 0.5 else -0.02)
+        if abs(float(u @ motion)) > UNHOOK_MAX_COS:
             return False  # along the attach axis the hand would push the part itself (a lid near shut)
         back = self.last_approach.get(side)
         m = self.env.model
@@ -212,11 +224,8 @@ class FingerRoom:
         finally:
             self.collisions.ignored_bodies = ignored
             self.kin.sync(self.env.data.qpos)
-        start, goal = self.action[HAND_SLICE[side]].copy(), np.array(HAND_POSTURES["open"])
-        n = int(round(UNHOOK_IN_PLACE_S * self.env.control_hz))
-        for k in range(1, n + 1):  # loosen in place first: the grip's squeeze off the bar
-            self.action[HAND_SLICE[side]] = start + (goal - start) * 0.5 * k / n
-            self._step()
+        goal = np.array(HAND_POSTURES["open"])
+        self._loosen_in_place(side)  # the grip's squeeze off the bar first
         start = self.action[HAND_SLICE[side]].copy()
         opening = self._timed(first.waypoints)
         n = max(len(opening), int(round(0.5 * self.env.control_hz)))
@@ -229,12 +238,3 @@ class FingerRoom:
         self.events.append(f"the {side} hand let go of {part.type_name} {part.obj_id} along its grip's attach axis "
                            f"({follow['unhook_axis']}), off the handle")
         return True
-
-    def _part_motion(self, part: SceneObject, follow: dict) -> np.ndarray:
-        """Unit direction the gripped point of `part` moves in as its joint opens, where it is now."""
-        o = follow_openness(self.env, follow)
-        o2 = o + 0.02 if o < 0.5 else o - 0.02
-        a, b = (get_point_in_env(self.env, follow["part_point"], part.type_name, part.obj_id, openness=x) for x in (o, o2))
-        v = (b - a) * (1.0 if o2 > o else -1.0)
-        n = float(np.linalg.norm(v))
-        return v / n if n > 1e-9 else np.zeros(3)

@@ -30,7 +30,7 @@ from humanoidgen.planning.feedback import body_label, contact_advice, push_advic
 from humanoidgen.planning.goal_solver import GoalResult
 from humanoidgen.planning.goal_targets import AxisWithin
 from humanoidgen.planning.motion import track_poses
-from humanoidgen.planning.part_joint import follow_articulation, follow_openness
+from humanoidgen.planning.part_joint import follow_articulation, follow_openness, point_motion
 from humanoidgen.planning.poses import Pose
 from humanoidgen.sim.layout import HAND_PREFIX, OPERABLE_RANGE, Side
 
@@ -338,7 +338,7 @@ class GoalSearch:
         """How well the fingertip drives the part toward the asked openness: the cosine between the way the
         touched point moves and the direction the fingertip presses in, both now. A push or press presses along
         its approach axis; a flip gets under the part and lifts it, so it only ever opens (cosine 1 or -1)."""
-        from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env
+        from humanoidgen.objects.queries import get_axis_in_env
 
         f = gen.follow
         obj = self.env.scene.object(*f["obj"])
@@ -350,13 +350,9 @@ class GoalSearch:
             return 1.0
         if op.operation == "flip":
             return 1.0 if step > 0 else -1.0
-        p0 = get_point_in_env(self.env, f["part_point"], obj.type_name, obj.obj_id, openness=float(np.clip(now, 0, 1)))
-        p1 = get_point_in_env(self.env, f["part_point"], obj.type_name, obj.obj_id,
-                              openness=float(np.clip(now + step, 0, 1)))
-        v = p1 - p0
-        n = np.linalg.norm(v)
+        v = point_motion(self.env, f, step)
         axis = get_axis_in_env(self.env, op.approach_axis, obj_type=obj.type_name, obj_id=obj.obj_id)
-        return 1.0 if n < 1e-6 else float(v @ axis / n)
+        return 1.0 if not v.any() else float(v @ axis)
 
     def _pushes_toward(self, side: Side, obj, wanted: float, skip_point: str | None = None) -> list[str]:
         """The annotated pushes (target1, target2) that drive `obj` toward openness `wanted`, as suggestions;

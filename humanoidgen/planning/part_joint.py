@@ -11,6 +11,7 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
+from humanoidgen.objects.queries import get_point_in_env
 from humanoidgen.objects.schema import Articulation
 from humanoidgen.sim.scene import SceneObject
 
@@ -34,6 +35,18 @@ def follow_openness(env, follow: dict, data: mujoco.MjData | None = None) -> flo
     d = env.data if data is None else data
     q = float(d.qpos[env.model.jnt_qposadr[env.model.joint(follow["joint"]).id]])
     return follow_articulation(env, follow).openness_of(q)
+
+
+def point_motion(env, follow: dict, step: float) -> np.ndarray:
+    """Unit direction the followed part point (`part_point`) moves in as its joint goes from its openness now by
+    `step` (kept within [0, 1]); zeros where it does not move."""
+    obj = env.scene.object(*follow["obj"])
+    now = follow_openness(env, follow)
+    p0, p1 = (get_point_in_env(env, follow["part_point"], obj.type_name, obj.obj_id, openness=float(np.clip(o, 0, 1)))
+              for o in (now, now + step))
+    v = p1 - p0
+    n = float(np.linalg.norm(v))
+    return np.zeros(3) if n < 1e-6 else v / n
 
 
 def rolls_about_joint(model: mujoco.MjModel, data: mujoco.MjData, joint: str, axis: np.ndarray,
