@@ -84,6 +84,7 @@ class Generated:
     # A grip on an articulated part with no openness asked (yet): the part and the grip's roll axis, so that the
     # goal search can prefer the arm posture that keeps the most reach along the part's arc (the next move).
     grip_part: dict | None = None
+    request: tuple | None = None  # the generate_constraints arguments that made it (set by the planner)
 
 
 def _frame_from_two(l1: np.ndarray, w1: np.ndarray, l2: np.ndarray, w2: np.ndarray) -> np.ndarray | None:

@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from humanoidgen.objects.hands import HAND_POSTURES
-from humanoidgen.planning import constraint_gen, grip_intent, push_actions, regrip
+from humanoidgen.planning import constraint_gen, grip_intent, part_ajar, push_actions, regrip
 from humanoidgen.planning.collision import CollisionWorld
 from humanoidgen.planning.constraints import Const, Constraint, ConstraintError
 from humanoidgen.planning.goal_solver import GoalResult, GoalSolver
@@ -292,16 +292,21 @@ class HumanoidMotionPlanner(GoalSearch, ArmMoves):
         (side,) = _sides(hand_name) if hand_name != "all" else (None,)
         if side is None:
             raise PlanningError("generate_constraints", "hand_name must be 'left' or 'right' (one hand at a time)")
-        self.kin.sync(self.env.data.qpos)
-        gen = constraint_gen.generate(self.env, self.holding, obj_name, obj_id, action, side, openness,
-                                      relative_obj_name, relative_obj_id, relative_p, point, finger_offset)
-        self.events.extend(gen.notes)  # fallbacks and mappings are feedback for the plan's author
+        request = (obj_name, obj_id, action, side, openness, relative_obj_name, relative_obj_id, relative_p, point,
+                   finger_offset)
+        gen = self._generate(request)
         if gen.notes:
             self.log[-1].message = "; ".join(gen.notes)
-        cons = list(gen.constraints)
-        for c in cons:
+        return list(gen.constraints)
+
+    def _generate(self, request: tuple) -> constraint_gen.Generated:
+        self.kin.sync(self.env.data.qpos)
+        gen = constraint_gen.generate(self.env, self.holding, *request)
+        gen.request = request  # to generate them again where the scene changes before the solve (part_ajar)
+        self.events.extend(gen.notes)  # fallbacks and mappings are feedback for the plan's author
+        for c in gen.constraints:
             c.meta = gen  # the move needs the approach axis and the part to follow
-        return cons
+        return gen
 
     @_logged
     def generate_end_effector_pose(self, constraints: list, hand_name: str) -> tuple[GoalResult, Pose]:
@@ -309,7 +314,17 @@ class HumanoidMotionPlanner(GoalSearch, ArmMoves):
         (side,) = _sides(hand_name)
         if not constraints:
             raise PlanningError("generate_end_effector_pose", "no constraints given")
-        result, pose = self._solve_grip_or_goal(list(constraints), side)
+        try:
+            result, pose = self._solve_grip_or_goal(list(constraints), side)
+        except PlanningError:
+            gen = getattr(constraints[0], "meta", None)
+            part = self._shut_grip_part(gen, side)
+            if part is None:
+                raise
+            # No room for the fingers on a shut part's inner face: lift it ajar, then grip it where it is now.
+            part_ajar.lift_ajar(self, side, part)
+            constraints = list(self._generate(gen.request).constraints)
+            result, pose = self._solve_grip_or_goal(constraints, side)
         push_actions.mark(pose, constraints)  # target1/target2 on a part: the move does the push
         return result, pose
 
@@ -333,6 +348,14 @@ class HumanoidMotionPlanner(GoalSearch, ArmMoves):
                                f"{dz * 1000:.0f} mm higher than asked, at its annotated {intent.operation} height: at "
                                "the height asked the fingers would go into the table")
         return result, pose
+
+    def _shut_grip_part(self, gen, side: Side) -> SceneObject | None:
+        """The object of a generated grasp/pinch on a part that lies shut and could be lifted ajar, else None."""
+        request = getattr(gen, "request", None)
+        if request is None or request[2] not in ("grasp", "pinch") or gen.grip_part is None:
+            return None
+        obj = self.env.scene.object(*gen.grip_part["obj"])
+        return obj if self.holding[side] is None and part_ajar.lies_shut(self.env, obj) else None
 
     def _touched_by(self, gen) -> set[int]:
         """The body a grip, pinch or push is meant to touch (none for other constraints)."""

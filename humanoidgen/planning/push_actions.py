@@ -156,7 +156,7 @@ def stages(start: float, to: float, step: float) -> list[float]:
     return [float(np.clip(start + (to - start) * k / n, 0.0, 1.0)) for k in range(1, n)] + [to]
 
 
-def _fingers_for_push(planner, side: Side) -> None:
+def fingers_for_push(planner, side: Side) -> None:
     """Index extended, the others curled (hand_press), unless the plan set them so already."""
     if np.max(np.abs(planner.action[HAND_SLICE[side]] - np.array(HAND_POSTURES["press"]))) > FINGERS_SET:
         planner._move_fingers((side,), "press")
@@ -175,7 +175,7 @@ def _go(planner, side: Side, pose, must_reach: bool, obj: SceneObject | None = N
     raise PlanningError("move_to_pose_with_screw", planner._stopped_short(side, err))
 
 
-def _solve_and_go(planner, side: Side, cons: list, must_reach: bool = False, obj: SceneObject | None = None) -> None:
+def solve_and_go(planner, side: Side, cons: list, must_reach: bool = False, obj: SceneObject | None = None) -> None:
     _, pose = planner._solve_goal(cons, side)
     _go(planner, side, pose, must_reach, obj)
 
@@ -194,7 +194,7 @@ def _pre_push(planner, side: Side, obj: SceneObject, spec: PushSpec, pose) -> No
             raise
         first = exc
     try:
-        _solve_and_go(planner, side, stage_constraints(env, side, obj, spec, None, spec.standoff, "above the edge of",
+        solve_and_go(planner, side, stage_constraints(env, side, obj, spec, None, spec.standoff, "above the edge of",
                                                        over_edge=True), True, obj)
     except PlanningError:
         raise first from None
@@ -211,7 +211,7 @@ def execute(planner, side: Side, pose) -> None:
     """Move to a target1 pose (fingers set to press), or carry out a target2 push (see the module docstring)."""
     move: PushMove = pose.push
     env, obj, spec = planner.env, move.obj, move.spec
-    _fingers_for_push(planner, side)
+    fingers_for_push(planner, side)
     if move.phase == "pre":
         _pre_push(planner, side, obj, spec, pose)
         return
@@ -230,16 +230,16 @@ def execute(planner, side: Side, pose) -> None:
     skipped: list[str] = []
     try:
         if pose is None:
-            _solve_and_go(planner, side, stage_constraints(env, side, obj, spec, None))
+            solve_and_go(planner, side, stage_constraints(env, side, obj, spec, None))
         else:
             _go(planner, side, pose, must_reach=False)  # onto the part (the goal solved for target2)
         for o in stages(start, move.to, spec.step):
             try:
-                _solve_and_go(planner, side, stage_constraints(env, side, obj, spec, o))
+                solve_and_go(planner, side, stage_constraints(env, side, obj, spec, o))
             except PlanningError as exc:  # out of reach there: the next stage may still be reached
                 skipped.append(f"{o:.2f} ({exc.reason[:80]})")
         try:  # the fingertip off the part again, at the openness it pushed it to
-            _solve_and_go(planner, side, stage_constraints(env, side, obj, spec, part_openness(env, obj),
+            solve_and_go(planner, side, stage_constraints(env, side, obj, spec, part_openness(env, obj),
                                                            spec.standoff, "off"))
         except PlanningError:
             skipped.append("taking the fingertip off the part")
