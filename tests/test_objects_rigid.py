@@ -150,8 +150,10 @@ def test_annotations_match_geometry(name, type_id):
         "bowl": ({"pinch"}, {"storage"}), "pot": ({"grasp"}, {"storage"}),
     }[name]
     assert expected[0] <= ops and expected[1] <= fns
-    if name == "pot":
-        assert {o.point for o in ann.operations_of("grasp")} == {"handle_left", "handle_right"}
+    if name == "pot":  # a handle on each side, by the handle's style: a bar (a tab) or an upright grip (a post)
+        style = RIGID_FAMILIES["pot"]._model(type_id).params["handle_style"]
+        point = {"bar": "handle", "post": "grip"}[style]
+        assert {o.point for o in ann.operations_of("grasp")} == {f"{point}_left", f"{point}_right"}
     if name == "cube":
         pinch = ann.operations_of("pinch")[0]
         assert ann.axis(pinch.approach_axis).direction == (0.0, 0.0, -1.0)

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from typing import Annotated, Any, Literal
 
-from pydantic import Field
+from pydantic import Field, model_validator
 
 from humanoidgen.objects.schema import KeyAxis, Operation, _Strict
 
@@ -126,9 +126,20 @@ class CupParams(_Container):
 
 
 class PotParams(_Container):
-    handle_style: Literal["bar"]
-    handle_width: Pos
+    # "bar": a flat horizontal tab on each side, handle_width wide; "post": an upright round grip on each side
+    # (handle_thick across, handle_height tall, its axis handle_reach off the wall), held to the wall by an arm
+    # at each end: a grip for a hand that wraps it (both hands lifting the pot).
+    handle_style: Literal["bar", "post"]
+    handle_width: Pos | None = None
+    handle_height: Pos | None = None
     handle_rgba: RGBA
+
+    @model_validator(mode="after")
+    def _style_sizes(self) -> "PotParams":
+        need = {"bar": "handle_width", "post": "handle_height"}[self.handle_style]
+        if getattr(self, need) is None:
+            raise ValueError(f"handle_style {self.handle_style} needs {need}")
+        return self
 
 
 class BowlParams(RigidParams):

@@ -16,7 +16,7 @@ approaches along +x.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 
 import mujoco
 import numpy as np
@@ -114,9 +114,12 @@ class Geometry:
     rim_z: float | None = None  # top of the rim, for containers
     inner_bottom_z: float | None = None
     axis_xy: tuple[float, float] = (0.0, 0.0)  # where the container's vertical axis (opening centre) is
+    # A round grip's diameter by its point (a pot's post handle); a wrap elsewhere takes the body's, at "side".
+    widths: dict[str, float] = field(default_factory=dict)
 
 
-def _finish(prims: list[Prim], points: dict[str, Vec3], **container) -> Geometry:
+def _finish(prims: list[Prim], points: dict[str, Vec3], widths: dict[str, float] | None = None,
+            **container) -> Geometry:
     prims, shift, lo, hi = _center(prims)
     pts = {k: np.asarray(v, float) + shift for k, v in points.items()}
     pts["center"] = np.zeros(3)
@@ -124,7 +127,7 @@ def _finish(prims: list[Prim], points: dict[str, Vec3], **container) -> Geometry
         if container.get(key) is not None:
             container[key] = float(container[key] + shift[2])
     container["axis_xy"] = (float(shift[0]), float(shift[1]))
-    return Geometry(prims, lo, hi, pts, **container)
+    return Geometry(prims, lo, hi, pts, widths=dict(widths or {}), **container)
 
 
 # A box this much longer along z than across is a block with two ends (see families/cube/family.yaml).
@@ -195,6 +198,7 @@ def _cup_like(p: dict, handles: tuple[str, ...]) -> Geometry:
     if "right" not in handles:  # the flank without a handle
         points["side_right"] = (0, -R, 0.6 * H)
     ext, bar_t = p["handle_reach"], p["handle_thick"]
+    widths: dict[str, float] = {}  # round grips' diameters, by point
     for side in handles:
         s = 1.0 if side == "left" else -1.0
         if p["handle_style"] == "loop":  # cup: a vertical loop of three boxes
@@ -205,13 +209,38 @@ def _cup_like(p: dict, handles: tuple[str, ...]) -> Geometry:
             prims.append(Prim(f"handle_{side}_grip", "box", (0.006, bar_t / 2, span / 2 + bar_t / 2),
                               (0, s * (R + ext - bar_t / 2), zc), rgba=rgba))
             points[f"handle_{side}"] = (0, s * (R + ext - bar_t / 2), zc)
+        elif p["handle_style"] == "post":  # pot: an upright round grip, held off the wall by an arm at each end
+            _post_handle(prims, points, widths, side, p)
         else:  # pot: a horizontal bar sticking out near the top
             w = p["handle_width"]
             zc = H - 0.02
             prims.append(Prim(f"handle_{side}", "box", (w / 2, ext / 2 + t / 2, bar_t / 2),
                               (0, s * (R + ext / 2 - t / 2), zc), rgba=p["handle_rgba"]))
             points[f"handle_{side}"] = (0, s * (R + ext * 0.6), zc)
-    return _finish(prims, points, opening_radius=R - t, rim_z=H, inner_bottom_z=tb)
+    return _finish(prims, points, widths, opening_radius=R - t, rim_z=H, inner_bottom_z=tb)
+
+
+# A post handle's arms: this thick (vertical) and wide (horizontal), at the post's two ends.
+POST_ARM_THICK, POST_ARM_WIDE = 0.01, 0.012
+
+
+def _post_handle(prims: list[Prim], points: dict[str, Vec3], widths: dict[str, float], side: str, p: dict) -> None:
+    """An upright round grip on the `side` ("left": +y) of a pot, its top level with the rim. A hand wraps it
+    the way it wraps a bottle (a grasp with a `width`), so its annotated point is the grip's outer surface at mid
+    height, where the hand's palm comes from; the grip's length is free of the arms, so the curled fingers fit
+    between them."""
+    R, H, t = p["radius"], p["height"], p["wall"]
+    s = 1.0 if side == "left" else -1.0
+    r, length, axis = p["handle_thick"] / 2, p["handle_height"], R + p["handle_reach"]
+    zc = H - length / 2
+    rgba = p["handle_rgba"]
+    prims.append(Prim(f"handle_{side}", "cylinder", (r, length / 2), (0, s * axis, zc), rgba=rgba))
+    arm_len = axis - (R - t)  # from inside the wall to the grip's axis
+    for k, z in (("top", H - POST_ARM_THICK / 2), ("bot", H - length + POST_ARM_THICK / 2)):
+        prims.append(Prim(f"handle_{side}_{k}", "box", (POST_ARM_WIDE / 2, arm_len / 2, POST_ARM_THICK / 2),
+                          (0, s * (R - t + arm_len / 2), z), rgba=rgba))
+    points[f"grip_{side}"] = (0, s * (axis + r), zc)
+    widths[f"grip_{side}"] = 2 * r
 
 
 def _bowl_geometry(p: dict) -> Geometry:
@@ -287,7 +316,7 @@ class RigidFamily:
             points=points, axes=list(info.axes),
             operations=[OperationAnnotation(operation=o.operation, point=o.point, approach_axis=o.approach_axis,
                                             attach_axis=o.attach_axis, parallel_axis=o.parallel_axis,
-                                            width=_diameter(geo) if o.wrap else None) for o in ops],
+                                            width=_diameter(geo, o.point) if o.wrap else None) for o in ops],
             functions=[FunctionAnnotation(function=f.function, point=f.point, axis=f.axis) for f in fns],
         )
 
@@ -305,8 +334,11 @@ class RigidFamily:
         raise NotImplementedError
 
 
-def _diameter(geo: Geometry) -> float:
-    """A round body's diameter at its side grasp point (the point sits on the surface, on the body's -x)."""
+def _diameter(geo: Geometry, point: str) -> float:
+    """The diameter of the round body wrapped at `point`: a grip's own where the geometry gives one (a pot's
+    post handle), else the body's at its side grasp point (on the surface, on the body's -x)."""
+    if point in geo.widths:
+        return round(geo.widths[point], 4)
     return round(-2.0 * float(geo.points["side"][0]), 4)
 
 
