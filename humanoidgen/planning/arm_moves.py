@@ -11,7 +11,7 @@ import numpy as np
 from humanoidgen.objects.hands import HAND_POSTURES
 from humanoidgen.planning.approach import APPROACH_DISTANCES, WRAP_TOUCH, Approaches  # noqa: F401 (re-exported)
 from humanoidgen.planning.feedback import motion_advice
-from humanoidgen.planning import placing
+from humanoidgen.planning import placing, shared_hold
 from humanoidgen.planning.hand_ops import contents, finger_contacts, is_held
 from humanoidgen.planning.motion import (
     JointPath,
@@ -103,10 +103,15 @@ class ArmMoves(PartFollowing, Approaches, FingerRoom):
 
     def _coordinate_arms(self, samples: dict[Side, np.ndarray]) -> dict[Side, np.ndarray]:
         """Both arms move at once: check every control step for arm-arm contact; if they would touch, move
-        them one after the other (left first, then right), and if that collides too, give up with a reason."""
+        them one after the other (left first, then right), and if that collides too, give up with a reason.
+        Arms carrying one object together move in step (shared_hold) and never one after the other."""
         self.kin.sync(self.env.data.qpos)
         for side in SIDES:
             self._attach_held(side)
+        together = shared_hold.shared_object(self.holding) is not None
+        if together:
+            samples = shared_hold.in_step(self.kin, samples)
+            self.kin.sync(self.env.data.qpos)
 
         def clear(left: np.ndarray, right: np.ndarray) -> bool:
             # Each arm's own path was checked against the scene when it was planned; here only arm vs arm.
@@ -123,6 +128,10 @@ class ArmMoves(PartFollowing, Approaches, FingerRoom):
             left, right = samples["left"], samples["right"]
             if clear(left, right):
                 return samples
+            if together:
+                raise PlanningError("move_to_pose_with_screw", "the two arms carrying "
+                                    f"{self.holding['left'].type_name} {self.holding['left'].obj_id} together would "
+                                    "collide with each other on the way")
             left_first = {"left": left, "right": np.vstack([np.repeat(right[:1], len(left), 0), right])}
             if clear(left_first["left"], left_first["right"]):
                 self.log[-1].message = "moved the arms one after the other to keep them apart"

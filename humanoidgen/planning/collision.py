@@ -73,10 +73,19 @@ class CollisionWorld:
     def obstacles(self, side: Side) -> list[int]:
         return self._geom_lists(side)[1].tolist()
 
+    def shared_body(self) -> int | None:
+        """The body both hands carry (one object held by both), or None."""
+        a = self.kin.attached
+        left, right = (a[s][0] if s in a else None for s in SIDES)
+        return left if left is not None and left == right else None
+
     def _geom_lists(self, side: Side) -> tuple[np.ndarray, np.ndarray]:
-        """(movers, obstacles) of `side` as geom id arrays, cached; see `movers` and `obstacles`."""
+        """(movers, obstacles) of `side` as geom id arrays, cached; see `movers` and `obstacles`. While both
+        hands carry one object, the other arm is no obstacle: it moves with the object (the arms are checked
+        against each other on the joint move, `arm_arm_distance`)."""
         held = self.kin.attached[side][0] if side in self.kin.attached else None
-        key = (side, held, frozenset(self.ignored_bodies))
+        shared = held is not None and self.shared_body() == held
+        key = (side, held, shared, frozenset(self.ignored_bodies))
         lists = self._lists.get(key)
         if lists is None:
             if len(self._lists) > 256:  # a planner that keeps changing its ignore list: start over
@@ -84,6 +93,9 @@ class CollisionWorld:
             moving = np.isin(self._geom_body, sorted(self._moving_bodies(side)))
             ignored = np.isin(self._geom_body, sorted(self.ignored_bodies)) | np.isin(self._geom_root,
                                                                                         sorted(self.ignored_bodies))
+            if shared:
+                other = next(s for s in SIDES if s != side)
+                ignored |= np.isin(self._geom_body, sorted(self._arm_bodies[other]))
             movers = np.flatnonzero(moving & self._collidable)
             obstacles = np.flatnonzero(~moving & self._not_floor & self._collidable & ~ignored)
             movers.flags.writeable = obstacles.flags.writeable = False
@@ -190,8 +202,12 @@ class CollisionWorld:
         return best, pair
 
     def arm_arm_distance(self) -> float:
-        """Smallest distance between anything moving with the left arm and anything moving with the right."""
-        return self.closest_pair(self._geom_lists("left")[0], self._geom_lists("right")[0])[0]
+        """Smallest distance between anything moving with the left arm and anything moving with the right (an
+        object both hands hold is in both hands, not between them)."""
+        left, right = self._geom_lists("left")[0], self._geom_lists("right")[0]
+        if (shared := self.shared_body()) is not None:
+            left, right = (g[self._geom_body[g] != shared] for g in (left, right))
+        return self.closest_pair(left, right)[0]
 
     def contact_pairs(self, sides: tuple[Side, ...], clearance: float = 0.0) -> list[tuple[int, int, float]]:
         """(moving body, obstacle body, distance) for each obstacle body closer than `clearance` to something

@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from humanoidgen.objects.hands import HAND_POSTURES
-from humanoidgen.planning import constraint_gen, grip_intent, part_ajar, push_actions, regrip
+from humanoidgen.planning import constraint_gen, grip_intent, part_ajar, push_actions, regrip, shared_hold
 from humanoidgen.planning.collision import CollisionWorld
 from humanoidgen.planning.constraints import Const, Constraint, ConstraintError
 from humanoidgen.planning.goal_solver import GoalResult, GoalSolver
@@ -390,6 +390,10 @@ class HumanoidMotionPlanner(GoalSearch, ArmMoves):
         held = self.holding[side]
         self.kin.detach(side)
         if held is not None and (held.annotations is None or held.annotations.articulation is None):
+            if shared_hold.shared_object(self.holding) is held:
+                # The other hand carries it too (planning knows it as one object in both hands); `side`, attached
+                # last, places it while its own arm is planned.
+                self.kin.attach(next(s for s in SIDES if s != side), held.body)
             self.kin.attach(side, held.body)
 
     # -- motion -----------------------------------------------------------------------------------------
