@@ -29,7 +29,7 @@ PAPER_TASKS = {
     "open_drawer", "open_laptop_easy", "open_laptop_hard", "pyramid_stack",
 }
 # The paper's additional challenging tasks (appendix) built so far.
-EXTRA_TASKS = {"press_toaster", "open_safe_door", "rotate_safe_knob", "blocks_stack_hard_with_barrier"}
+EXTRA_TASKS = {"press_toaster", "open_safe_door", "rotate_safe_knob", "blocks_stack_hard_with_barrier", "dual_lift_pot"}
 SEEDS = range(40)
 REACH_TOL = 0.03  # operated points of articulated objects may sit this far outside a hand's operable range
 
