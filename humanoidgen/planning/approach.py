@@ -200,6 +200,6 @@ def first_collision_ignoring(planner, side: Side, path: np.ndarray, body: str | 
     if body is not None:
         planner.collisions.ignored_bodies.add(planner.env.model.body(body).id)
     try:
-        return first_collision(planner.kin, planner.collisions, side, path)
+        return first_collision(planner.kin, planner.collisions, side, path, start_is_goal=True)
     finally:
         planner.collisions.ignored_bodies = ignored

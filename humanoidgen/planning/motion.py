@@ -123,7 +123,10 @@ def plan_arm_motion(kin: Kinematics, cw: CollisionWorld, side: Side, q_start: np
         raise MotionError(f"{reason}; no sampled path is tried because the move has path constraints")
     if not allow_sampling or q_goal is None:
         raise MotionError(reason)
-    clearance = min(start_clearance(kin, cw, side, q_start), start_clearance(kin, cw, side, q_goal))
+    # Relaxed for a start in contact, but a goal deep in something is no goal: the whole path would be let
+    # through it as deep (a pre-approach pose 44 mm into an open drawer's wall took the wrist through it).
+    clearance = min(start_clearance(kin, cw, side, q_start),
+                    start_clearance(kin, cw, side, q_goal, -GOAL_PENETRATION_M))
     result = None
     if (carry := carried_turn_check(kin, side, q_start, q_goal)) is not None:
         result = plan_rrt_connect(kin, cw, side, q_start, q_goal, time_limit=time_limit / 2, seed=seed,
@@ -204,25 +207,31 @@ def joint_landing(kin: Kinematics, side: Side, q_from: np.ndarray, q_goal: np.nd
 # may touch (CollisionWorld.held_slack). A motion that starts closer than this, say from a grasp, may leave
 # but not get any closer.
 MOTION_CLEARANCE = 0.004
+GOAL_PENETRATION_M = 0.01  # a goal or a pre-approach pose may touch something this deep, not deeper (an open
+# thumb 7 mm into the drawer front it comes in to grasp is such a touch; 44 mm into a wall is not)
 
 
-def start_clearance(kin: Kinematics, cw: CollisionWorld, side: Side, q: np.ndarray) -> float:
-    """The clearance a path from (or to) `q` must keep: MOTION_CLEARANCE, or less if `q` is closer than that."""
+def start_clearance(kin: Kinematics, cw: CollisionWorld, side: Side, q: np.ndarray,
+                    floor: float | None = None) -> float:
+    """The clearance a path from (or to) `q` must keep: MOTION_CLEARANCE, or less if `q` is closer than that
+    (a hand that starts touching something must be able to leave it), but not below `floor`."""
     base = kin.data.qpos.copy()
     kin.set_arm(side, q)
     kin.forward()
     d, _ = cw.min_distance((side,))
     kin.data.qpos[:] = base
     kin.forward()
-    return min(MOTION_CLEARANCE, d - 1e-4)
+    clearance = min(MOTION_CLEARANCE, d - 1e-4)
+    return clearance if floor is None else max(clearance, floor)
 
 
 def first_collision(kin: Kinematics, cw: CollisionWorld, side: Side, path: np.ndarray,
-                    clearance: float | None = None) -> int | None:
-    """Index of the first waypoint whose segment comes closer than `clearance` (default: `start_clearance`)."""
+                    clearance: float | None = None, start_is_goal: bool = False) -> int | None:
+    """Index of the first waypoint whose segment comes closer than `clearance` (default: `start_clearance`;
+    `start_is_goal`: path[0] is a pose chosen to go to, not where the arm is, so it may only touch)."""
     base = kin.data.qpos.copy()
     if clearance is None:
-        clearance = start_clearance(kin, cw, side, path[0])
+        clearance = start_clearance(kin, cw, side, path[0], -GOAL_PENETRATION_M if start_is_goal else None)
     try:
         for i in range(1, len(path)):
             if not segment_valid(kin, cw, side, path[i - 1], path[i], clearance=clearance):
