@@ -12,14 +12,17 @@ import os
 
 os.environ.setdefault("MUJOCO_GL", "egl")
 
+import io  # noqa: E402
+import zipfile  # noqa: E402
 from pathlib import Path  # noqa: E402
 
 import mujoco  # noqa: E402
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
+import zstandard  # noqa: E402
 from recording_path import REFERENCE_FRAMES, path_actions, path_env, recorder_config  # noqa: E402
 
-from humanoidgen.episodes.dataset import EpisodeStore, write_episode  # noqa: E402
+from humanoidgen.episodes.dataset import EpisodeStore, read_episode, write_episode  # noqa: E402
 from humanoidgen.episodes.depth_units import decode_depth, encode_depth  # noqa: E402
 from humanoidgen.episodes.recorder import EpisodeRecorder, matching_render_model  # noqa: E402
 from humanoidgen.sim.meshes import DEFAULT_MAX_FACES, cluster, recording_faces, visual_detail  # noqa: E402
@@ -136,7 +139,7 @@ def test_depth_in_millimetres_round_trips_within_half_a_millimetre():
     assert np.isinf(back[1]).all()
 
 
-def test_episode_files_are_plain_npz_and_load_in_metres(tmp_path):
+def test_episode_files_are_zips_of_npy_members_and_load_in_metres(tmp_path):
     rng = np.random.default_rng(0)
     arrays = {"action": rng.random((5, 26)).astype(np.float32),
               "rgb/head": rng.integers(0, 255, (5, 6, 8, 3), dtype=np.uint8),
@@ -144,16 +147,53 @@ def test_episode_files_are_plain_npz_and_load_in_metres(tmp_path):
     path = tmp_path / "e.npz"
     with open(path, "wb") as f:
         write_episode(f, arrays)
-    with np.load(path) as z:  # any reader: the same arrays (image stacks are stored time-fastest)
-        assert np.array_equal(z["rgb__head"], arrays["rgb/head"]) and z["rgb__head"].flags.f_contiguous
-        assert np.array_equal(z["depth__head"], arrays["depth/head"])
+    with np.load(path) as z:  # any reader: state as plain .npy members
+        assert np.array_equal(z["action"], arrays["action"])
+    with zipfile.ZipFile(path) as zf:  # image stacks: whole .npy files, zstd-compressed
+        for key in ("rgb/head", "depth/head"):
+            raw = zstandard.ZstdDecompressor().decompress(zf.read(key.replace("/", "__") + ".npy.zst"))
+            assert np.array_equal(np.load(io.BytesIO(raw)), arrays[key])
+    assert {k: v.dtype for k, v in read_episode(path).items()} == {k: v.dtype for k, v in arrays.items()}
     store = EpisodeStore(tmp_path / "ds")
     store.create({"task": "t"})
     store.add({"seed": 0, "success": True}, arrays)
     loaded = store.load(0)
     assert loaded["depth/head"].dtype == np.float32
     assert np.array_equal(loaded["depth/head"], decode_depth(arrays["depth/head"]))
+    assert np.array_equal(loaded["rgb/head"], arrays["rgb/head"])
     assert store.corrupt() == {}
+
+
+def test_files_of_format_2_still_load(tmp_path):
+    """Before format 3, stacks were deflated .npy members in Fortran order (a plain npz)."""
+    rng = np.random.default_rng(1)
+    rgb = np.asfortranarray(rng.integers(0, 255, (4, 6, 8, 3), dtype=np.uint8))
+    depth = np.asfortranarray(encode_depth(rng.random((4, 6, 8)) + 0.3))
+    store = EpisodeStore(tmp_path / "ds")
+    store.create({"task": "t"})
+    store.add({"seed": 0, "success": True}, {"action": np.zeros((4, 26), np.float32)})
+    np.savez_compressed(store.episode_path(0), action=np.zeros((4, 26), np.float32), rgb__head=rgb,
+                        depth__head=depth)
+    loaded = store.load(0)
+    assert np.array_equal(loaded["rgb/head"], rgb)
+    assert np.array_equal(loaded["depth/head"], decode_depth(depth))
+    assert store.corrupt() == {}
+
+
+def test_a_damaged_image_stack_is_found(tmp_path):
+    arrays = {"action": np.zeros((3, 26), np.float32),
+              "rgb/head": np.random.default_rng(2).integers(0, 255, (3, 6, 8, 3), dtype=np.uint8)}
+    store = EpisodeStore(tmp_path / "ds")
+    store.create({"task": "t"})
+    store.add({"seed": 0, "success": True}, arrays)
+    path = store.episode_path(0)
+    with zipfile.ZipFile(path) as zf:
+        info = zf.getinfo("rgb__head.npy.zst")
+    data = bytearray(path.read_bytes())
+    # A flipped byte inside the stored member: zip's CRC and zstd's own checksum both catch it.
+    data[info.header_offset + 30 + len(info.filename) + info.compress_size // 2] ^= 0xFF
+    path.write_bytes(bytes(data))
+    assert 0 in store.corrupt()
 
 
 def test_rendering_threads_do_not_change_the_recording(full_detail):

@@ -33,9 +33,10 @@ class CollectStats:
 
 def attempt(req: EpisodeRequest) -> tuple[dict, dict | None]:
     """One attempt, as a plain record plus the arrays of a kept episode (local and Ray collection both run
-    this; its plan runs in a locked-down plan worker)."""
+    this; its plan runs in a locked-down plan worker). The images of a kept episode are not rendered yet:
+    they are when its file is written (`image_job`), while the next attempts run."""
     try:
-        result, arrays = run_task_episode(req)
+        result, arrays = run_task_episode(req, render=False)
     except Exception as exc:  # a broken attempt is a failed attempt, not a dead collection
         return {"seed": req.seed, "success": False, "error": f"{type(exc).__name__}: {exc}"}, None
     failed = result.failed_step
@@ -113,8 +114,9 @@ def collect(task: str, n: int, out: Path, workers: int = 1, seed: int = 0, resum
     store, tally, recorder = open_collection(task, n, out, seed, resume, recorder, plan_path, max_attempts)
     t0 = time.perf_counter()
     pool = ThreadPoolExecutor(workers) if workers > 1 else None
-    # Episode files are compressed and written by one thread while the next attempts run, in seed order;
-    # one batch at most waits, so a slow disk holds back collection instead of filling memory.
+    # Episode files are rendered, compressed and written by one thread while the next attempts run, in seed
+    # order; one batch at most waits, so slow rendering or a slow disk holds back collection instead of
+    # filling memory.
     writer = ThreadPoolExecutor(1, thread_name_prefix="hgen-write")
     writing: list[Future] = []
     try:

@@ -5,11 +5,12 @@
     DIR/episodes/episode_000000.npz   arrays of one kept episode (see EpisodeRecorder)
     DIR/incoming/                 episode files written by Ray tasks, not yet indexed (`adopt`)
 
-Episode files are plain npz (zip of .npy members, deflate level `DEFLATE_LEVEL`). Depth is stored as uint16
-millimetres (`episodes.depth_units`; `load` gives float32 metres back), and image stacks (rgb/*, depth/*) are
-stored in Fortran order, so that each pixel's values over time lie side by side: np.load returns the same
-(T, H, W, ...) arrays, and deflate finds the frame-to-frame repetition it cannot see in a 32 kB window of
-row-major frames (a 124-frame six-camera episode: 15 MB instead of 34 MB at the same level).
+Episode files are zip files of `.npy` members: state, actions and point clouds deflated (level
+`DEFLATE_LEVEL`), so `np.load` reads them; image stacks (rgb/*, depth/*) as whole `.npy` files compressed with
+Zstandard (`rgb__head.npy.zst`, see `episodes.npy_zstd`: it sees the repetition between frames that deflate
+cannot, and compresses frame by frame as they are rendered), stored as they are. `read_episode` (and
+`load`) read both, and the plain npz files of format 1 and 2 (stacks deflated, in Fortran order). Depth is
+stored as uint16 millimetres (`episodes.depth_units`; `load` gives float32 metres back).
 
 Each episode file is written to a temporary name, synced and renamed, and its index line is appended only
 after, so an interrupted collection loses at most the episode in flight and `--resume` continues from the index.
@@ -36,14 +37,17 @@ from typing import Any
 import numpy as np
 
 from humanoidgen.episodes.depth_units import decode_depth
+from humanoidgen.episodes.npy_zstd import SUFFIX as ZSTD_SUFFIX
+from humanoidgen.episodes.npy_zstd import NpyZstdStream, compress_stack, read_member, write_member
 
-FORMAT_VERSION = 2  # 2: depth in uint16 millimetres (1: float32 metres; both are read)
+# 3: image stacks Zstandard-compressed; 2: depth in uint16 millimetres; 1: float32 metres (all are read)
+FORMAT_VERSION = 3
 # Chosen by measurement on a 124-frame, six-camera 320x240 episode (287 MB of arrays; bench/episode_compression.py,
 # bench/results/collection_compression.json): with image stacks time-fastest, level 1 writes 15.8 MB in 1.4 s,
 # 3 writes 14.9 MB in 1.4 s, 6 writes 12.5 MB in 3.2 s, 9 writes 12.0 MB in 6.2 s (row-major: 34.4 MB at level 3);
 # lzma and bzip2 (--slow) write 4-8 MB but take about 40 s, longer than the episode.
 DEFLATE_LEVEL = 3
-_TIME_MAJOR = ("rgb/", "depth/")  # frame stacks stored time-fastest (Fortran order)
+_IMAGE_PREFIXES = ("rgb/", "depth/")  # frame stacks, stored Zstandard-compressed (npy_zstd)
 _EPISODE_FILE = re.compile(r"^episode_(\d+)\.npz$")
 
 log = logging.getLogger(__name__)
@@ -284,15 +288,50 @@ def write_episode_file(path: Path, arrays: dict[str, np.ndarray]) -> None:
     os.replace(tmp, path)
 
 
-def write_episode(f, arrays: dict[str, np.ndarray]) -> None:
-    """An npz file np.load reads, written with `DEFLATE_LEVEL` and image stacks in Fortran order."""
+def write_episode(f, arrays: dict) -> None:
+    """An episode file: state arrays as deflated `.npy` members (`DEFLATE_LEVEL`), image stacks as
+    Zstandard-compressed ones (`npy_zstd`). Arrays holding an `ImageJob` under `PENDING_IMAGES` have their
+    images rendered now, frame by frame, each frame compressed as it comes: no stack is ever held whole."""
+    from humanoidgen.episodes.image_job import PENDING_IMAGES
+
+    job = arrays.get(PENDING_IMAGES)
     with zipfile.ZipFile(f, "w", compression=zipfile.ZIP_DEFLATED, compresslevel=DEFLATE_LEVEL) as zf:
         for key, value in arrays.items():
+            if key == PENDING_IMAGES:
+                continue
             value = np.asarray(value)
-            if key.startswith(_TIME_MAJOR) and value.ndim >= 3:
-                value = np.asfortranarray(value)
-            with zf.open(key.replace("/", "__") + ".npy", "w", force_zip64=True) as member:
-                np.lib.format.write_array(member, value, allow_pickle=False)
+            if _is_image_stack(key, value):
+                write_member(zf, key, compress_stack(value))
+            else:
+                _write_npy(zf, key, value)
+        if job is not None:
+            _write_rendered(zf, job)
+
+
+def _write_rendered(zf: zipfile.ZipFile, job) -> None:
+    layout = job.layout()
+    stacks = {k: NpyZstdStream((job.frames, *shape), dtype) for k, (shape, dtype) in layout.items()
+              if k.startswith(_IMAGE_PREFIXES)}
+    small = {k: np.empty((job.frames, *shape), dtype) for k, (shape, dtype) in layout.items() if k not in stacks}
+    for t, frame in job.iter_frames():
+        for key, value in frame.items():
+            if key in stacks:
+                stacks[key].write(value)
+            else:
+                small[key][t] = value
+    for key, stream in stacks.items():
+        write_member(zf, key, stream.finish())
+    for key, value in small.items():
+        _write_npy(zf, key, value)
+
+
+def _write_npy(zf: zipfile.ZipFile, key: str, value: np.ndarray) -> None:
+    with zf.open(key.replace("/", "__") + ".npy", "w", force_zip64=True) as member:
+        np.lib.format.write_array(member, value, allow_pickle=False)
+
+
+def _is_image_stack(key: str, value: np.ndarray) -> bool:
+    return key.startswith(_IMAGE_PREFIXES) and value.ndim >= 3
 
 
 def _is_stored_depth(key: str, value: np.ndarray) -> bool:
@@ -301,11 +340,28 @@ def _is_stored_depth(key: str, value: np.ndarray) -> bool:
 
 def _read_episode(path: Path) -> dict[str, np.ndarray]:
     try:
-        with np.load(path, allow_pickle=False) as z:
-            return {k.replace("__", "/"): z[k] for k in z.files}
+        return read_episode(path)
     except Exception as exc:  # noqa: BLE001 - any failure to decode the bytes means the file is damaged
         raise DatasetError(f"{path} is damaged ({_reason(exc)}); continue the collection with --resume "
                            "to collect it again") from None
+
+
+def read_episode(path: Path) -> dict[str, np.ndarray]:
+    """Every array of an episode file as stored (depth in uint16 millimetres): `.npy` members (format 1 and
+    2 files hold only those) and Zstandard-compressed `.npy.zst` image stacks. Reading a member checks its
+    CRC (and a stack's zstd checksum)."""
+    out = {}
+    with zipfile.ZipFile(path) as zf:
+        for name in zf.namelist():
+            with zf.open(name) as member:
+                if name.endswith(ZSTD_SUFFIX):
+                    out[name[: -len(ZSTD_SUFFIX)].replace("__", "/")] = read_member(member)
+                elif name.endswith(".npy"):
+                    out[name[: -len(".npy")].replace("__", "/")] = np.lib.format.read_array(member,
+                                                                                        allow_pickle=False)
+                else:
+                    raise ValueError(f"unexpected member {name}")
+    return out
 
 
 def _check_episode(path: Path, length: Any) -> str | None:
@@ -313,8 +369,7 @@ def _check_episode(path: Path, length: Any) -> str | None:
     if not path.exists():
         return "file missing"
     try:
-        with np.load(path, allow_pickle=False) as z:
-            arrays = {k: z[k] for k in z.files}  # reading every member checks its CRC
+        arrays = read_episode(path)
     except Exception as exc:  # noqa: BLE001
         return _reason(exc)
     if "action" not in arrays:

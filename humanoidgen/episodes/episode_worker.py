@@ -72,15 +72,19 @@ class EpisodeSetup:
             return {"sim_time": env.time, "events": list(planner.events)}
 
         def finish(render: bool = True) -> dict:
-            """Judge the task, close the recorders and hand back everything the parent keeps. Images are
-            rendered now, from the recorded configurations, and only when `render` (the parent: every step
-            succeeded) and every success check holds: a failed attempt is never kept."""
+            """Judge the task, close the recorders and hand back everything the parent keeps. When images are
+            recorded, `render` (the parent: every step succeeded) and every success check holds, the arrays
+            also hold what the parent renders them from (`image_job`): the recorded configurations and the
+            model's clipping-plane statistics. A failed attempt is never rendered."""
             checks = judge(spec, env)
             arrays = None
             if recorder is not None and recorder.frames:
-                images = render is True and all(c["ok"] for c in checks)
-                model = self._render_model(spec, env) if images and recorder.config.renders else None
-                arrays = recorder.arrays(images=images, model=model)
+                arrays = recorder.arrays(images=False)
+                if render is True and all(c["ok"] for c in checks) and recorder.config.renders:
+                    from humanoidgen.episodes.image_job import model_stat
+
+                    arrays["configurations"] = np.stack(recorder.configurations)
+                    arrays["model_stat"] = model_stat(env.model)
             if recorder is not None:
                 recorder.close()
             if frames is not None:
@@ -92,22 +96,6 @@ class EpisodeSetup:
         ns = step_namespace(planner)
         ns[PLAN], ns[PROGRESS], ns[FINISH] = plan, progress, finish
         return ns
-
-    def _render_model(self, spec, env):
-        """The model the recording's images are drawn with: the simulator's own at full detail, else the
-        same layout built again with the recording's visual meshes (no settling: only poses are replayed)."""
-        from humanoidgen.episodes.recorder import matching_render_model
-        from humanoidgen.scenes.dressing import SceneDressing
-        from humanoidgen.sim.meshes import visual_detail, visual_faces
-        from humanoidgen.tasks.scene import build_layout
-
-        faces = self.recorder.faces
-        if faces == visual_faces():
-            return env.model
-        with visual_detail(faces):
-            scene, _ = build_layout(spec.sample_layout(self.seed), settle_s=0.0, aliases=spec.aliases(),
-                                    dressing=SceneDressing.from_dict(self.dressing) if self.dressing else None)
-        return matching_render_model(env.model, scene.model)
 
 
 class _FrameStream:

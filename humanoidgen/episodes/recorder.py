@@ -1,7 +1,8 @@
 """Recording an episode: while it runs, every `every`-th control step, the 26-D action, the driven joints,
 both end-effector poses, every object's pose and the full simulator configuration (for exact replay); after
 it, for an attempt worth keeping, images from the cameras and a fused, cropped, downsampled point cloud,
-rendered from the configurations recorded (`episodes.render_replay`): failed attempts cost no rendering.
+rendered from the configurations recorded (`episodes.render_replay`): failed attempts cost no rendering. In a
+plan worker, the configurations go back to the caller, which renders them (`episodes.image_job`).
 
 Images are drawn with robot visual meshes of a level of detail chosen for the camera resolution
 (`sim.meshes.recording_faces`); `visual_faces=sim.meshes.DEFAULT_MAX_FACES` draws them at the full detail

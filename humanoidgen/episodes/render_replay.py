@@ -12,8 +12,9 @@ cameras, other pixels.
 from __future__ import annotations
 
 import os
-from collections.abc import Sequence
-from concurrent.futures import ThreadPoolExecutor
+import threading
+from collections.abc import Iterator, Sequence
+from concurrent.futures import Future, ThreadPoolExecutor
 
 import mujoco
 import numpy as np
@@ -21,6 +22,11 @@ import numpy as np
 from humanoidgen.episodes.depth_units import encode_depth
 from humanoidgen.sim.cameras import CameraRig
 from humanoidgen.sim.pointcloud import PointCloudConfig, fuse_point_cloud
+
+# Frames each renderer draws per turn: two turns of two renderers held at once are 32 frames, about 75 MB for
+# six 320x240 RGB-D cameras, whatever the episode's length.
+CHUNK_FRAMES = 8
+_CONTEXT_LOCK = threading.Lock()
 
 
 def pose_data(model: mujoco.MjModel, data: mujoco.MjData, qpos: np.ndarray) -> None:
@@ -35,45 +41,105 @@ def render_recording(model: mujoco.MjModel, configurations: Sequence[np.ndarray]
                      width: int, height: int, depth: bool = True, point_cloud_cameras: tuple[str, ...] = (),
                      num_points: int = 1024, threads: int | None = None) -> dict[str, np.ndarray]:
     """rgb/<camera> (T, H, W, 3) uint8 and depth/<camera> (T, H, W) uint16 mm for `cameras`, and, when
-    `point_cloud_cameras` are given, point_cloud (T, num_points, 3) float32 fused from their depth.
-
-    `threads` renderers (default: one per CPU, at most 2) each take a contiguous share of the frames, with
-    their own GL context: the software renderer runs its vertex stage on the calling thread, so two of them
-    keep two cores busy. Each frame depends only on its configuration: the result is the same for any number."""
+    `point_cloud_cameras` are given, point_cloud (T, num_points, 3) float32 fused from their depth; all in
+    memory (`iter_frames` hands them over frame by frame)."""
     n = len(configurations)
-    out: dict[str, np.ndarray] = {}
-    for c in cameras:
-        out[f"rgb/{c}"] = np.empty((n, height, width, 3), np.uint8)
-        if depth:
-            out[f"depth/{c}"] = np.empty((n, height, width), np.uint16)
-    if point_cloud_cameras:
-        out["point_cloud"] = np.empty((n, num_points, 3), np.float32)
-    threads = max(1, min(threads or min(2, os.cpu_count() or 1), n))
-    bounds = np.linspace(0, n, threads + 1).round().astype(int)
-    job = (model, configurations, cameras, width, height, depth, point_cloud_cameras, num_points, out)
-    if threads == 1:
-        _render_frames(*job, range(n))
-        return out
-    with ThreadPoolExecutor(threads, thread_name_prefix="hgen-render") as pool:
-        for done in [pool.submit(_render_frames, *job, range(a, b)) for a, b in zip(bounds[:-1], bounds[1:])]:
-            done.result()
+    out = {key: np.empty((n, *shape), dtype) for key, (shape, dtype) in
+           frame_layout(cameras, width, height, depth, bool(point_cloud_cameras), num_points).items()}
+    for t, frame in iter_frames(model, configurations, cameras, width, height, depth, point_cloud_cameras,
+                                num_points, threads):
+        for key, value in frame.items():
+            out[key][t] = value
     return out
 
 
-def _render_frames(model, configurations, cameras, width, height, depth, point_cloud_cameras, num_points,
-                   out: dict[str, np.ndarray], frames_to_render: range) -> None:
-    pc = PointCloudConfig(num_points=num_points)
-    data = mujoco.MjData(model)
-    with CameraRig(model, width, height) as rig:
-        for t in frames_to_render:
-            frames, cloud = render_configuration(rig, model, data, configurations[t], cameras, depth,
-                                                 point_cloud_cameras, pc)
+def frame_layout(cameras: tuple[str, ...], width: int, height: int, depth: bool, point_cloud: bool,
+                 num_points: int) -> dict[str, tuple[tuple[int, ...], np.dtype]]:
+    """Shape (of one frame) and dtype of every array a recorded frame has, in the order they are written."""
+    out: dict[str, tuple[tuple[int, ...], np.dtype]] = {}
+    for c in cameras:
+        out[f"rgb/{c}"] = ((height, width, 3), np.dtype(np.uint8))
+        if depth:
+            out[f"depth/{c}"] = ((height, width), np.dtype(np.uint16))
+    if point_cloud:
+        out["point_cloud"] = ((num_points, 3), np.dtype(np.float32))
+    return out
+
+
+def iter_frames(model: mujoco.MjModel, configurations: Sequence[np.ndarray], cameras: tuple[str, ...],
+                width: int, height: int, depth: bool = True, point_cloud_cameras: tuple[str, ...] = (),
+                num_points: int = 1024, threads: int | None = None, chunk: int = CHUNK_FRAMES
+                ) -> Iterator[tuple[int, dict[str, np.ndarray]]]:
+    """(t, arrays of frame t) in time order, rendered `chunk` frames per renderer at a time: the caller
+    (compressing, writing) works on one chunk while the renderers draw the next, and only two chunks are
+    ever held.
+
+    `threads` renderers (default: one per CPU, at most 2) each draw a contiguous share of a chunk with their
+    own GL context: the software renderer runs its vertex stage on the calling thread, so two of them keep
+    two cores busy. Each frame depends only on its configuration: the frames are the same for any number."""
+    n = len(configurations)
+    threads = max(1, min(threads or min(2, os.cpu_count() or 1), n))
+    renderers = [_Renderer(model, width, height) for _ in range(threads)]
+    job = (configurations, cameras, depth, point_cloud_cameras, PointCloudConfig(num_points=num_points))
+    try:
+        pending = _submit(renderers, job, 0, min(n, chunk * threads))
+        done = 0
+        while pending:
+            start = done + sum(len(f.result()) for f in pending)  # the chunk after this one, submitted now
+            frames = [frame for f in pending for frame in f.result()]
+            pending = _submit(renderers, job, start, min(n, start + chunk * threads)) if start < n else []
+            for frame in frames:
+                yield done, frame
+                done += 1
+    finally:
+        for r in renderers:
+            r.close()
+
+
+class _Renderer:
+    """A thread of its own holding one GL context (a context is current in one thread only)."""
+
+    def __init__(self, model: mujoco.MjModel, width: int, height: int) -> None:
+        self.model = model
+        self.pool = ThreadPoolExecutor(1, thread_name_prefix="hgen-render")
+        self.rig = self.pool.submit(_new_rig, model, width, height)
+        self.data = mujoco.MjData(model)
+
+    def frames(self, job: tuple, frames: range) -> list[dict[str, np.ndarray]]:
+        configurations, cameras, depth, point_cloud_cameras, pc = job
+        rig = self.rig.result()
+        out = []
+        for t in frames:
+            views, cloud = render_configuration(rig, self.model, self.data, configurations[t], cameras, depth,
+                                                point_cloud_cameras, pc)
+            frame = {}
             for c in cameras:
-                out[f"rgb/{c}"][t] = frames[c].rgb
+                frame[f"rgb/{c}"] = views[c].rgb
                 if depth:
-                    out[f"depth/{c}"][t] = encode_depth(frames[c].depth)
+                    frame[f"depth/{c}"] = encode_depth(views[c].depth)
             if cloud is not None:
-                out["point_cloud"][t] = cloud
+                frame["point_cloud"] = cloud
+            out.append(frame)
+        return out
+
+    def close(self) -> None:
+        try:
+            self.pool.submit(self.rig.result().close).result()
+        finally:
+            self.pool.shutdown(wait=True, cancel_futures=True)
+
+
+def _new_rig(model: mujoco.MjModel, width: int, height: int) -> CameraRig:
+    # One context at a time: two threads creating MuJoCo render contexts at once were seen to hang for good
+    # (one of them waiting inside libmujoco on a static initialisation the other had finished).
+    with _CONTEXT_LOCK:
+        return CameraRig(model, width, height)
+
+
+def _submit(renderers: list[_Renderer], job: tuple, a: int, b: int) -> list[Future]:
+    """Frames a..b, split into contiguous shares, one per renderer, in order."""
+    bounds = np.linspace(a, b, len(renderers) + 1).round().astype(int)
+    return [r.pool.submit(r.frames, job, range(lo, hi)) for r, lo, hi in zip(renderers, bounds[:-1], bounds[1:])]
 
 
 def render_configuration(rig: CameraRig, model: mujoco.MjModel, data: mujoco.MjData, qpos: np.ndarray,

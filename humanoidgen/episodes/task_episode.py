@@ -11,26 +11,24 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, replace
-from functools import lru_cache
 from pathlib import Path
 
 import numpy as np
 
 from humanoidgen.episodes.episode_worker import FINISH, PLAN, PROGRESS, EpisodeSetup, VideoSpec
+from humanoidgen.episodes.image_job import PENDING_IMAGES, ImageJob
 from humanoidgen.episodes.plans import PlanFormatError
 from humanoidgen.episodes.recorder import RecorderConfig
 from humanoidgen.episodes.runner import EpisodeResult, StepResult
 from humanoidgen.sim.env import HumanoidEnv
 
 DEFAULT_STEP_TIMEOUT_S = 300.0
-CONTROL_TIMEOUT_S = 300.0  # building the scene, judging, handing back the recording
+CONTROL_TIMEOUT_S = 300.0  # building the scene, judging, handing back the recording (never its images)
 MEMORY_LIMIT = 4 << 30
-MEMORY_LIMIT_CAMERAS = 12 << 30  # renderer buffers and the frames of a long episode
+MEMORY_LIMIT_VIDEO = 12 << 30  # the renderer's buffers (recorded images are rendered by the parent: image_job)
 # The largest message the parent accepts from an episode's worker: a step's outcome is small, a recording
 # is not. A worker cannot make the parent hold more than this at once.
 MESSAGE_LIMIT = 256 << 20
-MESSAGE_LIMIT_CAMERAS = 16 << 30
-RENDER_S_PER_IMAGE = 0.25  # allowed per 320x240 image (and per point cloud) rendered when a recording is kept
 MAX_VIDEO_S = 600.0  # frames past this much video are dropped (a worker cannot fill the disk)
 
 
@@ -94,12 +92,9 @@ def worker_for(req: EpisodeRequest, spec, plan_text: str, on_frame: Callable[[np
     """A (not yet started) locked-down worker that will hold this episode."""
     from humanoidgen.sandbox import SandboxWorker
 
-    if req.recorder is not None and req.recorder.renders:
-        _cache_visual_meshes(req.recorder.faces)
     setup = EpisodeSetup(spec.model_dump(mode="json"), plan_text, req.seed, req.recorder,
                          req.video if on_frame is not None else None, req.control_hz, req.dressing)
-    cameras = req.recorder is not None and (req.recorder.cameras or req.recorder.point_cloud)
-    limit = MEMORY_LIMIT_CAMERAS if cameras or on_frame is not None else MEMORY_LIMIT
+    limit = MEMORY_LIMIT_VIDEO if on_frame is not None else MEMORY_LIMIT
 
     video = setup.video
     budget = [int(MAX_VIDEO_S * video.fps) if video is not None else 0]
@@ -112,26 +107,38 @@ def worker_for(req: EpisodeRequest, spec, plan_text: str, on_frame: Callable[[np
         budget[0] -= 1
         on_frame(frame)
 
-    return SandboxWorker(setup, memory_limit=limit, on_stream=frames,
-                         max_message_bytes=MESSAGE_LIMIT_CAMERAS if cameras else MESSAGE_LIMIT)
+    return SandboxWorker(setup, memory_limit=limit, on_stream=frames, max_message_bytes=MESSAGE_LIMIT)
 
 
-@lru_cache(maxsize=8)
-def _cache_visual_meshes(faces: int) -> None:
-    """The recording's visual meshes, decimated here (once per process): the worker cannot write the cache."""
-    from humanoidgen.assets.robot_files import resolve_assets_root
-    from humanoidgen.sim.robot import cache_visual_meshes
-
-    cache_visual_meshes(resolve_assets_root(), faces)
-
-
-def run_task_episode(req: EpisodeRequest, on_frame: Callable[[np.ndarray], None] | None = None
-                     ) -> tuple[EpisodeResult, dict | None]:
+def run_task_episode(req: EpisodeRequest, on_frame: Callable[[np.ndarray], None] | None = None,
+                     render: bool = True) -> tuple[EpisodeResult, dict | None]:
     """Run one attempt in a locked-down worker; returns the result and, when recording, the arrays.
 
+    A successful attempt recorded with cameras is rendered here, after its worker has ended (`image_job`):
+    with `render`, into the arrays; without, the arrays carry the `ImageJob` under `PENDING_IMAGES`, for
+    `EpisodeStore` to render while it writes the episode, frame by frame.
     `on_frame(rgb)` receives the frames of `req.video` (default: the front camera at 25 fps) as they are
     rendered. Raises PlanFormatError for a plan that cannot be parsed; a step that fails, times out or kills
     its worker is a failed step in the result."""
+    result, arrays = _run_in_worker(req, on_frame)
+    if arrays is None or "configurations" not in arrays:
+        return result, arrays
+    try:
+        job = ImageJob(req.task, req.seed, req.dressing, req.recorder, arrays.pop("configurations"),
+                       arrays.pop("model_stat", None))
+    except ValueError as exc:  # the worker's numbers are not a recording: a failed attempt, said so
+        result.success = False
+        result.checks.append({"predicate": "recording", "ok": False, "detail": f"unusable recording: {exc}"})
+        return result, None
+    if render:
+        arrays.update(job.render_arrays())
+    else:
+        arrays[PENDING_IMAGES] = job
+    return result, arrays
+
+
+def _run_in_worker(req: EpisodeRequest, on_frame: Callable[[np.ndarray], None] | None
+                   ) -> tuple[EpisodeResult, dict | None]:
     from humanoidgen.sandbox import SandboxError
 
     spec = load_spec(req.task)
@@ -168,7 +175,7 @@ def run_task_episode(req: EpisodeRequest, on_frame: Callable[[np.ndarray], None]
                 return _lost(spec.name, req.seed, steps), None
             ok = len(steps) == len(plan) and all(s.ok for s in steps)
             return _finished(spec.name, req.seed, steps, len(plan),
-                             worker.call(FINISH, render=ok, timeout_s=_finish_timeout(req, sim)))
+                             worker.call(FINISH, render=ok, timeout_s=CONTROL_TIMEOUT_S))
         except (SandboxError, TypeError, KeyError, ValueError, AttributeError) as exc:
             # The worker's own bookkeeping failed or answered nonsense (plan code can break it): a failed
             # episode that says so, not a crash of the caller.
@@ -189,17 +196,6 @@ def _finished(task: str, seed: int | None, steps: list[StepResult], n_plan: int,
     if isinstance(arrays, dict) and arrays and all(isinstance(v, np.ndarray) for v in arrays.values()):
         return result, arrays
     return result, None
-
-
-def _finish_timeout(req: EpisodeRequest, sim_seconds: float) -> float:
-    """Judging and handing back, plus rendering the recording's images (each frame, each camera) when the
-    episode is kept."""
-    rec = req.recorder
-    if rec is None or not rec.renders:
-        return CONTROL_TIMEOUT_S
-    frames = sim_seconds * req.control_hz / rec.every + 1
-    views = len(set(rec.cameras) | (set(rec.point_cloud_cameras) if rec.point_cloud else set()))
-    return CONTROL_TIMEOUT_S + frames * (views + 1) * RENDER_S_PER_IMAGE * rec.width * rec.height / (320 * 240)
 
 
 def _error(out) -> str:

@@ -16,7 +16,7 @@ _MODULES = (
     "humanoidgen.planning.planner", "humanoidgen.tasks.registry", "humanoidgen.tasks.scene",
     "humanoidgen.episodes.recorder", "humanoidgen.episodes.plans", "humanoidgen.episodes.runner",
     "humanoidgen.episodes.episode_worker", "humanoidgen.episodes.task_episode", "humanoidgen.sim.cameras",
-    "humanoidgen.generation.worker", "humanoidgen.planning.snapshot", "humanoidgen.episodes.render_replay",
+    "humanoidgen.generation.worker", "humanoidgen.planning.snapshot", "humanoidgen.episodes.image_job",
 )
 for _name in _MODULES:
     with contextlib.suppress(Exception):
