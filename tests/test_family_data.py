@@ -77,6 +77,16 @@ rgba: [0.5, 0.5, 0.5, 1.0]
 drawer_rgba: [0.3, 0.3, 0.3, 1.0]
 """
 
+TALL_SAFE = """\
+type_id: 7
+description: tall black safe with a handle and a turning knob
+depth: 0.18
+width: 0.2
+height: 0.3
+rgba: [0.1, 0.1, 0.1, 1.0]
+door_rgba: [0.15, 0.15, 0.15, 1.0]
+"""
+
 
 @pytest.fixture
 def extra_folder(tmp_path: Path, monkeypatch) -> Path:
@@ -139,6 +149,21 @@ def test_a_model_file_may_override_a_family_default(extra_folder):
     assert library.model("drawer", 8).params["slide"]["damping"] == 20.0
 
 
+def test_a_safe_model_file_is_a_safe_with_its_knob_joint(tmp_path, monkeypatch):
+    """The safe's models are files too: one taller, with a knob that turns 90 deg, from a file alone."""
+    (tmp_path / "safe").mkdir()
+    (tmp_path / "safe" / "tall.yaml").write_text(TALL_SAFE + "knob_open_deg: 90.0\n")
+    monkeypatch.setenv(ENV_FAMILIES_PATH, str(tmp_path))
+    ann = library.annotations("safe", 7)
+    assert [b - a for a, b in zip(ann.bbox_min, ann.bbox_max)][2] == pytest.approx(0.3)
+    assert ann.articulation_for("knob").open == pytest.approx(np.pi / 2)
+    assert ann.articulation.open == pytest.approx(np.pi / 2)  # the door's: the family default, 90 deg
+    spec = mujoco.MjSpec()
+    library.family("safe").build(spec, spec.worldbody.add_body(name="safe_0"), 7)
+    model = spec.compile()
+    assert model.jnt_range[model.joint("safe_0_knob_hinge").id] == pytest.approx((0.0, np.pi / 2))
+
+
 # -- bad files are refused with the file and the field ------------------------------------------------------------
 @pytest.mark.parametrize("family,text,field", [
     ("cube", PURPLE_BLOCK + "colour: red\n", "colour: Extra inputs are not permitted"),
@@ -151,6 +176,10 @@ def test_a_model_file_may_override_a_family_default(extra_folder):
     ("drawer", WIDE_DRAWER + "masses: {handle_bar: 0.02}\n", "masses: no mass for geom"),
     ("drawer", WIDE_DRAWER.replace("travel: 0.12", "travel: 0.12\nslide: {damping: 1.0}"),
      "slide.frictionloss: Field required"),
+    ("safe", TALL_SAFE + 'knob_z: "0.1"\n', "knob_z: Input should be a valid number"),
+    ("safe", TALL_SAFE + "knob_hinge: {damping: 0.01}\n", "knob_hinge.frictionloss: Field required"),
+    ("safe", TALL_SAFE + "handle_post_at: 1.5\n", "handle_post_at: Input should be less than or equal to 1"),
+    ("safe", TALL_SAFE + "masses: {door: 0.4}\n", "masses: no mass for geom"),
 ])
 def test_a_bad_model_file_is_refused_naming_file_and_field(tmp_path, monkeypatch, family, text, field):
     (tmp_path / family).mkdir()

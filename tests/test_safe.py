@@ -68,7 +68,7 @@ def test_safe_design_and_annotations_agree(type_id):
     # The grasp point is the handle bar's middle, and the bar stands far enough off the door for open fingers.
     bar = next(g for g in door.geoms if g.name == "handle_bar")
     assert ann.point("handle").position == pytest.approx(bar.pos)
-    assert -bar.pos[0] - fam._TD >= 0.08
+    assert -bar.pos[0] - p["door_thick"] >= 0.08
     # The fin's pinch points are its two ends; the knob sits 10+ cm above the bar's middle.
     fin = next(g for g in knob.geoms if g.name == "knob_fin")
     from humanoidgen.planning.constraint_gen import PART_PINCH_INSET_M

@@ -1,4 +1,4 @@
-"""Parametric articulated object families: drawer, laptop, box, toaster (the safe: objects/safe.py).
+"""Parametric articulated object families: drawer, laptop, box, toaster (the safe: objects/safe.py, the same way).
 
 Each family builds its object from box geoms into the object's (fixed) body: the root body holds the static
 shell, child bodies "<body>_<part>" hold the moving parts, joints are "<body>_<joint>". The object's frame has
@@ -17,23 +17,7 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
-# Re-exported: families written in Python (objects/safe.py) build on these.
-from humanoidgen.objects.articulated_base import (  # noqa: F401
-    _BASIC_AXES,
-    _DEG,
-    _Annot,
-    _ArticulatedFamily,
-    _ax,
-    _DataFamily,
-    _Design,
-    _Geom,
-    _Joint,
-    _joint,
-    _op,
-    _Part,
-    _pt,
-    _shell,
-)
+from humanoidgen.objects.articulated_base import _DEG, _DataFamily, _Design, _Geom, _joint, _Part, _shell
 from humanoidgen.objects.family import ObjectFamily
 from humanoidgen.objects.params import BoxParams, DrawerParams, LaptopParams, ToasterParams
 from humanoidgen.objects.schema import Articulation, ObjectAnnotations

@@ -1,9 +1,8 @@
 """The machinery of the articulated families: a declarative design of box geoms, parts and joints, built into a
 scene; annotations shifted into the bounding-box-centred object frame.
 
-Two kinds of family use it. `_DataFamily` (objects/articulated.py) reads its models and annotation vocabulary
-from humanoidgen/objects/families/<family>/ and computes only geometry and point positions; `_ArticulatedFamily`
-with a `_params` table is the older form, still used by families written in Python (objects/safe.py).
+Every articulated family is a `_DataFamily` (objects/articulated.py, objects/safe.py): it reads its models and
+annotation vocabulary from humanoidgen/objects/families/<family>/ and computes only geometry and point positions.
 """
 
 from __future__ import annotations
@@ -114,52 +113,26 @@ def _pt(name: str, pos, part: str | None = None, description: str = "") -> KeyPo
     return KeyPoint(name=name, position=tuple(float(v) for v in pos), part=part, description=description)
 
 
-def _ax(name: str, direction, part: str | None = None, description: str = "") -> KeyAxis:
-    d = np.asarray(direction, float)
-    d = d / np.linalg.norm(d)
-    return KeyAxis(name=name, direction=tuple(float(v) for v in d), part=part, description=description)
-
-
 def _op(operation: str, point: str, approach: str, attach: str, parallel: str) -> OperationAnnotation:
     return OperationAnnotation(operation=operation, point=point, approach_axis=approach, attach_axis=attach,
                                parallel_axis=parallel)
 
 
-# The six directions every articulated family names, for families written in Python (the data families list
-# them in their family.yaml).
-_BASIC_AXES = [
-    _ax("forward", (1, 0, 0), description="away from the robot"),
-    _ax("backward", (-1, 0, 0), description="toward the robot"),
-    _ax("left", (0, 1, 0)),
-    _ax("right", (0, -1, 0)),
-    _ax("up", (0, 0, 1)),
-    _ax("down", (0, 0, -1)),
-]
-
-
 class _ArticulatedFamily:
-    """Common machinery: models from a parameter table, build from a `_Design`, annotations shifted to the
-    bounding-box-centred object frame."""
+    """Common machinery: build from a `_Design`, annotations shifted to the bounding-box-centred object frame."""
 
     name: str = ""
     articulated: bool = True
-    _params: dict[int, dict] = {}
 
-    # families implement these two
+    # subclasses implement these three
+    def _p(self, type_id: int) -> dict:  # pragma: no cover - abstract
+        raise NotImplementedError
+
     def _design(self, p: dict) -> _Design:  # pragma: no cover - abstract
         raise NotImplementedError
 
     def _annot(self, p: dict, design: _Design) -> _Annot:  # pragma: no cover - abstract
         raise NotImplementedError
-
-    def _p(self, type_id: int) -> dict:
-        if type_id not in self._params:
-            raise KeyError(f"{self.name}: no type_id {type_id}; known: {sorted(self._params)}")
-        return self._params[type_id]
-
-    def models(self) -> list[ObjectModel]:
-        return [ObjectModel(family=self.name, type_id=t, description=p["description"], params=dict(p))
-                for t, p in sorted(self._params.items())]
 
     def build(self, spec: mujoco.MjSpec, body: mujoco.MjsBody, type_id: int) -> None:
         design = self._design(self._p(type_id))
@@ -267,11 +240,7 @@ def _add_geoms(body: mujoco.MjsBody, prefix: str, geoms: list[_Geom], shift: np.
                       friction=[1.0, 0.01, 0.001], condim=4)
 
 
-# The shell's masses for families written in Python; data families give them in their files.
-_SHELL_MASSES = {"bottom": 0.3, "top": 0.3, "back": 0.2, "side_left": 0.2, "side_right": 0.2}
-
-
-def _shell(D: float, W: float, H: float, t: float, rgba, masses: Mapping[str, float] = _SHELL_MASSES) -> list[_Geom]:
+def _shell(D: float, W: float, H: float, t: float, rgba, masses: Mapping[str, float]) -> list[_Geom]:
     """A cabinet shell centred at the origin, open toward -x: bottom, top, back and two sides."""
     m = masses
     return [

@@ -204,6 +204,37 @@ class BoxParams(ArticulatedParams):
     hinge: JointDynamics
 
 
+class SafeParams(ArticulatedParams):
+    """objects/safe.py: a shell open toward the robot, a door on a vertical hinge at its right (as the robot sees
+    it) with a vertical handle bar on two posts, and a knob with a fin on the door, on a hinge of its own."""
+
+    depth: Pos
+    width: Pos
+    height: Pos
+    wall: Pos  # the shell's
+    door_thick: Pos
+    door_gap: tuple[Pos, Pos]  # the door is this much narrower (y) and shorter (z) than half the opening, per side
+    door_rgba: RGBA
+    door_open_deg: Pos
+    handle_offset: Pos  # the bar's axis off the door's outer face
+    handle_in: Pos  # the bar's axis in from the door's free edge
+    handle_z: Num  # the bar's middle above the door's middle
+    handle_half_len: Pos
+    handle_radius: Pos
+    handle_post_half: tuple[Pos, Pos]  # the posts' half sizes across (y, z); their length spans door to bar
+    handle_post_at: Unit  # the posts at +-this share of the bar's half length from its middle
+    metal_rgba: RGBA  # handle and knob
+    knob_in: Pos  # the knob's axis in from the door's free edge
+    knob_z: Num  # the knob's axis above the door's middle
+    knob_base_half: Size3  # on the door (x: out of it)
+    knob_fin_half: Size3  # across the base: along the knob's axis, across it, its thickness
+    knob_open_deg: Pos
+    door_edge_in: Pos  # the door_edge point in from the free edge
+    door_inner_in: Pos  # the door_inner point in from the free edge
+    hinge: JointDynamics
+    knob_hinge: JointDynamics
+
+
 class ToasterParams(ArticulatedParams):
     depth: Pos
     width: Pos
