@@ -6,8 +6,9 @@ Why not deflate, as for the other members: deflate looks back 32 kB, less than o
 finds none of the repetition between consecutive frames. Zstandard at level `ZSTD_LEVEL` looks back 2 MB
 (nine RGB frames) and finds it in time order, so a stack can be compressed frame by frame as it is rendered
 and never has to be held whole. Measured on a 426-frame, six-camera handover_and_storage episode (980 MB
-of images; bench/episode_compression.py, bench/results/episode_codecs.json): deflate 3 with the stacks time-fastest 64 MB in 4 s of CPU;
-zstd 3 25.0 MB in 0.6 s, 6 18.8 MB in 1.9 s, 9 17.3 MB in 2.8 s, 12 16.5 MB in 4.6 s.
+of images; bench/episode_compression.py, bench/results/episode_codecs.json, whole files, a loaded machine):
+deflate 3 with the stacks time-fastest 68.0 MB in 4.9 s (row-major 119 MB); zstd 1 37.5 MB in 1.4 s,
+3 29.3 MB in 1.4 s, 6 22.9 MB in 4.5 s, 9 21.5 MB in 4.6 s.
 """
 
 from __future__ import annotations
