@@ -4,7 +4,8 @@
   that hand's grip, a block standing on the table never from below.
 - A task target may turn the held object (`up`: where its own z axis points); the spec checks the direction.
 - "move" sets a held object down just above what is under it (the release clearance), stands a tilted block back
-  on an end, and offers a cube's quarter-turned hand and a higher release as its alternatives.
+  on an end, sets one tilted a little in the grip down level, and offers a cube's quarter-turned hand and a higher
+  release as its alternatives.
 - A hand that turned what it holds backs out of its grip along the turned approach when it lets go.
 - One episode: the right hand presents the block in mid-air, the left takes it by the free end, the right lets go,
   the left stands it on the target cube.
@@ -117,6 +118,35 @@ def test_a_tilted_block_is_stood_back_on_an_end(handover_env):
         _turn_block(env, [0.0, 1.0, 0.0, 0.0])  # upside down
         assert not Upright(obj="cube[0]", max_tilt_deg=20).evaluate(env).ok
         assert Upright(obj="cube[0]", max_tilt_deg=20, either_end=True).evaluate(env).ok
+    finally:
+        env.data.qpos[:] = saved
+        mujoco.mj_forward(env.model, env.data)
+
+
+def test_a_block_tilted_a_little_is_set_down_level(handover_env):
+    """Held 10 deg off upright (it swung in the grip), a block is set down with its z axis vertical where the hand
+    can turn so; the ways as it is held follow. Not for a level one, nor one to be stood up, nor into a container."""
+    env = handover_env
+    block, cube = env.scene.object("cube", 0), env.scene.object("cube", 1)
+    saved = env.data.qpos.copy()
+
+    def tilt(deg: float) -> None:
+        half = np.radians(deg) / 2
+        _turn_block(env, [np.cos(half), np.sin(half), 0.0, 0.0])
+
+    try:
+        for deg, want in ((1.0, None), (10.0, (0.0, 0.0, 1.0)), (45.0, None)):
+            tilt(deg)
+            got = placing.level_direction(env, block, cube)
+            assert (got is None if want is None else tuple(got) == want), deg
+        tilt(10.0)
+        drawer = type("Container", (), {"annotations": library.annotations("drawer", 0)})()
+        assert placing.level_direction(env, block, drawer) is None  # into a container as it is
+        gen = move_action.move(env, {"left": block, "right": None}, "cube", 0, "left", cube, np.array([0, 0, 0.062]))
+        ways = [gen, *gen.alternatives]
+        levelled = [any(c.name == "cube 0 set down level" for c in g.constraints) for g in ways]
+        assert levelled[0] and not all(levelled) and levelled == sorted(levelled, reverse=True)
+        assert any("turns it level" in n for n in gen.notes)
     finally:
         env.data.qpos[:] = saved
         mujoco.mj_forward(env.model, env.data)

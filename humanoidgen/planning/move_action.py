@@ -12,7 +12,7 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -100,7 +100,21 @@ def _held_move(env, obj_name: str, obj_id: int, side: Side, rel, point: np.ndarr
         notes.append(f"{obj_name} {obj_id} is tilted in the {side} hand: 'move' stands it on an end to set it down "
                      f"(its z axis {'up' if ups[0][2] > 0 else 'down'}, the end the hand holds on top)")
     ways[0].notes += notes
+    level = None if ups else placing.level_direction(env, obj, rel)
+    if level is not None:
+        ways = [_levelled(env, side, obj, g, level) for g in ways if g.approach_axis is placing.DOWN] + ways
     return ways
+
+
+def _levelled(env, side: Side, obj: SceneObject, gen: Generated, up: np.ndarray) -> Generated:
+    """A set-down way with the held object's z axis within LEVEL_WITHIN_DEG of `up` (the hand turns it level)."""
+    z_now = get_axis_in_env(env, "z", obj_type=obj.type_name, obj_id=obj.obj_id)
+    tilt = float(np.degrees(np.arccos(np.clip(abs(float(z_now @ up)), -1.0, 1.0))))
+    level = Constraint(env, "angle", HAND_BASE_FRAME[side], hand_axis=z_now, object_axis=up, lower=0.0,
+                       upper=np.radians(placing.LEVEL_WITHIN_DEG), name=f"{obj.type_name} {obj.obj_id} set down level")
+    return replace(gen, constraints=[*gen.constraints, level], alternatives=[],
+                   notes=[*gen.notes, f"{obj.type_name} {obj.obj_id} is held {tilt:.0f} deg off upright: the "
+                                      f"{side} hand turns it level to set it down"])
 
 
 # -- set down beside a neighbour ------------------------------------------------------------------------------

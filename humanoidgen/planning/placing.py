@@ -5,6 +5,9 @@ is let go at.
   face it can rest on before it is set on another object; the end the hand holds goes up (the hand stays above it).
   A face it can rest on is a "rest" function of its annotations (a long block: either end); without one, its
   bottom. Into a container (an object with a "storage" function) it goes as it is.
+- Setting it down level: an object tilted a little in the hand (it swung in the grip) is set down with its z axis
+  vertical where the hand can turn so (the ways as it is held follow as alternatives): let go tilted onto a small
+  support, it lands on an edge and may topple off.
 - Release clearance: a goal that puts the held object's lowest corner into (or onto) what is under it, the table
   or an object below, is raised so that it ends RELEASE_CLEARANCE_M above it (the paper: "release it slightly above
   the target position"); an event says by how much.
@@ -27,6 +30,11 @@ from humanoidgen.sim.layout import TABLE_TOP_Z, Side
 from humanoidgen.sim.scene import SceneObject
 
 STAND_TILT_DEG = 30.0  # a held object tilted more than this from its upright is stood back up to be set down
+# A held object tilted more than LEVEL_TILT_DEG (it swung in the grip as it was lifted) is set down with its z axis
+# within LEVEL_WITHIN_DEG of the vertical where the hand can turn so: a 3x3x8 cm block let go on a 4 cm cube 9-10
+# deg off upright landed on its edge and stood back up or toppled off by chance (2 mm of robot height decided it).
+LEVEL_TILT_DEG = 3.0
+LEVEL_WITHIN_DEG = 2.0
 RELEASE_CLEARANCE_M = 0.006  # the held object's lowest corner ends this far above what it is set down on
 # A goal that would let the held object go less than this above what is under it is lowered to the clearance: let go
 # 2 cm above two bases, a pyramid's top cube dropped, tipped into the gap between them and ended 1.2 cm further off.
@@ -77,6 +85,18 @@ def stand_up_directions(env, side: Side, obj: SceneObject, rel: SceneObject | No
     held_end = float(np.sign((grip - centre) @ z_now)) or 1.0  # +1: the hand is at the object's +z end
     ordered = sorted(dict.fromkeys(signs), key=lambda s: s != held_end)  # that end up first
     return [s * UP for s in ordered]
+
+
+def level_direction(env, obj: SceneObject, rel: SceneObject | None) -> np.ndarray | None:
+    """The vertical the held object's z axis is turned to for setting it down level (the end up now stays up);
+    None where it is level enough, is to be stood up (`stand_up_directions`) or goes into a container as it is."""
+    z_now = get_axis_in_env(env, "z", obj_type=obj.type_name, obj_id=obj.obj_id)
+    cos = abs(float(z_now @ UP))
+    if obj.annotations is None or (rel is not None and is_container(rel)):
+        return None
+    if cos >= np.cos(np.radians(LEVEL_TILT_DEG)) or cos < np.cos(np.radians(STAND_TILT_DEG)):
+        return None
+    return float(np.sign(z_now @ UP)) * UP
 
 
 def lowest_offset(obj: SceneObject, R: np.ndarray) -> float:
