@@ -85,6 +85,7 @@ class Generated:
     # goal search can prefer the arm posture that keeps the most reach along the part's arc (the next move).
     grip_part: dict | None = None
     request: tuple | None = None  # the generate_constraints arguments that made it (set by the planner)
+    fallback: Generated | None = None  # the grip to take where this one cannot be solved (a pinch for a grasp)
 
 
 def _frame_from_two(l1: np.ndarray, w1: np.ndarray, l2: np.ndarray, w2: np.ndarray) -> np.ndarray | None:
@@ -368,9 +369,14 @@ def generate(env, holding: dict, obj_name: str, obj_id: int, action: str, side: 
         operation, note = ta.operation_for(obj, action)
         gen = grasp_or_pinch(env, side, obj_name, obj_id, operation, openness, point, finger_offset, holding)
         if note is not None:
-            for g in [gen, *gen.alternatives]:
-                g.posture = g.posture or ("pinch" if operation == "pinch" else None)  # hand_grasp closes as a pinch
+            if operation == "pinch":
+                _close_as_pinch(gen)
             gen.notes.append(note)
+        elif operation == "grasp" and point is None and openness is None and obj.annotations.operations_of("pinch"):
+            # A whole-hand grasp does not fit a small, low object (a 5 cm cube: the straight fingers or the thumb
+            # would go 3 cm into the table); its pinch is the planner's last resort (planner.py).
+            gen.fallback = grasp_or_pinch(env, side, obj_name, obj_id, "pinch", None, None, finger_offset, holding)
+            _close_as_pinch(gen.fallback)
         return gen
     articulated = obj.annotations is not None and obj.annotations.articulation is not None
     if action in ta.TARGET_ACTIONS and not (articulated and action != "target"
@@ -392,6 +398,12 @@ def generate(env, holding: dict, obj_name: str, obj_id: int, action: str, side: 
     if action == "pour":
         return ta.pour(env, holding, obj, side, rel)
     return _move_action.move(env, holding, obj_name, obj_id, side, rel, relative_p)
+
+
+def _close_as_pinch(gen: Generated) -> None:
+    """hand_grasp on these grips closes as a pinch."""
+    for g in [gen, *gen.alternatives]:
+        g.posture = g.posture or "pinch"
 
 
 def _push(env, side: Side, obj_name: str, obj_id: int, k: int, openness: float | None) -> Generated:

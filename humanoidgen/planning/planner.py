@@ -316,15 +316,18 @@ class HumanoidMotionPlanner(GoalSearch, ArmMoves):
             raise PlanningError("generate_end_effector_pose", "no constraints given")
         try:
             result, pose = self._solve_grip_or_goal(list(constraints), side)
-        except PlanningError:
+        except PlanningError as failure:
             gen = getattr(constraints[0], "meta", None)
             part = self._shut_grip_part(gen, side)
-            if part is None:
+            if part is not None:
+                # No room for the fingers on a shut part's inner face: lift it ajar, then grip it where it is now.
+                part_ajar.lift_ajar(self, side, part)
+                constraints = list(self._generate(gen.request).constraints)
+                result, pose = self._solve_grip_or_goal(constraints, side)
+            elif getattr(gen, "fallback", None) is not None and self.holding[side] is None:
+                result, pose, constraints = self._solve_fallback(side, gen, failure)
+            else:
                 raise
-            # No room for the fingers on a shut part's inner face: lift it ajar, then grip it where it is now.
-            part_ajar.lift_ajar(self, side, part)
-            constraints = list(self._generate(gen.request).constraints)
-            result, pose = self._solve_grip_or_goal(constraints, side)
         push_actions.mark(pose, constraints)  # target1/target2 on a part: the move does the push
         return result, pose
 
@@ -348,6 +351,25 @@ class HumanoidMotionPlanner(GoalSearch, ArmMoves):
                                f"{dz * 1000:.0f} mm higher than asked, at its annotated {intent.operation} height: at "
                                "the height asked the fingers would go into the table")
         return result, pose
+
+    def _solve_fallback(self, side: Side, gen, failure: PlanningError) -> tuple[GoalResult, Pose, list]:
+        """The grip's last resort (a grasp's: the object's pinch), with the hand set for it; the first grip's
+        failure if that cannot be solved either."""
+        fallback = gen.fallback
+        for c in fallback.constraints:
+            c.meta = fallback  # the move needs its approach axis and closing posture
+        self._posture_with_room((side,), "pre_pinch")  # the goal is solved with the fingers as they come in
+        try:
+            result, pose = self._solve_goal(list(fallback.constraints), side)
+        except PlanningError:
+            raise failure from None
+        reason = failure.reason
+        if "in contact: " in reason:  # the deepest contact says why, e.g. "R_thumb_distal and table (33.2 mm deep)"
+            reason = reason.split("in contact: ", 1)[1].split(")", 1)[0] + ")"
+        obj = f"{gen.request[0]} {gen.request[1]}" if gen.request else "the object"
+        self.events.append(f"a whole-hand grasp of {obj} does not fit ({reason[:120]}): the {side} hand pinches it "
+                           "instead (set to pre_pinch; hand_grasp closes as a pinch)")
+        return result, pose, list(fallback.constraints)
 
     def _shut_grip_part(self, gen, side: Side) -> SceneObject | None:
         """The object of a generated grasp/pinch on a part that lies shut and could be lifted ajar, else None."""
