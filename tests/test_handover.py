@@ -145,7 +145,8 @@ def test_a_block_tilted_a_little_is_set_down_level(handover_env):
         gen = move_action.move(env, {"left": block, "right": None}, "cube", 0, "left", cube, np.array([0, 0, 0.062]))
         ways = [gen, *gen.alternatives]
         levelled = [any(c.name == "cube 0 set down level" for c in g.constraints) for g in ways]
-        assert levelled[0] and not all(levelled) and levelled == sorted(levelled, reverse=True)
+        # each set-down way levelled first, then as held: the asked height before a higher release
+        assert levelled == [True, False] * (len(ways) // 2) and len(ways) >= 4
         assert any("turns it level" in n for n in gen.notes)
     finally:
         env.data.qpos[:] = saved

@@ -102,7 +102,11 @@ def _held_move(env, obj_name: str, obj_id: int, side: Side, rel, point: np.ndarr
     ways[0].notes += notes
     level = None if ups else placing.level_direction(env, obj, rel)
     if level is not None:
-        ways = [_levelled(env, side, obj, g, level) for g in ways if g.approach_axis is placing.DOWN] + ways
+        # Each set-down way levelled just before itself: a levelled way let go higher (fingers in a neighbour's
+        # way) is tried after the way at the asked height, not before it (dropped 3 cm beside another, a pyramid's
+        # base tipped over).
+        ways = [w for g in ways for w in ([_levelled(env, side, obj, g, level), g]
+                                          if g.approach_axis is placing.DOWN else [g])]
     return ways
 
 
