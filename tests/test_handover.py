@@ -124,8 +124,9 @@ def test_a_tilted_block_is_stood_back_on_an_end(handover_env):
 
 
 def test_a_block_tilted_a_little_is_set_down_level(handover_env):
-    """Held 10 deg off upright (it swung in the grip), a block is set down with its z axis vertical where the hand
-    can turn so; the ways as it is held follow. Not for a level one, nor one to be stood up, nor into a container."""
+    """Held 10 deg off upright (it swung in the grip), a slender block is set down with its z axis vertical where
+    the hand can turn so; the ways as it is held follow. Not for a level one, nor one to be stood up, nor into a
+    container, nor a cube."""
     env = handover_env
     block, cube = env.scene.object("cube", 0), env.scene.object("cube", 1)
     saved = env.data.qpos.copy()
@@ -142,6 +143,7 @@ def test_a_block_tilted_a_little_is_set_down_level(handover_env):
         tilt(10.0)
         drawer = type("Container", (), {"annotations": library.annotations("drawer", 0)})()
         assert placing.level_direction(env, block, drawer) is None  # into a container as it is
+        assert placing.level_direction(env, cube, block) is None  # a cube is not slender: it lands on a face
         gen = move_action.move(env, {"left": block, "right": None}, "cube", 0, "left", cube, np.array([0, 0, 0.062]))
         ways = [gen, *gen.alternatives]
         levelled = [any(c.name == "cube 0 set down level" for c in g.constraints) for g in ways]

@@ -5,7 +5,7 @@ is let go at.
   face it can rest on before it is set on another object; the end the hand holds goes up (the hand stays above it).
   A face it can rest on is a "rest" function of its annotations (a long block: either end); without one, its
   bottom. Into a container (an object with a "storage" function) it goes as it is.
-- Setting it down level: an object tilted a little in the hand (it swung in the grip) is set down with its z axis
+- Setting it down level: a slender object tilted a little in the hand (it swung in the grip) is set down with its z axis
   vertical where the hand can turn so (the ways as it is held follow as alternatives): let go tilted onto a small
   support, it lands on an edge and may topple off.
 - Release clearance: a goal that puts the held object's lowest corner into (or onto) what is under it, the table
@@ -33,8 +33,12 @@ STAND_TILT_DEG = 30.0  # a held object tilted more than this from its upright is
 # A held object tilted more than LEVEL_TILT_DEG (it swung in the grip as it was lifted) is set down with its z axis
 # within LEVEL_WITHIN_DEG of the vertical where the hand can turn so: a 3x3x8 cm block let go on a 4 cm cube 9-10
 # deg off upright landed on its edge and stood back up or toppled off by chance (2 mm of robot height decided it).
+# Only slender objects (standing at least SLENDER times as tall as their narrower side) are levelled: they tip over
+# at a small angle (the 3x3x8 cm block at 21 deg); a cube let go a few degrees off lands on a face and settles, and
+# levelling its set-down costs the ways beside a neighbour their reach (pyramid_stack 19 -> 10/20).
 LEVEL_TILT_DEG = 3.0
 LEVEL_WITHIN_DEG = 2.0
+SLENDER = 1.5
 RELEASE_CLEARANCE_M = 0.006  # the held object's lowest corner ends this far above what it is set down on
 # A goal that would let the held object go less than this above what is under it is lowered to the clearance: let go
 # 2 cm above two bases, a pyramid's top cube dropped, tipped into the gap between them and ended 1.2 cm further off.
@@ -89,10 +93,14 @@ def stand_up_directions(env, side: Side, obj: SceneObject, rel: SceneObject | No
 
 def level_direction(env, obj: SceneObject, rel: SceneObject | None) -> np.ndarray | None:
     """The vertical the held object's z axis is turned to for setting it down level (the end up now stays up);
-    None where it is level enough, is to be stood up (`stand_up_directions`) or goes into a container as it is."""
+    None where it is level enough, is no slender object, is to be stood up (`stand_up_directions`) or goes into
+    a container as it is."""
     z_now = get_axis_in_env(env, "z", obj_type=obj.type_name, obj_id=obj.obj_id)
     cos = abs(float(z_now @ UP))
     if obj.annotations is None or (rel is not None and is_container(rel)):
+        return None
+    size = np.asarray(obj.annotations.bbox_max) - np.asarray(obj.annotations.bbox_min)
+    if size[2] < SLENDER * min(size[0], size[1]):
         return None
     if cos >= np.cos(np.radians(LEVEL_TILT_DEG)) or cos < np.cos(np.radians(STAND_TILT_DEG)):
         return None
