@@ -129,7 +129,7 @@ def test_collect_records_the_dressing(monkeypatch):
 
     seen = []
 
-    def fake_run(req):
+    def fake_run(req, **kwargs):  # collect asks for the arrays unrendered (render=False)
         seen.append(req.dressing)
         return EpisodeResult(req.task, req.seed, True, [], [], 0.0, 0.0, 0.0, {}, []), None
 
