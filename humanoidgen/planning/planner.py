@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from humanoidgen.objects.hands import HAND_POSTURES
-from humanoidgen.planning import constraint_gen, grip_intent, part_ajar, push_actions, regrip, shared_hold
+from humanoidgen.planning import constraint_gen, grip_intent, part_ajar, part_release, push_actions, regrip, shared_hold
 from humanoidgen.planning.collision import CollisionWorld
 from humanoidgen.planning.constraints import Const, Constraint, ConstraintError
 from humanoidgen.planning.goal_solver import GoalResult, GoalSolver
@@ -230,8 +230,7 @@ class HumanoidMotionPlanner(GoalSearch, ArmMoves):
             if held is not None and held.annotations is not None and held.annotations.articulation is not None:
                 # A hooked handle: back away while the fingers open, so they do not push the part back.
                 self.holding[s] = None
-                if not self._unhook(s, held, self.part_moved.pop(s, None)):
-                    self._retreat(s, open_fingers=True)
+                part_release.let_go(self, s, held, self.part_moved.pop(s, None))
                 continue
             self._move_fingers((s,), f"pre_{self.grip[s]}" if held is not None else "open")
             self.holding[s] = None

@@ -1,0 +1,222 @@
+"""Letting go of an articulated part without undoing what the hand did to it.
+
+A hand that moved a lid, a laptop screen or a knob to an openness has its fingers around the part; letting go,
+they can drag it back. Measured on plans written outside the project (each the pinch or grasp, the move to an
+openness, then `open_hand`): a laptop screen closed to 0.04 came back to 0.47 as the hand backed out, a box lid
+turned shut to 0.00 came back to 0.40, a screen lifted to 0.86 fell to 0.74 (the open thumb behind it), a knob
+turned to 96 deg came back to 88 (the curled middle finger, straightening). No one way out fits every grip.
+
+So the ways out are tried in the simulation itself, from a snapshot, with nothing recorded: the usual one first
+(unhook along the grip's attach axis, or back out the way the hand came in, opening on the way); then the fingers
+loosened to the grip's "pre" posture (a pinch opens only thumb and index), or opened, where they are, and the hand
+backed out the way in, off the part's edge away from its hinge, or along the hinge; then opened and backed out
+straight up, up by a sampled path, the way the part went, or not at all. The first that leaves the part where it
+was (within RELEASE_DRIFT) with the hand off it is run for real; where none does, the one off the part that moves
+it least. The extra cost is one simulated release where the usual way is fine.
+"""
+
+from __future__ import annotations
+
+import logging
+from collections.abc import Callable
+
+import mujoco
+import numpy as np
+
+from humanoidgen.objects.describe import openness
+from humanoidgen.objects.queries import get_point_in_env
+from humanoidgen.planning.arm_moves import RETREAT_DISTANCE, PlanningError
+from humanoidgen.planning.hand_ops import finger_contacts
+from humanoidgen.planning.motion import MotionError, plan_arm_motion, time_dense_path
+from humanoidgen.planning.paths import time_parametrize
+from humanoidgen.planning.part_joint import follow_articulation, follow_openness, point_motion
+from humanoidgen.planning.snapshot import restore_snapshot, take_snapshot
+from humanoidgen.objects.hands import HAND_POSTURES
+from humanoidgen.sim.action import HAND_SLICE
+from humanoidgen.sim.layout import Side
+from humanoidgen.sim.scene import SceneObject
+
+log = logging.getLogger(__name__)
+
+RELEASE_DRIFT = 0.02  # openness a part may move while the hand lets go of it
+TRIAL_SETTLE_S = 0.3  # after a way out is tried, the part is watched this long (a dragged lid swings on)
+BACK_OUT_SPEED = 0.3  # rad/s, as the retreat after a release
+
+
+def let_go(planner, side: Side, part: SceneObject, follow: dict | None) -> None:
+    """Open `side`'s hand on `part` (no longer in `planner.holding`) and move it off, the way that moves the part
+    least (see the module's doc). Adds an event when the usual way was not the one taken."""
+    measure = _openness_gauge(planner, part, follow)
+    before = measure()
+    ways = _ways_out(planner, side, part, follow)
+    if before is None:
+        ways[0][1]()
+        return
+    hook = planner.on_step
+    start = take_snapshot(planner)
+    tried: list[tuple[bool, float, int]] = []
+    first_drift = None
+    for k, (_, way) in enumerate(ways):
+        planner.on_step = None  # a trial: nothing of it is recorded
+        try:
+            way()
+            planner._settle(TRIAL_SETTLE_S)
+            drift = abs(measure() - before)
+            touching = bool(finger_contacts(planner.env.model, planner.env.data, side, part.body))
+        except (MotionError, PlanningError) as exc:
+            log.debug("letting go %s: no way (%s)", ways[k][0], exc)
+            continue
+        finally:
+            planner.on_step = hook
+            restore_snapshot(planner, start)
+        if k == 0:
+            first_drift = drift
+        log.debug("letting go %s: drift %.3f, %s", ways[k][0], drift, "touching" if touching else "off the part")
+        tried.append((touching, drift, k))
+        if not touching and drift <= RELEASE_DRIFT:
+            break
+    if not tried:
+        ways[0][1]()
+        return
+    # Off the part first: a hand left on it drags it on the plan's next move (measured: a lid left pressed shut
+    # came back to 0.46 as the hand went home); then the least drift.
+    _, drift, k = min(tried)
+    ways[k][1]()
+    if k:
+        usual = "" if first_drift is None else f" (backing out as usual moved it by {first_drift:.2f})"
+        planner.events.append(f"the {side} hand let go of {part.type_name} {part.obj_id} {ways[k][0]}, which moved "
+                              f"it by {drift:.2f} in openness{usual}")
+
+
+def _openness_gauge(planner, part: SceneObject, follow: dict | None) -> Callable[[], float | None]:
+    env = planner.env
+    if follow is not None and env.scene.object(*follow["obj"]).body == part.body:
+        return lambda: follow_openness(env, follow)
+    return lambda: openness(env.model, env.data, part)
+
+
+def _ways_out(planner, side: Side, part: SceneObject, follow: dict | None) -> list[tuple[str, Callable[[], None]]]:
+    """(how, do it) for each way of letting go, the usual one first."""
+    def usual() -> None:
+        if not planner._unhook(side, part, follow):
+            planner._retreat(side, open_fingers=True)
+
+    def loosened_then(posture: str, direction: Callable[[], np.ndarray | None],
+                      sampled: bool = False) -> Callable[[], None]:
+        def go() -> None:
+            planner._loosen_in_place(side)
+            planner._move_fingers((side,), posture)
+            u = direction()
+            if u is not None:
+                _back_out(planner, side, u, sampled)
+            if posture != "open":
+                planner._move_fingers((side,), "open")
+            planner.last_approach[side] = None
+        return go
+
+    approach = planner.last_approach.get(side)
+    ways_back = {
+        "backing out the way it came in": lambda: None if approach is None else -np.asarray(approach, float),
+        "sliding off the part's edge, away from its hinge": lambda: _off_the_edge(planner, side, follow),
+        "backing out along the part's hinge": lambda: _hinge_away(planner, side, part, follow),
+    }
+    ways = [("as usual", usual)]
+    # The grip's own "pre" posture first (a pinch: only thumb and index open; the curled fingers, straightening,
+    # would push the part): it leaves the part without sweeping it; the hand opens fully once off it.
+    pre = f"pre_{planner.grip.get(side) or 'grasp'}"
+    if pre in HAND_POSTURES:
+        ways += [(f"loosening to {pre} first, then {how}", loosened_then(pre, way)) for how, way in ways_back.items()]
+    ways += [(f"opening in place first, then {how}", loosened_then("open", way)) for how, way in ways_back.items()]
+    ways += [("opening in place first, then backing out straight up",
+              loosened_then("open", lambda: np.array([0.0, 0.0, 1.0]))),
+             # An arm at its limits may find no straight way at all (a shoulder against the torso after reaching
+             # across to shut a screen): any free path up, from the sampling planner.
+             ("opening in place first, then rising by a planned path",
+              loosened_then("open", lambda: np.array([0.0, 0.0, 1.0]), sampled=True))]
+    if follow is not None:
+        ways.append(("opening in place first, then backing out the way the part went",
+                     loosened_then("open", lambda: _part_onward(planner, follow))))
+    ways.append(("opening in place and staying there", loosened_then("open", lambda: None)))
+    return ways
+
+
+def _back_out(planner, side: Side, u: np.ndarray, sampled: bool = False,
+              distances: tuple[float, ...] = (RETREAT_DISTANCE, RETREAT_DISTANCE / 2)) -> None:
+    """Move the hand RETREAT_DISTANCE (else half that) along `u`, straight (`sampled`: by any free path to
+    there); MotionError where neither is free."""
+    kin = planner.kin
+    kin.sync(planner.env.data.qpos)
+    try:
+        kin.set_hand(side, planner.action[HAND_SLICE[side]])  # the posture the fingers are driven to now
+        kin.forward()
+        p, R = kin.ee_pose(side)
+        arm = kin.arms[side]
+        q0 = np.clip(kin.arm_q(side), arm.lo, arm.hi)
+        path, last = None, None
+        for dist in distances:
+            try:
+                path = plan_arm_motion(kin, planner.collisions, side, q0, (p + dist * np.asarray(u, float), R),
+                                       allow_sampling=sampled, seed=planner.seed, time_limit=2.0)
+                break
+            except MotionError as exc:
+                last = exc
+        if path is None:
+            raise last
+    finally:
+        kin.sync(planner.env.data.qpos)
+    dt = 1.0 / planner.env.control_hz
+    if path.method == "rrt_connect":
+        samples = time_parametrize(path.waypoints, dt=dt, v_max=BACK_OUT_SPEED)[1]
+    else:
+        samples = time_dense_path(path.waypoints, dt, v_max=BACK_OUT_SPEED)
+    planner._run_arm_samples({side: samples})
+
+
+def _hinge_away(planner, side: Side, part: SceneObject, follow: dict | None) -> np.ndarray | None:
+    """The hinge axis of the part the hand moved (a safe's knob, not its door), signed from the part toward the
+    hand (moving along it cannot turn the part); None for a slide."""
+    m, d = planner.env.model, planner.env.data
+    joint = follow["joint"] if follow is not None else f"{part.body}_{part.annotations.articulation.joint}"
+    jid = m.joint(joint).id
+    if m.jnt_type[jid] != mujoco.mjtJoint.mjJNT_HINGE:
+        return None
+    body = m.jnt_bodyid[jid]
+    hinge = d.xmat[body].reshape(3, 3) @ m.jnt_axis[jid]
+    hinge = hinge / np.linalg.norm(hinge)
+    planner.kin.sync(d.qpos)
+    p, _ = planner.kin.ee_pose(side)
+    return hinge if float((p - d.xpos[body]) @ hinge) >= 0.0 else -hinge
+
+
+def _off_the_edge(planner, side: Side, follow: dict | None) -> np.ndarray | None:
+    """From the hinge axis of the part the hand moved out to the grip point, across the axis: the way off the
+    part's edge (a thumb under a shut screen's edge, fingers around a knob's fin); None for a slide or without a
+    hinge."""
+    if follow is None:
+        return None
+    m, d = planner.env.model, planner.env.data
+    jid = m.joint(follow["joint"]).id
+    if m.jnt_type[jid] != mujoco.mjtJoint.mjJNT_HINGE:
+        return None
+    body = m.jnt_bodyid[jid]
+    R = d.xmat[body].reshape(3, 3)
+    hinge = R @ m.jnt_axis[jid]
+    hinge = hinge / np.linalg.norm(hinge)
+    anchor = d.xpos[body] + R @ m.jnt_pos[jid]
+    obj = planner.env.scene.object(*follow["obj"])
+    grip = get_point_in_env(planner.env, follow["part_point"], obj.type_name, obj.obj_id)
+    out = grip - anchor
+    out = out - (out @ hinge) * hinge
+    n = float(np.linalg.norm(out))
+    return out / n if n > 1e-3 else None
+
+
+def _part_onward(planner, follow: dict) -> np.ndarray | None:
+    """The way the grip point went as the hand moved the part (toward the openness asked); at the part's end stop,
+    on the same way (into the stop)."""
+    wanted = follow_articulation(planner.env, follow).openness_of(follow["q_target"])
+    step = 0.02 if wanted >= 0.5 else -0.02
+    u = point_motion(planner.env, follow, step)
+    if np.linalg.norm(u) == 0:
+        u = -point_motion(planner.env, follow, -step)
+    return u if np.linalg.norm(u) > 0 else None
