@@ -86,6 +86,40 @@ def test_camera_resolution_is_configurable(cube_scene):
         CameraRig(cube_scene.model, width=4000, height=48)
 
 
+def test_render_context_leaves_out_only_meshes_nothing_draws(cube_scene, monkeypatch):
+    """The context is made without the hidden collision meshes (most of the scene's faces) and draws the
+    same pixels, segmentation and depth as one made from the whole model."""
+    import mujoco
+
+    from humanoidgen.sim import cameras
+
+    model = cube_scene.model
+    trimmed = cameras.drawn_meshes_only(model, mujoco.MjvOption())
+    assert trimmed is not model and trimmed.mesh_facenum.sum() < model.mesh_facenum.sum() / 2
+    assert model.mesh_facenum.min() > 0  # the simulated model is left alone
+    env = HumanoidEnv(cube_scene)
+    with CameraRig(model, width=96, height=72, geom_labels=cube_scene.geom_labels) as rig:
+        fast = rig.render_all(env.data)
+    monkeypatch.setattr(cameras, "drawn_meshes_only", lambda m, opt: m)
+    with CameraRig(model, width=96, height=72, geom_labels=cube_scene.geom_labels) as rig:
+        whole = rig.render_all(env.data)
+    for name in CAMERA_NAMES:
+        for part in ("rgb", "depth", "segmentation"):
+            assert np.array_equal(getattr(fast[name], part), getattr(whole[name], part)), (name, part)
+
+
+def test_recording_detail_draws_the_floor_on_a_coarser_grid():
+    """Full detail keeps the 5 cm floor grid (pictures, the physics model); the recording detail draws 20 cm."""
+    from humanoidgen.sim.meshes import FLOOR_GRID_M, RECORDING_FLOOR_GRID_M, recording_faces, visual_detail
+
+    full = SceneBuilder().build().model
+    with visual_detail(recording_faces(320, 240)):
+        light = SceneBuilder().build().model
+    floor = full.geom("floor").id
+    assert full.geom_size[floor][2] == FLOOR_GRID_M and light.geom_size[floor][2] == RECORDING_FLOOR_GRID_M
+    assert np.array_equal(full.geom_size[floor][:2], light.geom_size[floor][:2])
+
+
 # The pinch point (between thumb and index tips, wrist-yaw frame) and "palm down" within 20 degrees.
 PINCH_POINT = {"left": np.array([0.20, -0.03, 0.0]), "right": np.array([0.20, 0.03, 0.0])}
 # Measured reach limit: at table height with the palm down the fingertips reach to about x = -0.24 (the arm is

@@ -79,7 +79,7 @@ def dress_room(spec: mujoco.MjSpec, room: Room) -> None:
     centre = apply_point(to_task, np.array([sx / 2, sy / 2, 0.0]))
     floor.pos = [float(centre[0]), float(centre[1]), floor_z]
     floor.quat = yaw_quat(yaw_of(to_task)).tolist()
-    floor.size = [sx / 2, sy / 2, 0.05]
+    floor.size = [sx / 2, sy / 2, floor.size[2]]  # its rendering grid: the detail's (sim.meshes.floor_grid)
     tex = spec.texture("floor_tex")
     tex.rgb1, tex.rgb2 = list(room.floor_rgb[0]), list(room.floor_rgb[1])
     spec.material("floor_mat").texrepeat = [max(1.0, sx * 2), max(1.0, sy * 2)]

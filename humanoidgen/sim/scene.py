@@ -17,7 +17,7 @@ import numpy as np
 from humanoidgen.assets.robot_files import resolve_assets_root
 from humanoidgen.sim.cameras import add_cameras
 from humanoidgen.sim.layout import ROBOT_BASE_POS, TABLE_THICKNESS, TABLE_TOP_Z, TABLE_X, TABLE_Y
-from humanoidgen.sim.meshes import visual_faces
+from humanoidgen.sim.meshes import floor_grid, visual_faces
 from humanoidgen.sim.robot import build_robot_spec
 
 if TYPE_CHECKING:
@@ -115,7 +115,8 @@ class SceneBuilder:
         spec.add_material(name="table_leg_mat", rgba=[0.3, 0.3, 0.32, 1.0])
         world = spec.worldbody
         floor_z = TABLE_TOP_Z - self.surface_height
-        world.add_geom(name="floor", type=mujoco.mjtGeom.mjGEOM_PLANE, size=[4, 4, 0.05], pos=[0, 0, floor_z],
+        world.add_geom(name="floor", type=mujoco.mjtGeom.mjGEOM_PLANE, size=[4, 4, floor_grid()],
+                       pos=[0, 0, floor_z],
                        material="floor_mat")
         cx, cy = np.mean(TABLE_X), np.mean(TABLE_Y)
         hx, hy, ht = (TABLE_X[1] - TABLE_X[0]) / 2, (TABLE_Y[1] - TABLE_Y[0]) / 2, TABLE_THICKNESS / 2
