@@ -1,6 +1,6 @@
 """Depth images -> world-frame point clouds for DP3-style datasets.
 
-Pure numpy; no MuJoCo import. The conventions follow MuJoCo's cameras:
+Numpy and numba; no MuJoCo import. The conventions follow MuJoCo's cameras:
 
 * pinhole model with *vertical* field of view ``fovy`` and square pixels;
 * the camera looks along its local ``-z`` axis, ``+x`` is image right and
@@ -20,6 +20,7 @@ from functools import lru_cache
 from typing import NamedTuple, Sequence
 
 import numpy as np
+from numba import njit
 
 from humanoidgen.sim.fps import farthest_point_sampling
 
@@ -148,28 +149,54 @@ class DepthView(NamedTuple):
 
 def _cropped_points(depth, fovy_deg, cam_pos, cam_mat, cfg: PointCloudConfig) -> tuple[np.ndarray, np.ndarray]:
     """Pixel indices and world points of one view's pixels inside the crop box: `depth_to_points` followed
-    by `crop_box`, value for value, but computed only for valid pixels and cropped axis by axis (about 5x
-    faster on a 320x240 view, most of which is table or background)."""
+    by `crop_box`, value for value (the same double-precision expression, term by term), in one compiled
+    pass over the pixels that computes points for valid pixels only and stops at the first axis outside the
+    box (a 320x240 view: about 0.3 ms instead of numpy's 0.8)."""
     depth = np.asarray(depth)
     if depth.ndim != 2:
         raise ValueError(f"depth must be (H, W), got shape {depth.shape}")
     h, w = depth.shape
     k = intrinsics(w, h, fovy_deg)
     xn, yn = _pixel_rays(h, w, k[0, 0], k[1, 1], k[0, 2], k[1, 2])
-    d = depth.astype(np.float64).reshape(-1)
-    idx = np.flatnonzero(np.isfinite(d) & (d < cfg.far))
-    d = d[idx]
-    xd, yd = xn[idx] * d, yn[idx] * d
-    cam_mat = np.asarray(cam_mat, dtype=np.float64).reshape(3, 3)
-    cam_pos = np.asarray(cam_pos, dtype=np.float64).reshape(3)
-    axes = []
-    inside = np.ones(idx.shape[0], bool)
-    for axis in range(3):
-        m = cam_mat[axis]
-        c = xd * m[0] + yd * m[1] - d * m[2] + cam_pos[axis]  # the same expression as depth_to_points
-        inside &= (c >= cfg.crop_lo[axis]) & (c <= cfg.crop_hi[axis])
-        axes.append(c)
-    return idx[inside], np.stack([c[inside] for c in axes], axis=1)
+    if depth.dtype not in (np.float32, np.float64):
+        depth = depth.astype(np.float64)
+    idx = np.empty(h * w, np.int64)
+    pts = np.empty((h * w, 3))
+    n = _crop_pixels(np.ascontiguousarray(depth).reshape(-1), xn, yn,
+                     np.ascontiguousarray(cam_mat, dtype=np.float64).reshape(3, 3),
+                     np.ascontiguousarray(cam_pos, dtype=np.float64).reshape(3),
+                     np.asarray(cfg.crop_lo, np.float64), np.asarray(cfg.crop_hi, np.float64), float(cfg.far),
+                     idx, pts)
+    return idx[:n], pts[:n]
+
+
+@njit(cache=True, nogil=True)
+def _crop_pixels(depth, xn, yn, m, pos, lo, hi, far, idx, pts):  # pragma: no cover - compiled
+    """Writes the kept pixels' indices and points into idx and pts; returns how many. For each axis the
+    point is `xd * m[a, 0] + yd * m[a, 1] - d * m[a, 2] + pos[a]`, evaluated left to right as numpy does
+    (no fused multiply-add: numba compiles without fastmath)."""
+    n = 0
+    for i in range(depth.shape[0]):
+        d = np.float64(depth[i])
+        if not (np.isfinite(d) and d < far):
+            continue
+        xd = xn[i] * d
+        yd = yn[i] * d
+        x = xd * m[0, 0] + yd * m[0, 1] - d * m[0, 2] + pos[0]
+        if not (x >= lo[0] and x <= hi[0]):
+            continue
+        y = xd * m[1, 0] + yd * m[1, 1] - d * m[1, 2] + pos[1]
+        if not (y >= lo[1] and y <= hi[1]):
+            continue
+        z = xd * m[2, 0] + yd * m[2, 1] - d * m[2, 2] + pos[2]
+        if not (z >= lo[2] and z <= hi[2]):
+            continue
+        idx[n] = i
+        pts[n, 0] = x
+        pts[n, 1] = y
+        pts[n, 2] = z
+        n += 1
+    return n
 
 
 def _rgb_to_unit(rgb: np.ndarray, shape: tuple[int, int]) -> np.ndarray:
