@@ -4,7 +4,9 @@ after getting to a pre-approach pose any collision-free way. A mixin of Humanoid
 Ways to come in, tried in order (the first whose transit can also be planned wins):
 
 1. the straight line tracked back from the solved goal (the goal's arm posture), for APPROACH_DISTANCES;
-2. a pre-approach pose backed off along the axis and solved on its own (any arm posture, collisions avoided;
+2. straight lines from other directions that keep the object between thumb and fingers (from above, from the
+   front, square to the axis), for OTHER_WAY_DISTANCES: as cheap as 1 (no goal solve), so before 3;
+3. a pre-approach pose backed off along the axis and solved on its own (any arm posture, collisions avoided;
    the hand turned up to PRE_POSE_TURN_DEG if the exact orientation is out of reach there), for
    PRE_POSE_DISTANCES, with the straight (screw) motion tracked forward from it into the goal pose. A goal boxed
    in by joint limits, from which the line cannot be tracked back, is often reached this way from another posture.
@@ -30,7 +32,7 @@ from humanoidgen.planning.feedback import approach_advice
 from humanoidgen.planning.goal_targets import PoseTarget, pose_within
 from humanoidgen.planning.motion import JointPath, MotionError, first_collision, plan_arm_motion, track_poses
 from humanoidgen.planning.poses import Pose, screw_interpolate
-from humanoidgen.sim.layout import Side
+from humanoidgen.sim.layout import HAND_PREFIX, Side
 
 # Grasps and pinches come in straight along the approach axis over the first of these that fits (metres).
 APPROACH_DISTANCES = (0.08, 0.05, 0.03)
@@ -39,6 +41,10 @@ PRE_POSE_DISTANCES = (0.08, 0.05, 0.03, 0.02)
 PRE_POSE_TURN_DEG = 20.0  # a solved pre-pose may be turned this far from the goal's orientation
 WRAP_TOUCH = 0.003  # how far the open hand may press into a body it comes to wrap (m)
 PART_TOUCH = 0.002  # how far an approach may press into a movable part it comes to (m)
+# Where no way along the operation's axis fits: other directions that keep the object between thumb and fingers
+# (a block held out beside an open drawer: the left hand's way in along the block runs its wrist into the drawer).
+OTHER_WAY_DISTANCES = (0.05, 0.03)
+OTHER_WAY_MAX_COS = 0.7  # other directions at least ~45 deg off the axis and off each other
 APPROACH_BUDGET_S = 12.0  # no further way of coming in is tried after this long
 TRANSIT_TIME_LIMIT = 2.0  # RRT-Connect seconds per way of coming in after the first (the first gets the default)
 
@@ -51,6 +57,7 @@ class ComeIn:
     pre: tuple[np.ndarray, np.ndarray]  # the pre-pose (p, R)
     label: str  # "8 cm" or "5 cm from a solved pre-pose": for the log and for failure reasons
     posture: str | None = None  # finger posture to take at the pre-pose before coming in (None: as they are)
+    axis: np.ndarray | None = None  # the direction it comes in along, where not the operation's axis
 
 
 @dataclass
@@ -58,6 +65,7 @@ class ApproachPlan:
     legs: list[JointPath]  # the transit to the pre-pose, then the straight approach
     posture: str | None  # see ComeIn.posture
     label: str
+    axis: np.ndarray | None = None  # see ComeIn.axis
 
 
 class Approaches:
@@ -80,7 +88,7 @@ class Approaches:
                 reasons.append(f"{way.label}: no way to the pre-approach pose ({exc})")
                 first = False
                 continue
-            return ApproachPlan([transit, JointPath(way.path, "screw")], way.posture, way.label)
+            return ApproachPlan([transit, JointPath(way.path, "screw")], way.posture, way.label, way.axis)
         advice = approach_advice(side, reasons, target.p, target.approach_axis)
         raise MotionError("no straight approach to the target (" + "; ".join(reasons) + ")"
                           + (f". Suggestion: {advice}" if advice else ""))
@@ -100,6 +108,18 @@ class Approaches:
                     yield ComeIn(path, pre, label, posture)
                     continue
             reasons.append(f"{label}: {reason}")
+        for u, how in self._other_ways_in(side, target):
+            for distance in OTHER_WAY_DISTANCES:
+                pre = (p - distance * u, R)
+                back, reason = track_poses(self.kin, side, target.joint_q, screw_interpolate(p, R, *pre))
+                label = f"{distance * 100:.0f} cm {how}"
+                if not reason:
+                    path = np.vstack([back[::-1], target.joint_q])
+                    posture, reason = self._check_way_in(side, path, body, wrap)
+                    if not reason:
+                        yield ComeIn(path, pre, label, posture, axis=u)
+                        continue
+                reasons.append(f"{label}: {reason}")
         for distance in PRE_POSE_DISTANCES:
             label = f"{distance * 100:.0f} cm from a pre-approach pose solved on its own"
             solved = self.solver.solve(side, [PoseTarget(side, p - distance * axis, R, name="pre-approach pose")],
@@ -121,6 +141,43 @@ class Approaches:
                     yield ComeIn(path, pre, label, posture)
                     continue
             reasons.append(f"{label}: {reason}")
+
+    def _other_ways_in(self, side: Side, target: Pose) -> list[tuple[np.ndarray, str]]:
+        """Approach directions other than the operation's axis that keep the grip's closing line (thumb to index
+        at the goal) across the way in, so the object still comes in between thumb and fingers: from above, from
+        the robot's side, and square to the axis both ways; each as (unit direction of motion, how)."""
+        thumb, index = self._fingertips_at(side, target.joint_q)
+        t = index - thumb
+        if np.linalg.norm(t) < 1e-6:
+            return []
+        t = t / np.linalg.norm(t)
+        axis = np.asarray(target.approach_axis, float)
+        side_way = np.cross(t, axis)
+        candidates = [(np.array([0.0, 0.0, -1.0]), "from above"), (np.array([1.0, 0.0, 0.0]), "from the front"),
+                      (side_way, "square to the grip's axis"), (-side_way, "square to the grip's axis")]
+        out: list[tuple[np.ndarray, str]] = []
+        for v, how in candidates:
+            v = v - (v @ t) * t  # across the closing line
+            n = float(np.linalg.norm(v))
+            if n < 0.5:
+                continue
+            v = v / n
+            if v @ axis > OTHER_WAY_MAX_COS or any(v @ w > OTHER_WAY_MAX_COS for w, _ in out):
+                continue
+            out.append((v, how))
+        return out
+
+    def _fingertips_at(self, side: Side, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Thumb and index tip positions with the arm at `q` and the fingers as they are now."""
+        m = self.env.model
+        prefix = HAND_PREFIX[side]
+        self.kin.set_arm(side, q)
+        self.kin.forward()
+        try:
+            return (self.kin.data.xpos[m.body(f"{prefix}_thumb_distal").id].copy(),
+                    self.kin.data.xpos[m.body(f"{prefix}_index_intermediate").id].copy())
+        finally:
+            self.kin.sync(self.env.data.qpos)
 
     def _check_way_in(self, side: Side, path: np.ndarray, body: str | None, wrap: bool) -> tuple[str | None, str]:
         """(finger posture to come in with, "") when the approach path fits, else (None, why not). The body

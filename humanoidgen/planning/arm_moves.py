@@ -216,7 +216,9 @@ class ArmMoves(PartFollowing, Approaches, FingerRoom):
                 # Come in straight along the approach axis from a pre-pose reached any collision-free way.
                 plan = self._plan_approach(side, q0, target)
                 legs, posture = plan.legs, plan.posture
-                if "solved" in plan.label or posture is not None:  # a way in the plan's author did not ask for
+                if plan.axis is not None:
+                    self.approach_used[side] = plan.axis  # the way back out after the grip
+                if "solved" in plan.label or posture is not None or plan.axis is not None:  # not the way asked
                     self.events.append(f"the {side} hand came in {plan.label}"
                                        + (f" with the fingers {posture}" if posture else ""))
             else:
