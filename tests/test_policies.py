@@ -116,6 +116,19 @@ def test_dp_trains_and_eval_runs_episodes_judged_by_the_predicates(demos_zarr, t
     assert all(o.steps == 4 and not o.success for o in report.outcomes)  # 4 actions cannot close the drawer
     assert report.success_mean == 0.0 and report.outcomes[0].scene_seed == 100_000
     assert report.outcomes[1].scene_seed == 101_000
+    assert all("openness" in o.final for o in report.outcomes)  # where each episode ended, by the predicates
+
+
+def test_bench_recipes_are_valid_configs():
+    import importlib.util
+    from pathlib import Path
+
+    spec = importlib.util.spec_from_file_location("bench_policies", Path(__file__).parents[1] / "bench" / "policies.py")
+    bench = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(bench)
+    for recipe in bench.RECIPES.values():
+        for name, over in recipe.items():
+            policy_type(name).config(over)
 
 
 def test_bad_input_is_one_line_and_exit_1(demos_zarr, tmp_path):

@@ -88,7 +88,9 @@ def run_study(cfg: StudyConfig, progress: bool = True) -> list[dict]:
                        "epochs": int(state["epoch"]), "final_loss": float(state["losses"][-1]),
                        "train_seconds": result.seconds if result else None,
                        "seconds_per_epoch": result.seconds_per_epoch if result else None,
-                       "eval_seconds": time.perf_counter() - t0, "checkpoint": str(last)}
+                       "eval_seconds": time.perf_counter() - t0, "checkpoint": str(last),
+                       "episodes": [{"seed": o.seed, "scene_seed": o.scene_seed, "success": o.success,
+                                     "steps": o.steps, "final": o.final} for o in report.outcomes]}
                 rows.append(row)
                 if progress:
                     print(format_row(row), flush=True)

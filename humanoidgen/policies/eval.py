@@ -35,6 +35,7 @@ class EpisodeOutcome:
     success: bool
     steps: int
     seconds: float
+    final: str = ""  # the success predicates' details at the episode's end (e.g. "drawer 0 openness 0.07 (max 0.05)")
 
 
 @dataclass
@@ -92,7 +93,9 @@ def policy_obs(model, history: deque, device: str) -> dict[str, torch.Tensor]:
     return {k: v.to(device) for k, v in out.items()}
 
 
-def rollout(model, env, scene_seed: int, generator: torch.Generator, device: str, video=None) -> tuple[bool, int]:
+def rollout(model, env, scene_seed: int, generator: torch.Generator, device: str, video=None
+            ) -> tuple[bool, int, str]:
+    """One closed-loop episode: (success, actions taken, the predicates' details at its end)."""
     obs, info = env.reset(seed=scene_seed)
     history = deque([obs] * model.cfg.n_obs_steps, maxlen=model.cfg.n_obs_steps)
     steps, done = 0, False
@@ -109,7 +112,11 @@ def rollout(model, env, scene_seed: int, generator: torch.Generator, device: str
             if terminated or truncated:
                 done = True
                 break
-    return bool(info["success"]), steps
+    return bool(info["success"]), steps, final_detail(info)
+
+
+def final_detail(info: dict) -> str:
+    return "; ".join(str(c.get("detail", "")) for c in info.get("checks", []))
 
 
 def evaluate(run: Path, task: str | None = None, episodes: int = 20, seeds: tuple[int, ...] = (0, 1, 2),
@@ -158,13 +165,13 @@ def evaluate(run: Path, task: str | None = None, episodes: int = 20, seeds: tupl
                     video = _video(video_dir, path, seed, i, env.config.action_hz)
                     t0 = time.perf_counter()
                     try:
-                        ok, steps = rollout(model, env, EVAL_SEED_BASE + number,
-                                            torch.Generator().manual_seed(number), device, video)
+                        ok, steps, final = rollout(model, env, EVAL_SEED_BASE + number,
+                                                   torch.Generator().manual_seed(number), device, video)
                     finally:
                         if video is not None:
                             video.close()
                     report.outcomes.append(EpisodeOutcome(str(path), seed, EVAL_SEED_BASE + number, ok, steps,
-                                                          time.perf_counter() - t0))
+                                                          time.perf_counter() - t0, final))
                     bar.update(1)
                     done = report.outcomes
                     bar.set_postfix_str(f"success {sum(o.success for o in done)}/{len(done)}")

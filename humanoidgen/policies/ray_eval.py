@@ -47,11 +47,12 @@ def remote_episode(path: str, seed: int, i: int, device: str, max_steps: int | N
     video = _video(Path(video_dir) if video_dir else None, Path(path), seed, i, env.config.action_hz)
     t0 = time.perf_counter()
     try:
-        ok, steps = rollout(model, env, EVAL_SEED_BASE + number, torch.Generator().manual_seed(number), device, video)
+        ok, steps, final = rollout(model, env, EVAL_SEED_BASE + number, torch.Generator().manual_seed(number), device,
+                                   video)
     finally:
         if video is not None:
             video.close()
-    return EpisodeOutcome(path, seed, EVAL_SEED_BASE + number, ok, steps, time.perf_counter() - t0)
+    return EpisodeOutcome(path, seed, EVAL_SEED_BASE + number, ok, steps, time.perf_counter() - t0, final)
 
 
 def ray_outcomes(address: str, paths: list[Path], seeds: tuple[int, ...], episodes: int, device: str,
