@@ -11,8 +11,8 @@ So the ways out are tried in the simulation itself, from a snapshot, with nothin
 loosened to the grip's "pre" posture (a pinch opens only thumb and index), or opened, where they are, and the hand
 backed out the way in, off the part's edge away from its hinge, or along the hinge; then opened and backed out
 straight up, up by a sampled path, the way the part went, or not at all. The first that leaves the part where it
-was (within RELEASE_DRIFT) with the hand off it is run for real; where none does, the one off the part that moves
-it least. The extra cost is one simulated release where the usual way is fine.
+was, or further on the way the hand moved it (going back at most RELEASE_DRIFT), with the hand off it is run for
+real; where none does, the one off the part that lets it go back least. The extra cost is one simulated release where the usual way is fine.
 """
 
 from __future__ import annotations
@@ -38,7 +38,7 @@ from humanoidgen.sim.scene import SceneObject
 
 log = logging.getLogger(__name__)
 
-RELEASE_DRIFT = 0.02  # openness a part may move while the hand lets go of it
+RELEASE_DRIFT = 0.02  # openness a part may go back while the hand lets go of it
 TRIAL_SETTLE_S = 0.3  # after a way out is tried, the part is watched this long (a dragged lid swings on)
 BACK_OUT_SPEED = 0.3  # rad/s, as the retreat after a release
 
@@ -52,6 +52,11 @@ def let_go(planner, side: Side, part: SceneObject, follow: dict | None) -> None:
     if before is None:
         ways[0][1]()
         return
+    # Only a part going back counts: one going on the way the hand moved it (a lid let go low falls shut, as a
+    # plan may mean it to) is not undone. Moves toward high openness open, toward low openness close.
+    onward = 0.0
+    if follow is not None:
+        onward = 1.0 if follow_articulation(planner.env, follow).openness_of(follow["q_target"]) >= 0.5 else -1.0
     hook = planner.on_step
     start = take_snapshot(planner)
     tried: list[tuple[bool, float, int]] = []
@@ -61,7 +66,7 @@ def let_go(planner, side: Side, part: SceneObject, follow: dict | None) -> None:
         try:
             way()
             planner._settle(TRIAL_SETTLE_S)
-            drift = abs(measure() - before)
+            drift = max(0.0, (before - measure()) * onward) if onward else abs(measure() - before)
             touching = bool(finger_contacts(planner.env.model, planner.env.data, side, part.body))
         except (MotionError, PlanningError) as exc:
             log.debug("letting go %s: no way (%s)", ways[k][0], exc)
@@ -83,9 +88,9 @@ def let_go(planner, side: Side, part: SceneObject, follow: dict | None) -> None:
     _, drift, k = min(tried)
     ways[k][1]()
     if k:
-        usual = "" if first_drift is None else f" (backing out as usual moved it by {first_drift:.2f})"
-        planner.events.append(f"the {side} hand let go of {part.type_name} {part.obj_id} {ways[k][0]}, which moved "
-                              f"it by {drift:.2f} in openness{usual}")
+        usual = "" if first_drift is None else f" (backing out as usual: by {first_drift:.2f})"
+        planner.events.append(f"the {side} hand let go of {part.type_name} {part.obj_id} {ways[k][0]}, which let "
+                              f"it go back by {drift:.2f} in openness{usual}")
 
 
 def _openness_gauge(planner, part: SceneObject, follow: dict | None) -> Callable[[], float | None]:
