@@ -81,3 +81,14 @@ def test_a_stack_takes_exactly_its_frames():
     with pytest.raises(ValueError):
         stream.write(np.ones((4, 5), np.uint16))
     assert stream.finish()
+
+
+def test_warm_up_fills_the_caches_and_never_raises():
+    """collect warms the rendering process while the first attempt plans: the compiled point-cloud code is
+    loaded for the depth type rendering gives (float32), and a task it cannot build costs nothing but time."""
+    from humanoidgen.episodes.image_job import warm_up
+    from humanoidgen.sim.pointcloud import _crop_pixels
+
+    warm_up("no_such_task", SMALL)  # no exception
+    warm_up("block_stack_single", SMALL)
+    assert any(str(sig[0]).startswith("array(float32") for sig in _crop_pixels.signatures)

@@ -119,6 +119,10 @@ def collect(task: str, n: int, out: Path, workers: int = 1, seed: int = 0, resum
     # filling memory.
     writer = ThreadPoolExecutor(1, thread_name_prefix="hgen-write")
     writing: list[Future] = []
+    if recorder.renders:
+        from humanoidgen.episodes.image_job import warm_up
+
+        writer.submit(warm_up, task, recorder, tally.next_seed)  # while the first attempts plan
     try:
         while not tally.done:
             seeds = tally.seeds()[: max(workers, 1)]
