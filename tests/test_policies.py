@@ -18,7 +18,7 @@ from humanoidgen.episodes.recorder import RecorderConfig  # noqa: E402
 from humanoidgen.episodes.task_episode import EpisodeRequest, run_task_episode  # noqa: E402
 from humanoidgen.policies import checkpoint as ck  # noqa: E402
 from humanoidgen.policies.data import DataError, read_demos, sequence_index  # noqa: E402
-from humanoidgen.policies.eval import evaluate  # noqa: E402
+from humanoidgen.policies.eval import EvalError, evaluate, with_action_steps  # noqa: E402
 from humanoidgen.policies.registry import policy_type  # noqa: E402
 from humanoidgen.policies.train import train  # noqa: E402
 
@@ -91,6 +91,11 @@ def test_dp3_tiny_training_lowers_the_loss_and_reloads_to_identical_actions(demo
     assert torch.equal(out_a, out_b)
     other = a.predict_action(obs, generator=torch.Generator().manual_seed(8))["action"]
     assert not torch.equal(out_a, other)  # sampling noise matters, so equality above is no accident
+    # Executing fewer of the predicted actions (eval --action-steps): the same prediction, its first 3.
+    fewer = with_action_steps(b, 3).predict_action(obs, generator=torch.Generator().manual_seed(7))["action"]
+    assert torch.equal(fewer, out_a[:, :3])
+    with pytest.raises(EvalError, match="action-steps must be in 1..6"):
+        with_action_steps(b, 7)
 
 
 def test_interrupted_training_resumes_where_it_stopped(demos_zarr, tmp_path):

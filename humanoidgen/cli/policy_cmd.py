@@ -121,6 +121,8 @@ def eval(  # noqa: A001 - the command is called eval
     ray_address: str | None = typer.Option(None, "--ray", help="Each episode a Ray task: 'local', 'auto' or "
                                                                "'ray://host:port' (checkpoints on a shared folder)."),
     ray_gpus: float = typer.Option(0.0, min=0.0, help="With --ray, GPUs per episode."),
+    action_steps: int | None = typer.Option(None, "--action-steps", help="Actions executed per prediction "
+                                                                          "(default: the run's n_action_steps)."),
 ) -> None:
     """Run the policy in its task and report success mean and std over seeds and checkpoints.
 
@@ -140,7 +142,8 @@ def eval(  # noqa: A001 - the command is called eval
         return
     try:
         report = evaluate(run, task, episodes, seed_list, checkpoints=checkpoint or None, device=device,
-                          video_dir=video, max_steps=max_steps, ray_address=ray_address, ray_gpus=ray_gpus)
+                          video_dir=video, max_steps=max_steps, ray_address=ray_address, ray_gpus=ray_gpus,
+                          action_steps=action_steps)
     except _errors() as exc:
         _fail(_one_line(exc))
         return

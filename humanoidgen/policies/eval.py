@@ -69,6 +69,20 @@ class EvalReport:
                 "outcomes": [asdict(o) for o in self.outcomes]}
 
 
+def with_action_steps(model, action_steps: int | None):
+    """The policy executing `action_steps` of its predicted actions per prediction (None: its config's). Fewer
+    than trained with is allowed (a new prediction sooner); more than fit in the horizon is refused."""
+    if action_steps is None:
+        return model
+    cfg = model.cfg
+    most = cfg.horizon - cfg.n_obs_steps + 1
+    if not 1 <= action_steps <= most:
+        raise EvalError(f"--action-steps must be in 1..{most} for horizon {cfg.horizon} and {cfg.n_obs_steps} "
+                        f"observation steps, got {action_steps}")
+    model.cfg = cfg.model_copy(update={"n_action_steps": action_steps})
+    return model
+
+
 def env_config_for(policy: str, cfg, meta: dict, max_steps: int | None = None) -> TaskEnvConfig:
     """The environment observing what the policy was trained on, at the data's action rate."""
     rec = dict(meta.get("recorder") or {})
@@ -122,10 +136,11 @@ def final_detail(info: dict) -> str:
 def evaluate(run: Path, task: str | None = None, episodes: int = 20, seeds: tuple[int, ...] = (0, 1, 2),
              checkpoints: list[Path] | None = None, device: str = "auto", video_dir: Path | None = None,
              progress: bool = True, max_steps: int | None = None, ray_address: str | None = None,
-             ray_gpus: float = 0.0) -> EvalReport:
+             ray_gpus: float = 0.0, action_steps: int | None = None) -> EvalReport:
     """Evaluate a run's checkpoints (all kept ones, or `checkpoints`) on its task; `max_steps` shortens
-    episodes below the task's time limit (for quick checks); `ray_address`: each episode a Ray task
-    (`ray_eval`), with the same outcomes."""
+    episodes below the task's time limit (for quick checks); `action_steps`: actions executed per prediction
+    (default: each checkpoint's n_action_steps); `ray_address`: each episode a Ray task (`ray_eval`), with the
+    same outcomes."""
     from tqdm import tqdm
 
     from humanoidgen.envs.task_env import HumanoidTaskEnv
@@ -137,6 +152,7 @@ def evaluate(run: Path, task: str | None = None, episodes: int = 20, seeds: tupl
     device = resolve_device(device)
     paths = [Path(p) for p in checkpoints] if checkpoints else ck.run_checkpoints(run)
     loaded = [(p, *ck.load_policy(p, device)) for p in paths]
+    loaded = [(p, with_action_steps(model, action_steps), meta) for p, model, meta in loaded]
     tasks = {meta["task"] for _, _, meta in loaded}
     if len(tasks) > 1:
         raise EvalError(f"the checkpoints were trained on different tasks ({', '.join(sorted(tasks))})")
@@ -151,7 +167,7 @@ def evaluate(run: Path, task: str | None = None, episodes: int = 20, seeds: tupl
         with tqdm(total=len(paths) * len(seeds) * episodes, unit="episode", desc=f"eval {policy} {trained} (ray)",
                   disable=not progress, dynamic_ncols=True) as bar:
             report.outcomes = ray_outcomes(ray_address, paths, tuple(seeds), episodes, device, max_steps, video_dir,
-                                           bar, ray_gpus)
+                                           bar, ray_gpus, action_steps)
         return report
     env = HumanoidTaskEnv(trained, config=env_config_for(policy, loaded[0][1].cfg, loaded[0][2], max_steps),
                           render_mode="rgb_array" if video_dir is not None else None)
