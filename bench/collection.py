@@ -30,6 +30,7 @@ CONTROL_HZ = 50
 def run(task: str, n: int, recorder: RecorderConfig | None, max_attempts: int) -> dict:
     from humanoidgen.episodes.dataset import EpisodeStore
 
+    load_before = os.getloadavg()[0]
     with tempfile.TemporaryDirectory(prefix="hgen-bench-") as tmp:
         out = Path(tmp) / "ds"
         stats = collect(task, n, out, recorder=recorder or RecorderConfig(every=CONTROL_HZ // 10),
@@ -38,7 +39,9 @@ def run(task: str, n: int, recorder: RecorderConfig | None, max_attempts: int) -
         errors = [a.get("error", "") for a in EpisodeStore(out).attempts() if not a["success"]]
     kept = stats.kept
     row = {"kept": kept, "tried": stats.tried, "seconds_per_kept": round(stats.wall_seconds / kept, 2) if kept else None,
-           "mb_per_episode": round(size / kept / 1e6, 2) if kept else None}
+           "mb_per_episode": round(size / kept / 1e6, 2) if kept else None,
+           # other work on the machine skews times: the 1-minute load average before and after the row
+           "load_average": [round(load_before, 2), round(os.getloadavg()[0], 2)]}
     if errors:
         row["failures"] = [e[:200] for e in errors]
     return row
