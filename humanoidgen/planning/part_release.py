@@ -10,9 +10,9 @@ So the ways out are tried in the simulation itself, from a snapshot, with nothin
 (unhook along the grip's attach axis, or back out the way the hand came in, opening on the way); then the fingers
 loosened to the grip's "pre" posture (a pinch opens only thumb and index), or opened, where they are, and the hand
 backed out the way in, off the part's edge away from its hinge, or along the hinge; then opened and backed out
-straight up, up by a sampled path, the way the part went, or not at all. The usual way runs for real
-wherever it leaves the part where it was, or further on the way the hand moved it (going back at most
-RELEASE_DRIFT); otherwise the first other way that does so with the hand off the part; where none does, the one
+straight up, up by a sampled path, the way the part went, or not at all. The first that leaves the part
+where it was, or further on the way the hand moved it (going back at most RELEASE_DRIFT), with the hand off it
+runs for real (letting go to grip again at once, the usual way may leave the hand on it); where none does, the one
 off the part that lets it go back least. The extra cost is one simulated release where the usual way is fine.
 """
 
@@ -79,15 +79,16 @@ def let_go(planner, side: Side, part: SceneObject, follow: dict | None) -> None:
             first_drift = drift
         log.debug("letting go %s: drift %.3f, %s", ways[k][0], drift, "touching" if touching else "off the part")
         tried.append((touching, drift, k))
-        # The usual way stands wherever it does not let the part go back, even with the hand still on it (a
-        # screen left where the arm's reach ends is gripped again from there; leaving it off the part instead,
-        # the screen rose 0.56 -> 0.72 before the second grip). Another way must also leave the part.
-        if drift <= RELEASE_DRIFT and (k == 0 or not touching):
+        if drift <= RELEASE_DRIFT and (not touching or (k == 0 and planner.regripping)):
             break
     if not tried:
         ways[0][1]()
         return
-    if tried[-1][1] <= RELEASE_DRIFT and (tried[-1][2] == 0 or not tried[-1][0]):
+    if tried[-1][1] <= RELEASE_DRIFT and (not tried[-1][0] or (tried[-1][2] == 0 and planner.regripping)):
+        # A way that leaves the part where it was, off it. Letting go to grip again at once, the usual way may
+        # leave the hand on it: leaving a screen where the arm's reach ends, off it, let it rise 0.56 -> 0.72
+        # before the second grip. Letting go for good, the hand must be off it: left on the safe's door, the
+        # plan's next move started in contact and found no path.
         _, drift, k = tried[-1]
     else:
         # Off the part first: a hand left on it drags it on the plan's next move (measured: a lid left pressed

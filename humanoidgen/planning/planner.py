@@ -109,6 +109,7 @@ class HumanoidMotionPlanner(GoalSearch, ArmMoves):
     wider_search: bool = True  # goal_search rungs 3-4 (fingers near the table, the wrist's freedom); off to compare
     part_moved: dict = field(default_factory=dict)  # side -> the follow dict of the part the hand last moved
     approach_used: dict = field(default_factory=dict)  # side -> direction the last grip came in along, if not its axis
+    regripping: bool = False  # the hand lets go of a part to grip it again at once (planning/regrip.py)
     regrips_left: int = MAX_REGRIPS  # how many more times a held part may be let go and gripped again on one move
 
     def __post_init__(self) -> None:

@@ -51,7 +51,11 @@ def _go_on(planner: HumanoidMotionPlanner, side: Side, regrip: dict) -> None:
         f"grips it again and moves it on to {regrip['openness']:g}")
     planner.regrips_left -= 1
     try:
-        planner.open_hand(side)
+        planner.regripping = True  # letting go to grip again: the hand may stay on the part (part_release)
+        try:
+            planner.open_hand(side)
+        finally:
+            planner.regripping = False
         why = []
         for v in (verb, "pinch" if verb == "grasp" else "grasp"):
             try:
