@@ -10,6 +10,8 @@ snapshot, and the one that leaves the part where it was is run for real.
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -105,24 +107,13 @@ def test_no_event_when_the_usual_way_is_clean(laptop_scene, monkeypatch):
     assert len(steps) == round(0.1 * env.control_hz)
 
 
-LIFT_AND_LET_GO = """
-def step(planner):
-    planner.hand_pre_pinch("right")
-    c = planner.generate_constraints(obj_name="laptop", obj_id=0, action="pinch", hand_name="right")
-    _, pose = planner.generate_end_effector_pose(c, "right")
-    planner.move_to_pose_with_screw(pose, "right", attach_obj=False)
-    planner.hand_pinch("right", pinch_object="laptop", obj_id=0)
-    c = planner.generate_constraints(obj_name="laptop", obj_id=0, action="pinch", hand_name="right", openness=0.85)
-    _, pose = planner.generate_end_effector_pose(c, "right")
-    planner.move_to_pose_with_screw(pose, "right", attach_obj=True, object_name="laptop", object_id=0)
-    planner.open_hand("right")
-    planner.move_to_pose_with_screw(planner.right_hand_init_pose, "right", attach_obj=False)
-"""
+# A corpus plan (written outside the planner): pinch the screen edge, lift it to 0.85, open the hand, go home.
+LIFT_AND_LET_GO = Path(__file__).resolve().parents[1] / "bench" / "foreign_plans" / "open_laptop_easy" / "alt_pinch_open.py"
 
 
 @pytest.mark.slow
 def test_a_lifted_screen_stays_up_when_the_hand_lets_go(tmp_path, monkeypatch):
-    result = run_plan(tmp_path, "open_laptop_easy", 1, LIFT_AND_LET_GO)
+    result = run_plan(tmp_path, "open_laptop_easy", 1, LIFT_AND_LET_GO.read_text())
     assert result.success, result.message
     assert any("let go of laptop 0" in e and "backing out as usual: by" in e for e in result.events), result.events
 

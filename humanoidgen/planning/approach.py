@@ -97,29 +97,9 @@ class Approaches:
         """Every way of coming in that fits, most direct first; appends why the others do not fit."""
         p, R, axis, body = target.p, target.R, target.approach_axis, target.approach_object
         wrap = target.posture == "wrap"
-        for distance in APPROACH_DISTANCES:
-            pre = (p - distance * axis, R)
-            back, reason = track_poses(self.kin, side, target.joint_q, screw_interpolate(p, R, *pre))
-            label = f"{distance * 100:.0f} cm"
-            if not reason:
-                path = np.vstack([back[::-1], target.joint_q])
-                posture, reason = self._check_way_in(side, path, body, wrap)
-                if not reason:
-                    yield ComeIn(path, pre, label, posture)
-                    continue
-            reasons.append(f"{label}: {reason}")
+        yield from self._lines_in(side, target, axis, APPROACH_DISTANCES, "", reasons)
         for u, how in self._other_ways_in(side, target):
-            for distance in OTHER_WAY_DISTANCES:
-                pre = (p - distance * u, R)
-                back, reason = track_poses(self.kin, side, target.joint_q, screw_interpolate(p, R, *pre))
-                label = f"{distance * 100:.0f} cm {how}"
-                if not reason:
-                    path = np.vstack([back[::-1], target.joint_q])
-                    posture, reason = self._check_way_in(side, path, body, wrap)
-                    if not reason:
-                        yield ComeIn(path, pre, label, posture, axis=u)
-                        continue
-                reasons.append(f"{label}: {reason}")
+            yield from self._lines_in(side, target, u, OTHER_WAY_DISTANCES, f" {how}", reasons, other=True)
         for distance in PRE_POSE_DISTANCES:
             label = f"{distance * 100:.0f} cm from a pre-approach pose solved on its own"
             solved = self.solver.solve(side, [PoseTarget(side, p - distance * axis, R, name="pre-approach pose")],
@@ -139,6 +119,23 @@ class Approaches:
                 posture, reason = self._check_way_in(side, path, body, wrap)
                 if not reason:
                     yield ComeIn(path, pre, label, posture)
+                    continue
+            reasons.append(f"{label}: {reason}")
+
+    def _lines_in(self, side: Side, target: Pose, u: np.ndarray, distances: tuple[float, ...], how: str,
+                  reasons: list[str], other: bool = False) -> Iterator[ComeIn]:
+        """The straight lines into the goal along `u`, tracked back from the goal's arm posture over `distances`,
+        that fit (`other`: `u` is not the operation's axis); appends why the others do not."""
+        p, R, body = target.p, target.R, target.approach_object
+        for distance in distances:
+            pre = (p - distance * u, R)
+            back, reason = track_poses(self.kin, side, target.joint_q, screw_interpolate(p, R, *pre))
+            label = f"{distance * 100:.0f} cm{how}"
+            if not reason:
+                path = np.vstack([back[::-1], target.joint_q])
+                posture, reason = self._check_way_in(side, path, body, target.posture == "wrap")
+                if not reason:
+                    yield ComeIn(path, pre, label, posture, axis=u if other else None)
                     continue
             reasons.append(f"{label}: {reason}")
 

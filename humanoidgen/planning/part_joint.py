@@ -49,17 +49,26 @@ def point_motion(env, follow: dict, step: float) -> np.ndarray:
     return np.zeros(3) if n < 1e-6 else v / n
 
 
+def hinge_line(model: mujoco.MjModel, data: mujoco.MjData, joint: str) -> tuple[np.ndarray, np.ndarray] | None:
+    """A hinge joint's axis (unit, world frame) and a point on it, where the kinematics in `data` have the part
+    now; None for a joint that is not a hinge (a drawer's slide)."""
+    jid = model.joint(joint).id
+    if model.jnt_type[jid] != mujoco.mjtJoint.mjJNT_HINGE:
+        return None
+    body = model.jnt_bodyid[jid]
+    R = data.xmat[body].reshape(3, 3)
+    hinge = R @ model.jnt_axis[jid]
+    return hinge / np.linalg.norm(hinge), data.xpos[body] + R @ model.jnt_pos[jid]
+
+
 def rolls_about_joint(model: mujoco.MjModel, data: mujoco.MjData, joint: str, axis: np.ndarray,
                       centre: np.ndarray, tol_m: float = 0.015, tol_deg: float = 10.0) -> bool:
     """Whether a grip's roll axis (through `centre`) is the part's own hinge axis: a pinched knob. Rolling the
     grip about it would only undo the part's turn, so such a grip does not roll."""
-    jid = model.joint(joint).id
-    if model.jnt_type[jid] != mujoco.mjtJoint.mjJNT_HINGE:
+    line = hinge_line(model, data, joint)
+    if line is None:
         return False
-    body = model.jnt_bodyid[jid]
-    R = data.xmat[body].reshape(3, 3)
-    hinge = R @ model.jnt_axis[jid]
-    anchor = data.xpos[body] + R @ model.jnt_pos[jid]
+    hinge, anchor = line
     a = np.asarray(axis, float) / np.linalg.norm(axis)
     if abs(float(a @ hinge)) < np.cos(np.radians(tol_deg)):
         return False

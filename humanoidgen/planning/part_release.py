@@ -21,7 +21,6 @@ from __future__ import annotations
 import logging
 from collections.abc import Callable
 
-import mujoco
 import numpy as np
 
 from humanoidgen.objects.describe import openness
@@ -30,7 +29,7 @@ from humanoidgen.planning.arm_moves import RETREAT_DISTANCE, PlanningError
 from humanoidgen.planning.hand_ops import finger_contacts
 from humanoidgen.planning.motion import MotionError, plan_arm_motion, time_dense_path
 from humanoidgen.planning.paths import time_parametrize
-from humanoidgen.planning.part_joint import follow_articulation, follow_openness, point_motion
+from humanoidgen.planning.part_joint import follow_articulation, follow_openness, hinge_line, point_motion
 from humanoidgen.planning.snapshot import restore_snapshot, take_snapshot
 from humanoidgen.objects.hands import HAND_POSTURES
 from humanoidgen.sim.action import HAND_SLICE
@@ -54,14 +53,13 @@ def let_go(planner, side: Side, part: SceneObject, follow: dict | None) -> None:
         ways[0][1]()
         return
     # Only a part going back counts: one going on the way the hand moved it (a lid let go low falls shut, as a
-    # plan may mean it to) is not undone. Moves toward high openness open, toward low openness close.
-    onward = 0.0
-    if follow is not None:
-        onward = 1.0 if follow_articulation(planner.env, follow).openness_of(follow["q_target"]) >= 0.5 else -1.0
+    # plan may mean it to) is not undone.
+    onward = 0.0 if follow is None else 1.0 if _opens(planner, follow) else -1.0
     hook = planner.on_step
     start = take_snapshot(planner)
     tried: list[tuple[bool, float, int]] = []
     first_drift = None
+    chosen = None
     for k, (_, way) in enumerate(ways):
         planner.on_step = None  # a trial: nothing of it is recorded
         try:
@@ -79,21 +77,19 @@ def let_go(planner, side: Side, part: SceneObject, follow: dict | None) -> None:
             first_drift = drift
         log.debug("letting go %s: drift %.3f, %s", ways[k][0], drift, "touching" if touching else "off the part")
         tried.append((touching, drift, k))
-        if drift <= RELEASE_DRIFT and (not touching or (k == 0 and planner.regripping)):
-            break
-    if not tried:
-        ways[0][1]()
-        return
-    if tried[-1][1] <= RELEASE_DRIFT and (not tried[-1][0] or (tried[-1][2] == 0 and planner.regripping)):
         # A way that leaves the part where it was, off it. Letting go to grip again at once, the usual way may
         # leave the hand on it: leaving a screen where the arm's reach ends, off it, let it rise 0.56 -> 0.72
         # before the second grip. Letting go for good, the hand must be off it: left on the safe's door, the
         # plan's next move started in contact and found no path.
-        _, drift, k = tried[-1]
-    else:
-        # Off the part first: a hand left on it drags it on the plan's next move (measured: a lid left pressed
-        # shut came back to 0.46 as the hand went home); then the least drift.
-        _, drift, k = min(tried)
+        if drift <= RELEASE_DRIFT and (not touching or (k == 0 and planner.regripping)):
+            chosen = tried[-1]
+            break
+    if not tried:
+        ways[0][1]()
+        return
+    # Else off the part first: a hand left on it drags it on the plan's next move (measured: a lid left pressed
+    # shut came back to 0.46 as the hand went home); then the least drift.
+    _, drift, k = chosen or min(tried)
     ways[k][1]()
     if k:
         usual = "" if first_drift is None else f" (backing out as usual: by {first_drift:.2f})"
@@ -190,15 +186,13 @@ def _hinge_away(planner, side: Side, part: SceneObject, follow: dict | None) -> 
     hand (moving along it cannot turn the part); None for a slide."""
     m, d = planner.env.model, planner.env.data
     joint = follow["joint"] if follow is not None else f"{part.body}_{part.annotations.articulation.joint}"
-    jid = m.joint(joint).id
-    if m.jnt_type[jid] != mujoco.mjtJoint.mjJNT_HINGE:
+    line = hinge_line(m, d, joint)
+    if line is None:
         return None
-    body = m.jnt_bodyid[jid]
-    hinge = d.xmat[body].reshape(3, 3) @ m.jnt_axis[jid]
-    hinge = hinge / np.linalg.norm(hinge)
+    hinge, anchor = line
     planner.kin.sync(d.qpos)
     p, _ = planner.kin.ee_pose(side)
-    return hinge if float((p - d.xpos[body]) @ hinge) >= 0.0 else -hinge
+    return hinge if float((p - anchor) @ hinge) >= 0.0 else -hinge
 
 
 def _off_the_edge(planner, side: Side, follow: dict | None) -> np.ndarray | None:
@@ -207,15 +201,10 @@ def _off_the_edge(planner, side: Side, follow: dict | None) -> np.ndarray | None
     hinge."""
     if follow is None:
         return None
-    m, d = planner.env.model, planner.env.data
-    jid = m.joint(follow["joint"]).id
-    if m.jnt_type[jid] != mujoco.mjtJoint.mjJNT_HINGE:
+    line = hinge_line(planner.env.model, planner.env.data, follow["joint"])
+    if line is None:
         return None
-    body = m.jnt_bodyid[jid]
-    R = d.xmat[body].reshape(3, 3)
-    hinge = R @ m.jnt_axis[jid]
-    hinge = hinge / np.linalg.norm(hinge)
-    anchor = d.xpos[body] + R @ m.jnt_pos[jid]
+    hinge, anchor = line
     obj = planner.env.scene.object(*follow["obj"])
     grip = get_point_in_env(planner.env, follow["part_point"], obj.type_name, obj.obj_id)
     out = grip - anchor
@@ -224,11 +213,15 @@ def _off_the_edge(planner, side: Side, follow: dict | None) -> np.ndarray | None
     return out / n if n > 1e-3 else None
 
 
+def _opens(planner, follow: dict) -> bool:
+    """Whether the hand's move opened the part: moves toward high openness open, toward low openness close."""
+    return follow_articulation(planner.env, follow).openness_of(follow["q_target"]) >= 0.5
+
+
 def _part_onward(planner, follow: dict) -> np.ndarray | None:
     """The way the grip point went as the hand moved the part (toward the openness asked); at the part's end stop,
     on the same way (into the stop)."""
-    wanted = follow_articulation(planner.env, follow).openness_of(follow["q_target"])
-    step = 0.02 if wanted >= 0.5 else -0.02
+    step = 0.02 if _opens(planner, follow) else -0.02
     u = point_motion(planner.env, follow, step)
     if np.linalg.norm(u) == 0:
         u = -point_motion(planner.env, follow, -step)
