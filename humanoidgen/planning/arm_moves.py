@@ -12,6 +12,9 @@ from humanoidgen.objects.hands import HAND_POSTURES
 from humanoidgen.planning.approach import APPROACH_DISTANCES, WRAP_TOUCH, Approaches  # noqa: F401 (re-exported)
 from humanoidgen.planning.feedback import motion_advice
 from humanoidgen.planning import placing, shared_hold
+from humanoidgen.planning.approach import PRE_POSE_TURN_DEG
+from humanoidgen.planning.drop_in import drop_in, object_geoms
+from humanoidgen.planning.goal_targets import pose_within
 from humanoidgen.planning.hand_ops import contents, finger_contacts, is_held
 from humanoidgen.planning.motion import (
     JointPath,
@@ -23,9 +26,9 @@ from humanoidgen.planning.part_grip import FOLLOW_ENOUGH, PartFollowing  # noqa:
 from humanoidgen.planning.part_joint import follow_articulation, follow_openness
 from humanoidgen.planning.paths import time_parametrize
 from humanoidgen.planning.poses import Pose
-from humanoidgen.planning.finger_room import FingerRoom
+from humanoidgen.planning.finger_room import OPEN_CLEARANCE_M, FingerRoom, finger_sweep_clearance
 from humanoidgen.sim.action import ARM_SLICE, HAND_SLICE
-from humanoidgen.sim.geometry import rotation_angle
+from humanoidgen.sim.geometry import mat_to_quat, rotation_angle
 from humanoidgen.sim.layout import SIDES, Side
 from humanoidgen.sim.scene import SceneObject
 
@@ -165,6 +168,7 @@ class ArmMoves(PartFollowing, Approaches, FingerRoom):
 
     def _plan_side(self, side: Side, target: Pose, path_constraints: list = ()) -> np.ndarray:
         t0 = time.perf_counter()
+        self.goal_moved.pop(side, None)
         try:
             with self._touch_for(side, target):
                 return self._plan_side_timed(side, target, path_constraints)
@@ -260,8 +264,13 @@ class ArmMoves(PartFollowing, Approaches, FingerRoom):
         try:
             return [plan(q0)]
         except MotionError as exc:
-            if self.holding[side] is not None or path_constraints:
+            if path_constraints:
                 raise
+            if self.holding[side] is not None:
+                legs = self._carry_into(side, q0, target) if self._carries(side) else None
+                if legs is None:
+                    raise
+                return legs
             first = exc
         self.kin.set_arm(side, q0)
         self.kin.forward()
@@ -275,6 +284,54 @@ class ArmMoves(PartFollowing, Approaches, FingerRoom):
         self.events.append(f"the {side} hand rose {RISE_FIRST_M * 100:.0f} cm first: the way from where it was "
                            "is blocked")
         return legs
+
+    def _carry_into(self, side: Side, q0: np.ndarray, target: Pose) -> list[JointPath] | None:
+        """A carried object's goal inside a deep container, out of the hand's way (`drop_in`): the object's centre
+        straight above that goal, clear of the container's top, where letting go drops it in; None if that is not
+        it. The hand keeps its present orientation if it can (a pinched block swung about slips), else takes the
+        goal's."""
+        held = self.holding[side]
+        p_hand, R_hand = self.env.hand_pose(side)
+        p_obj, R_obj = placing.object_pose(self.env, held)
+        centre = target.p + target.R @ R_hand.T @ (p_obj - p_hand)  # where the plan puts the object's centre
+        way = drop_in(self.env, held, centre, target.R @ R_hand.T @ R_obj)
+        if way is None:
+            return None
+        what = f"{way.container.type_name} {way.container.obj_id}"
+        # Hand orientations to try and where the hand goes with each for the object's centre to be at `centre`.
+        hands = [(R_hand, centre - (p_obj - p_hand)), (target.R, target.p)]
+        for dz_index in range(len(way.raises(held, centre, R_obj))):
+            for R, p in hands:
+                dz = way.raises(held, centre, R @ R_hand.T @ R_obj)[dz_index]
+                goal = p + np.array([0.0, 0.0, dz])
+                solved = self.solver.solve(side, pose_within(side, goal, R, PRE_POSE_TURN_DEG,
+                                                             f"{held.type_name} {held.obj_id} above {what}"),
+                                           q0, self.nominal[side])
+                if not solved.success or not self._opens_clear(side, solved.q, way.container):
+                    continue
+                try:
+                    leg = plan_arm_motion(self.kin, self.collisions, side, q0, (solved.ee_pos, solved.ee_mat),
+                                          q_goal=solved.q, seed=self.seed)
+                except MotionError:
+                    continue
+                self.goal_moved[side] = Pose(solved.ee_pos, mat_to_quat(solved.ee_mat), joint_q=solved.q, side=side)
+                rise = float(solved.ee_pos[2] - target.p[2])
+                self.events.append(f"the {side} hand brought {held.type_name} {held.obj_id} {rise * 100:.0f} cm above "
+                                   f"where asked, clear of {what}'s top: no way leads down between its walls; let go "
+                                   "there, it drops in")
+                return [leg]
+        return None
+
+    def _opens_clear(self, side: Side, q: np.ndarray, obj: SceneObject) -> bool:
+        """Whether the hand, with the arm at `q`, can open its fingers fully without coming within
+        OPEN_CLEARANCE_M of `obj`."""
+        self.kin.set_arm(side, q)
+        try:
+            d, _ = finger_sweep_clearance(self.kin, self.collisions, side, self.action[HAND_SLICE[side]].copy(),
+                                          np.array(HAND_POSTURES["open"]), object_geoms(self.env.model, obj))
+        finally:
+            self.kin.sync(self.env.data.qpos)
+        return d >= OPEN_CLEARANCE_M
 
     def _part_openness(self, target: Pose) -> float | None:
         if target.follow is None:

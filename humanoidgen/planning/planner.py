@@ -109,6 +109,7 @@ class HumanoidMotionPlanner(GoalSearch, ArmMoves):
     wider_search: bool = True  # goal_search rungs 3-4 (fingers near the table, the wrist's freedom); off to compare
     part_moved: dict = field(default_factory=dict)  # side -> the follow dict of the part the hand last moved
     approach_used: dict = field(default_factory=dict)  # side -> direction the last grip came in along, if not its axis
+    goal_moved: dict = field(default_factory=dict)  # side -> the pose a move went to instead of the one asked (drop_in)
     regripping: bool = False  # the hand lets go of a part to grip it again at once (planning/regrip.py)
     regrips_left: int = MAX_REGRIPS  # how many more times a held part may be let go and gripped again on one move
 
@@ -439,6 +440,7 @@ class HumanoidMotionPlanner(GoalSearch, ArmMoves):
                 raise PlanningError("move_to_pose_with_screw", f"pose must be a Pose (from generate_end_effector_pose), got {type(target).__name__}")
             mine = [c for c in (path_constraints or []) if c.side == side]
             samples[side] = self._plan_side(side, target, mine)
+            target = self.goal_moved.pop(side, target)
             used = self.approach_used.pop(side, None)  # another way in than the operation's axis
             self.last_approach[side] = (used if used is not None else target.approach_axis
                                         if target.approach_axis is not None else self._turned_approach(side, target))
