@@ -471,9 +471,13 @@ class HumanoidMotionPlanner(GoalSearch, ArmMoves):
             raise PlanningError("move_to_pose_with_screw", self._stopped_short(side, err))
         for side, before in carried.items():
             slip = np.linalg.norm(self._relative_to_hand(side, self.holding[side]) - before)
-            # A wrapped body may settle in the fist when turned (pouring) and still be held; a pinched one may not.
+            # A wrapped body may settle in the fist when turned (pouring) and still be held; a pinched one that
+            # shifted as far is lost unless thumb and a finger still hold it (a block pinched by its end, carried up
+            # over a drawer's wall, shifted 12 mm and was let go into the drawer all the same).
             obj = self.holding[side]
-            if slip <= SLIP_LIMIT[self.grip.get(side, "pinch")]:
+            held_still = slip <= SLIP_LIMIT["grasp"] and is_held(
+                finger_contacts(self.env.model, self.env.data, side, obj.body))
+            if slip <= SLIP_LIMIT[self.grip.get(side, "pinch")] or held_still:
                 if slip > SLIP_LIMIT["pinch"]:
                     self.events.append(f"{obj.type_name} {obj.obj_id} shifted {slip * 1000:.0f} mm in the {side} hand")
             else:

@@ -1,0 +1,57 @@
+"""What counts as losing a carried object: after a move, an object that moved in the hand more than its grip's
+limit (pinch 1 cm, grasp 2.5 cm) was lost, unless thumb and a finger still hold it and it moved at most the grasp
+limit; then it only shifted (an event). A pinched block carried up over a drawer's wall shifted 12 mm and was
+still let go into the drawer (tests/test_drop_in.py); failing the move there lost the episode for nothing."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from humanoidgen.planning import planner as planner_module
+from humanoidgen.planning.arm_moves import PlanningError
+from humanoidgen.planning.planner import SLIP_LIMIT, HumanoidMotionPlanner
+from humanoidgen.tasks.registry import load_task
+from humanoidgen.tasks.scene import build_scene
+
+
+@pytest.fixture
+def carrying(monkeypatch):
+    """A planner whose right hand "pinches" cube 0, and a way to script how far the cube moves in the hand during
+    the next move and what touches it afterwards."""
+    _, env = build_scene(load_task("block_stack_single"), 0)
+    planner = HumanoidMotionPlanner(env)
+    cube = env.scene.object("cube", 0)
+
+    def script(shift_m: float, touching: set[str]):
+        planner.holding["right"] = cube
+        planner.grip["right"] = "pinch"
+        calls = iter(range(1000))
+        # The first reading is before the move, the others after it.
+        monkeypatch.setattr(planner, "_relative_to_hand",
+                            lambda side, obj: np.array([0.0, 0.0, 0.0 if next(calls) == 0 else shift_m]))
+        monkeypatch.setattr(planner_module, "finger_contacts", lambda *a: set(touching))
+        planner.move_to_pose_with_screw(planner._current_pose("right"), "right")
+
+    return planner, script
+
+
+def test_a_pinched_block_that_shifted_but_is_still_held_is_carried_on(carrying):
+    planner, script = carrying
+    script(0.015, {"thumb", "index"})
+    assert planner.holding["right"] is not None
+    assert "shifted 15 mm in the right hand" in planner.events[-1]
+
+
+def test_a_pinched_block_that_shifted_and_is_not_held_was_lost(carrying):
+    planner, script = carrying
+    with pytest.raises(PlanningError, match="slipped 15 mm"):
+        script(0.015, {"index"})  # no thumb on it: no hold
+    assert planner.holding["right"] is None
+
+
+def test_a_block_that_moved_past_the_grasp_limit_was_lost_even_if_touched(carrying):
+    planner, script = carrying
+    far = SLIP_LIMIT["grasp"] + 0.005
+    with pytest.raises(PlanningError, match=f"slipped {far * 1000:.0f} mm"):
+        script(far, {"thumb", "index"})
