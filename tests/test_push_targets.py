@@ -3,7 +3,8 @@ target2 the staged push to the task's openness (planning/push_actions.py).
 
 - the schema: a push target validates its point (on the moving part), axes, inset table, aim and openness, and
   takes no pose fields;
-- every box / laptop task (open and close, easy and hard) and close_drawer defines one; describe_scene shows it;
+- every box / laptop task (open and close, easy and hard), close_drawer and the two tasks that shut a drawer at
+  the end define one; describe_scene shows it;
 - in one episode, target1 then target2 (the paper's two steps, as upstream's plans write them) opens an ajar box
   and closes a laptop; a task without a push keeps the annotated push points and says so.
 """
@@ -21,7 +22,9 @@ from humanoidgen.tasks.scene import build_scene
 from plan_runs import run_plan
 
 ARTICULATED_TASKS = ("open_box_easy", "open_box_hard", "close_box_easy", "close_box_hard", "open_laptop_easy",
-                     "open_laptop_hard", "close_laptop_easy", "close_laptop_hard", "close_drawer")
+                     "open_laptop_hard", "close_laptop_easy", "close_laptop_hard", "close_drawer",
+                     # they end with the drawer shut: target1/target2 on it are close_drawer's push
+                     "handover_and_storage", "handover_and_storage_cooperation")
 
 
 def box_task(push: dict, **target) -> dict:
