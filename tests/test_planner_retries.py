@@ -16,16 +16,20 @@ not a reference plan) that used to fail, run through the real episode entry poin
 from __future__ import annotations
 
 import json
+import re
 
 import numpy as np
 import pytest
 
 from humanoidgen.objects.hands import HAND_POSTURES
 from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env
+from humanoidgen.planning import goal_search
 from humanoidgen.planning.constraints import Constraint
 from humanoidgen.planning.planner import HumanoidMotionPlanner, PlanningError
 from humanoidgen.sim.env import HumanoidEnv
 from humanoidgen.sim.scene import SceneBuilder
+from humanoidgen.tasks.registry import load_task
+from humanoidgen.tasks.scene import build_scene
 from plan_runs import run_plan
 
 
@@ -246,3 +250,16 @@ def test_out_of_range_goal_names_the_range_and_the_other_hand():
     msg = str(err.value)
     assert "mm from its target" in msg
     assert "out of the right hand's range (x in [-0.42, -0.19], y in [-0.36, 0.07])" in msg and "use the left hand" in msg
+
+
+def test_an_upright_screen_edge_at_the_end_of_reach_is_pinched_with_the_wrist_tilted_further():
+    """close_laptop_hard, seed 4: the raised screen's edge (laptop turned 24 deg) is 139 mm out of the right hand's
+    reach for a pinch from straight above and out of a 15 deg cone too; the wider cone takes it."""
+    _, env = build_scene(load_task("close_laptop_hard"), 4)
+    planner = HumanoidMotionPlanner(env, seed=4)
+    c = planner.generate_constraints("laptop", 0, "pinch", "right")
+    _, pose = planner.generate_end_effector_pose(c, "right")
+    turned = [e for e in planner.events if "wrist turned" in e]
+    assert turned, planner.events
+    angles = [float(a) for a in re.findall(r"(\d+) deg", turned[-1])]
+    assert max(angles) > goal_search.CONE_DEG  # beyond the first cone: the wide one was needed

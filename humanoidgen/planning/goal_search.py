@@ -10,8 +10,8 @@ In order, each rung tried only when the ones before found nothing (so a goal fou
 3. the fingers may come within FINGER_TABLE_CLEARANCE of the table (not the general 5 mm) when the contact the
    goal needs is between a finger and the table: a fingertip taking a low edge (an event says so);
 4. the wrist's freedom: each exact axis of a generated grip or push relaxed into a cone (CONE_DEG for the
-   approach direction, ROLL_DEG about it), the exact axes kept as a preference; for at most RELAXED_WAYS grips
-   and RELAX_BUDGET_S seconds (an event gives the angles taken).
+   approach direction, ROLL_DEG about it), the exact axes kept as a preference, then wider (WIDE_CONE_DEG,
+   WIDE_ROLL_DEG); for at most RELAXED_WAYS grips and RELAX_BUDGET_S seconds (an event gives the angles taken).
 
 A failure then says which constraint missed and by how much, or which bodies collide, and what to change
 (`feedback`). A push that cannot move a part the way asked (the fingertip would have to pull) is refused first.
@@ -37,6 +37,11 @@ from humanoidgen.sim.layout import HAND_PREFIX, OPERABLE_RANGE, Side
 FINGER_TABLE_CLEARANCE = 0.0015  # m: fingers meant to touch may come this close to the table
 CONE_DEG = 15.0  # the approach direction of a grip or push may tilt this far
 ROLL_DEG = 15.0  # and the grip turn this far about it
+# Then, if that found nothing, a wider cone: an upright laptop screen's top edge at the far end of the right arm's
+# reach (close_laptop_hard, laptop turned 24 deg) is pinched from above only 139 mm out of reach, and with the
+# wrist tilted 16-39 deg, it is pinched and brought down (measured on the corpus plans' failing seeds).
+WIDE_CONE_DEG = 40.0
+WIDE_ROLL_DEG = 30.0
 RELAXED_WAYS = 3  # grips tried with the wrist's freedom: the first and two alternatives
 RELAX_BUDGET_S = 6.0  # seconds for rungs 3 and 4 together
 RELAX_SOLVE_S = 2.0  # no new solver seed after this long in one of their solves
@@ -281,27 +286,29 @@ class GoalSearch:
                  if int(self.env.model.body_rootid[b]) == self.env.model.body("pelvis").id}
         if failed.contacts and any(b2 in robot for _, b2, _ in failed.contacts):
             return failed, gen, 0.0  # the other arm or the body in the way: turning the wrist does not clear it
+        cones = [(CONE_DEG, ROLL_DEG), (WIDE_CONE_DEG, WIDE_ROLL_DEG)]
         if not failed.contacts and all(r.miss is not None and r.miss > RELAX_MAX_MISS for _, _, r in tried):
-            return failed, gen, 0.0  # far out of reach: a cone of CONE_DEG at the wrist does not bring it there
+            cones = cones[1:]  # far out of reach: a cone of CONE_DEG at the wrist does not bring it there
         ways = [gen] + list(gen.alternatives)[:RELAXED_WAYS - 1]
-        for touch in ((0.0, slack) if low else (0.0,)):
-            for g in ways:
-                if time.perf_counter() - t0 > RELAX_BUDGET_S:
-                    break
-                relaxed = _relax(side, g)
-                if not relaxed:
-                    continue
-                self._use_ignores(side, g, ignored_before)
-                with (self.collisions.allow_touch(finger_geoms, table_geoms, touch) if touch else nullcontext()):
-                    retry = self.solver.solve(side, relaxed, self.kin.arm_q(side), self.nominal[side],
-                                              time_limit=RELAX_SOLVE_S, max_seeds=RELAX_SEEDS)
-                if retry.success:
-                    self.events.append(self._relaxed_event(side, g, relaxed, retry))
-                    if touch:
-                        self.events.append(self._table_event(side, retry, finger_geoms, table_geoms))
-                    return retry, g, touch
-                if retry.contacts and not failed.contacts and g is gen:
-                    failed = retry  # what the wrist's freedom runs into says more than a bare miss
+        for cone, roll in cones:
+            for touch in ((0.0, slack) if low else (0.0,)):
+                for g in ways:
+                    if time.perf_counter() - t0 > RELAX_BUDGET_S:
+                        break
+                    relaxed = _relax(side, g, cone, roll)
+                    if not relaxed:
+                        continue
+                    self._use_ignores(side, g, ignored_before)
+                    with (self.collisions.allow_touch(finger_geoms, table_geoms, touch) if touch else nullcontext()):
+                        retry = self.solver.solve(side, relaxed, self.kin.arm_q(side), self.nominal[side],
+                                                  time_limit=RELAX_SOLVE_S, max_seeds=RELAX_SEEDS)
+                    if retry.success:
+                        self.events.append(self._relaxed_event(side, g, relaxed, retry))
+                        if touch:
+                            self.events.append(self._table_event(side, retry, finger_geoms, table_geoms))
+                        return retry, g, touch
+                    if retry.contacts and not failed.contacts and g is gen:
+                        failed = retry  # what the wrist's freedom runs into says more than a bare miss
         return failed, gen, 0.0
 
     def _finger_bodies(self, side: Side) -> list[int]:
@@ -422,14 +429,15 @@ class GoalSearch:
         return msg + (f". Suggestion: {advice}" if advice else "")
 
 
-def _relax(side: Side, gen) -> list:
-    """The grip's constraints with each exact hand axis opened into a cone (and preferred exact)."""
+def _relax(side: Side, gen, cone_deg: float = CONE_DEG, roll_deg: float = ROLL_DEG) -> list:
+    """The grip's constraints with each exact hand axis opened into a cone (and preferred exact): `cone_deg` for
+    the approach direction, `roll_deg` for the others."""
     out, changed = [], False
     approach = getattr(gen, "approach_axis", None)
     for c in gen.constraints:
         if getattr(c, "type", "") == "parallel" and not c.soft and c.local_axis is not None:
             is_approach = approach is not None and abs(float(c.object_axis @ approach)) > 0.999
-            limit = np.radians(CONE_DEG if is_approach else ROLL_DEG)
+            limit = np.radians(cone_deg if is_approach else roll_deg)
             out.append(AxisWithin(side, c.local_axis, c.object_axis, limit, f"{c.name} (within {np.degrees(limit):.0f} deg)"))
             out.append(AxisWithin(side, c.local_axis, c.object_axis, limit, f"{c.name} (preferred)", soft=True))
             changed = True
