@@ -121,6 +121,20 @@ class CollisionWorld:
         finally:
             self.touch = saved
 
+    @contextmanager
+    def touch_only(self, side: Side, owners: set[int], slack: float) -> Iterator[None]:
+        """Within the block, what moves with `side` may come `slack` closer to the obstacles named by `owners`
+        (`contact_pairs`' obstacle bodies) than the clearances ask, on top of any touch already allowed."""
+        geoms = frozenset(int(g) for g in self._geom_lists(side)[1] if self._owner(int(g)) in owners)
+        saved = dict(self.touch)
+        try:
+            for g in self.movers(side):
+                obstacles, had = self.touch.get(g, (frozenset(), 0.0))
+                self.touch[g] = (obstacles | geoms, max(had, slack))
+            yield
+        finally:
+            self.touch = saved
+
     def pair_distance(self, g1: int, g2: int) -> float:
         """Distance between two geoms at the scratch state (FAR beyond `influence`)."""
         return float(mujoco.mj_geomDistance(self.kin.model, self.kin.data, g1, g2, self.influence, self._fromto))

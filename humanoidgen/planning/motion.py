@@ -124,16 +124,21 @@ def plan_arm_motion(kin: Kinematics, cw: CollisionWorld, side: Side, q_start: np
     if not allow_sampling or q_goal is None:
         raise MotionError(reason)
     # Relaxed for a start in contact, but a goal deep in something is no goal: the whole path would be let
-    # through it as deep (a pre-approach pose 44 mm into an open drawer's wall took the wrist through it).
+    # through it as deep (a pre-approach pose 44 mm into an open drawer's wall took the wrist through it). And
+    # relaxed only for what the arm touches at its start or goal: relaxed for everything, a path from a hand beside
+    # an open drawer to a goal 5 mm into the drawer swung the left hand 3 mm into the right elbow, and the
+    # simulated arm, cutting the corner, struck it (handover_and_storage, seed 4).
     clearance = min(start_clearance(kin, cw, side, q_start),
                     start_clearance(kin, cw, side, q_goal, -GOAL_PENETRATION_M))
+    touched = touched_at(kin, cw, side, (q_start, q_goal)) if clearance < MOTION_CLEARANCE else set()
     result = None
-    if (carry := carried_turn_check(kin, side, q_start, q_goal)) is not None:
-        result = plan_rrt_connect(kin, cw, side, q_start, q_goal, time_limit=time_limit / 2, seed=seed,
-                                  clearance=clearance, state_ok=carry)
-    if result is None or not result.ok:  # no way that keeps it so: any collision-free way
-        result = plan_rrt_connect(kin, cw, side, q_start, q_goal, time_limit=time_limit, seed=seed,
-                                  clearance=clearance)
+    with cw.touch_only(side, touched, MOTION_CLEARANCE - clearance):
+        if (carry := carried_turn_check(kin, side, q_start, q_goal)) is not None:
+            result = plan_rrt_connect(kin, cw, side, q_start, q_goal, time_limit=time_limit / 2, seed=seed,
+                                      clearance=MOTION_CLEARANCE, state_ok=carry)
+        if result is None or not result.ok:  # no way that keeps it so: any collision-free way
+            result = plan_rrt_connect(kin, cw, side, q_start, q_goal, time_limit=time_limit, seed=seed,
+                                      clearance=MOTION_CLEARANCE)
     if not result.ok:
         raise MotionError(f"{reason}; the sampling planner found no path either: {result.reason}")
     return JointPath(result.path, "rrt_connect", reason)
@@ -223,6 +228,21 @@ def start_clearance(kin: Kinematics, cw: CollisionWorld, side: Side, q: np.ndarr
     kin.forward()
     clearance = min(MOTION_CLEARANCE, d - 1e-4)
     return clearance if floor is None else max(clearance, floor)
+
+
+def touched_at(kin: Kinematics, cw: CollisionWorld, side: Side, qs) -> set[int]:
+    """The obstacles (`contact_pairs`' owner bodies) closer than MOTION_CLEARANCE to `side` at any of `qs`."""
+    base = kin.data.qpos.copy()
+    out: set[int] = set()
+    try:
+        for q in qs:
+            kin.set_arm(side, q)
+            kin.forward()
+            out |= {b2 for _, b2, _ in cw.contact_pairs((side,), MOTION_CLEARANCE)}
+    finally:
+        kin.data.qpos[:] = base
+        kin.forward()
+    return out
 
 
 def first_collision(kin: Kinematics, cw: CollisionWorld, side: Side, path: np.ndarray,
