@@ -132,7 +132,7 @@ class GoalSearch:
         # 0.9) but not worth failing the move for.
         optional = share >= PARTIAL_ENOUGH and part_stays(self.env, follow["joint"], q_reached)
         regrip = {"obj": follow["obj"], "openness": wanted, "verb": self.grip[side], "reached": reached,
-                  "optional": optional}
+                  "optional": optional, "follow": follow}
         return self._goal_at(side, q, failed.solve_time), (q_reached, regrip)
 
     def _goal_at(self, side: Side, q: np.ndarray, solve_time: float) -> GoalResult:

@@ -11,12 +11,23 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from humanoidgen.planning.part_joint import follow_openness
 from humanoidgen.sim.layout import Side
 
 if TYPE_CHECKING:
     from humanoidgen.planning.planner import HumanoidMotionPlanner
 
 MAX_REGRIPS = 2  # a part is gripped again at most this many times on one move
+ARRIVED_TOL = 0.05  # openness: a part let go this near the openness asked, and at rest there, got there
+AT_REST_RAD_S = 0.05  # a part's joint turning or sliding slower than this is at rest
+
+
+def arrived(now: float, wanted: float) -> bool:
+    """Whether a part let go on its way is, at openness `now`, where it was to go (a screen let go at 0.17 on its
+    way shut falls shut by itself; gripped again it was lifted to 0.25 for the fingers and left at 0.20). Past it
+    does not count: a lid let go at 0.5 on its way to 0.3 rests at 0.14 on the fingers; gripped again, taken to
+    0.3 and let go, it falls shut."""
+    return abs(now - wanted) <= ARRIVED_TOL
 
 
 def go_on(planner: HumanoidMotionPlanner, side: Side, regrip: dict) -> None:
@@ -56,6 +67,12 @@ def _go_on(planner: HumanoidMotionPlanner, side: Side, regrip: dict) -> None:
             planner.open_hand(side)
         finally:
             planner.regripping = False
+        if "follow" in regrip and arrived(follow_openness(planner.env, regrip["follow"]), regrip["openness"]) \
+                and _at_rest(planner.env, regrip["follow"]["joint"]):
+            now = follow_openness(planner.env, regrip["follow"])
+            planner.events.append(f"{label} went on to openness {now:.2f} by itself when let go (asked "
+                                  f"{regrip['openness']:g}): it is not gripped again")
+            return
         why = []
         for v in (verb, "pinch" if verb == "grasp" else "grasp"):
             try:
@@ -74,6 +91,15 @@ def _go_on(planner: HumanoidMotionPlanner, side: Side, regrip: dict) -> None:
         planner.move_to_pose_with_screw(pose, side, attach_obj=True, object_name=obj.type_name, object_id=obj.obj_id)
     finally:
         planner.regrips_left += 1
+
+
+def _at_rest(env, joint: str) -> bool:
+    """Whether a part's joint is still and would stay where it is left (a lid let go high is still falling)."""
+    from humanoidgen.planning.goal_search import part_stays
+
+    jid = env.model.joint(joint).id
+    still = abs(float(env.data.qvel[env.model.jnt_dofadr[jid]])) < AT_REST_RAD_S
+    return still and part_stays(env, joint, float(env.data.qpos[env.model.jnt_qposadr[jid]]))
 
 
 def _grip(planner: HumanoidMotionPlanner, side: Side, obj, verb: str) -> None:
