@@ -16,7 +16,8 @@ import pytest
 
 from humanoidgen.objects.articulated import set_openness
 from humanoidgen.objects.queries import get_point_in_env
-from humanoidgen.planning.drop_in import DROP_CLEARANCE_M, DROP_HIGHER_M, container_region, drop_in
+from humanoidgen.objects.queries import storage_region
+from humanoidgen.planning.drop_in import DROP_CLEARANCE_M, DROP_HIGHER_M, drop_in
 from humanoidgen.planning.placing import lowest_offset, object_pose
 from humanoidgen.tasks.registry import load_task
 from humanoidgen.tasks.scene import build_scene
@@ -38,7 +39,7 @@ def test_a_goal_between_the_walls_is_raised_above_the_top(open_drawer):
     way = drop_in(env, cube, storage + np.array([0.0, 0.0, 0.10]), R)
     assert way is not None and way.container is drawer
     raises = way.raises(cube, storage + np.array([0.0, 0.0, 0.10]), R)
-    _, _, _, top = container_region(env, drawer)
+    _, _, _, top = storage_region(env, drawer)
     assert way.top == pytest.approx(top)
     # The first raise puts the block's lowest corner DROP_CLEARANCE_M over the top; the others go higher.
     bottom = storage[2] + 0.10 - lowest_offset(cube, R) + raises[0]
@@ -50,7 +51,7 @@ def test_goals_above_the_top_or_beside_the_container_are_left_alone(open_drawer)
     env, drawer, cube = open_drawer
     R = object_pose(env, cube)[1]
     storage = get_point_in_env(env, "storage", "drawer", 0)
-    _, _, _, top = container_region(env, drawer)
+    _, _, _, top = storage_region(env, drawer)
     above = storage.copy()
     above[2] = top + lowest_offset(cube, R) + 0.01
     assert drop_in(env, cube, above, R) is None

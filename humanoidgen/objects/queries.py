@@ -113,3 +113,19 @@ def get_axis_in_env(env, axis_name: str, obj_type: str | None = None, obj_id: in
     d = _data_at_openness(env, obj, openness, ax.part)
     _, R = _frame(env.model, d, f"{obj.body}_{ax.part}" if ax.part else obj.body)
     return R @ np.asarray(ax.direction)
+
+
+def storage_region(env, obj: SceneObject) -> tuple[np.ndarray, np.ndarray, np.ndarray, float] | None:
+    """A container's storage region (what the `inside` check and a drop into it read): its "storage" point in the
+    world, the container's rotation, the region's lateral half sizes (its bounding box's) and the world height of
+    its top; None for an object without a storage function."""
+    ann = obj.annotations
+    store = next((f.point for f in (ann.functions if ann else []) if f.function == "storage"), None)
+    if store is None:
+        return None
+    s = get_point_in_env(env, store, obj.type_name, obj.obj_id)
+    bid = env.model.body(obj.body).id
+    root, R = env.data.xpos[bid].copy(), env.data.xmat[bid].reshape(3, 3).copy()
+    lo, hi = np.asarray(ann.bbox_min), np.asarray(ann.bbox_max)
+    top = float((root + R @ np.array([0.0, 0.0, hi[2]]))[2])
+    return s, R, (hi[:2] - lo[:2]) / 2, top

@@ -13,7 +13,7 @@ from humanoidgen.planning.approach import APPROACH_DISTANCES, WRAP_TOUCH, Approa
 from humanoidgen.planning.feedback import motion_advice
 from humanoidgen.planning import placing, shared_hold
 from humanoidgen.planning.approach import PRE_POSE_TURN_DEG
-from humanoidgen.planning.drop_in import drop_in, object_geoms
+from humanoidgen.planning.drop_in import DROP_HIGHER_M, drop_in, object_geoms
 from humanoidgen.planning.goal_targets import pose_within
 from humanoidgen.planning.hand_ops import contents, finger_contacts, is_held
 from humanoidgen.planning.motion import (
@@ -298,12 +298,13 @@ class ArmMoves(PartFollowing, Approaches, FingerRoom):
         if way is None:
             return None
         what = f"{way.container.type_name} {way.container.obj_id}"
-        # Hand orientations to try and where the hand goes with each for the object's centre to be at `centre`.
-        hands = [(R_hand, centre - (p_obj - p_hand)), (target.R, target.p)]
-        for dz_index in range(len(way.raises(held, centre, R_obj))):
-            for R, p in hands:
-                dz = way.raises(held, centre, R @ R_hand.T @ R_obj)[dz_index]
-                goal = p + np.array([0.0, 0.0, dz])
+        # Hand orientations to try, where the hand goes with each for the object's centre to be at `centre`, and
+        # how far up that goal moves with the object so turned (lowest first).
+        hands = [(R, p, way.raises(held, centre, R @ R_hand.T @ R_obj))
+                 for R, p in ((R_hand, centre - (p_obj - p_hand)), (target.R, target.p))]
+        for k in range(len(DROP_HIGHER_M)):
+            for R, p, raises in hands:
+                goal = p + np.array([0.0, 0.0, raises[k]])
                 solved = self.solver.solve(side, pose_within(side, goal, R, PRE_POSE_TURN_DEG,
                                                              f"{held.type_name} {held.obj_id} above {what}"),
                                            q0, self.nominal[side])

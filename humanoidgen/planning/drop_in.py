@@ -8,7 +8,9 @@ of a held object finds no path and its goal puts the object inside a container's
 container's top, the move instead ends straight above that goal with the object's lowest corner DROP_CLEARANCE_M
 over the top (then a little higher, DROP_HIGHER_M), so that letting go drops it in; an event says how much
 higher it was let go. The hand must be able to open fully there without touching the container (an open thumb
-that swings onto the drawer's wall top drags the drawer on the next move: measured, openness 0.89 to 0.64). Pure geometry here; the planner's part is `ArmMoves._drop_in_move`.
+that swings onto the drawer's wall top drags the drawer on the next move: measured, openness 0.89 to 0.64). Pure
+geometry here (the region is `objects.queries.storage_region`, as the `inside` check reads it); the planner's part
+is `ArmMoves._carry_into`.
 """
 
 from __future__ import annotations
@@ -17,8 +19,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from humanoidgen.objects.queries import get_point_in_env
-from humanoidgen.planning.placing import is_container, lowest_offset, object_pose
+from humanoidgen.objects.queries import storage_region
+from humanoidgen.planning.placing import is_container, lowest_offset
 from humanoidgen.sim.scene import SceneObject
 
 DROP_CLEARANCE_M = 0.015  # the held object's lowest corner this far above the container's top
@@ -38,20 +40,6 @@ class DropIn:
         return tuple(max(base, 0.0) + h for h in DROP_HIGHER_M)
 
 
-def _storage_point(obj: SceneObject) -> str | None:
-    return next((f.point for f in obj.annotations.functions if f.function == "storage"), None)
-
-
-def container_region(env, container: SceneObject) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
-    """A container's storage point, its rotation, its region's lateral half sizes and the world height of its top
-    (the region the `inside` predicate checks)."""
-    s = get_point_in_env(env, _storage_point(container), container.type_name, container.obj_id)
-    root, R = object_pose(env, container)
-    lo, hi = np.asarray(container.annotations.bbox_min), np.asarray(container.annotations.bbox_max)
-    top = float((root + R @ np.array([0.0, 0.0, hi[2]]))[2])
-    return s, R, (hi[:2] - lo[:2]) / 2, top
-
-
 def object_geoms(model, obj: SceneObject) -> np.ndarray:
     """All geoms of an object's bodies (a drawer's cabinet and its sliding part)."""
     root = model.body(obj.body).id
@@ -65,7 +53,7 @@ def drop_in(env, held: SceneObject, centre: np.ndarray, R_held: np.ndarray) -> D
     for o in env.scene.objects:
         if o is held or not is_container(o):
             continue
-        s, R, half, top = container_region(env, o)
+        s, R, half, top = storage_region(env, o)
         local = R.T @ (np.asarray(centre, float) - s)
         if np.all(np.abs(local[:2]) <= half) and centre[2] >= s[2] - STORAGE_BELOW_M and bottom < top:
             return DropIn(o, top)

@@ -475,9 +475,8 @@ class HumanoidMotionPlanner(GoalSearch, ArmMoves):
             # shifted as far is lost unless thumb and a finger still hold it (a block pinched by its end, carried up
             # over a drawer's wall, shifted 12 mm and was let go into the drawer all the same).
             obj = self.holding[side]
-            held_still = slip <= SLIP_LIMIT["grasp"] and is_held(
-                finger_contacts(self.env.model, self.env.data, side, obj.body))
-            if slip <= SLIP_LIMIT[self.grip.get(side, "pinch")] or held_still:
+            if slip <= SLIP_LIMIT[self.grip.get(side, "pinch")] or (slip <= SLIP_LIMIT["grasp"] and is_held(
+                    finger_contacts(self.env.model, self.env.data, side, obj.body))):
                 if slip > SLIP_LIMIT["pinch"]:
                     self.events.append(f"{obj.type_name} {obj.obj_id} shifted {slip * 1000:.0f} mm in the {side} hand")
             else:

@@ -67,13 +67,13 @@ def _go_on(planner: HumanoidMotionPlanner, side: Side, regrip: dict) -> None:
             planner.open_hand(side)
         finally:
             planner.regripping = False
-        if "follow" in regrip and arrived(follow_openness(planner.env, regrip["follow"]), regrip["openness"]) \
-                and _at_rest(planner.env, regrip["follow"]["joint"]):
-            now = follow_openness(planner.env, regrip["follow"])
+        now = follow_openness(planner.env, regrip["follow"])
+        at_rest = _at_rest(planner.env, regrip["follow"]["joint"])
+        if arrived(now, regrip["openness"]) and at_rest:
             planner.events.append(f"{label} went on to openness {now:.2f} by itself when let go (asked "
                                   f"{regrip['openness']:g}): it is not gripped again")
             return
-        if "follow" in regrip and _pushed_on(planner, side, obj, regrip):
+        if at_rest and _pushed_on(planner, side, obj, regrip, now):
             return
         why = []
         for v in (verb, "pinch" if verb == "grasp" else "grasp"):
@@ -95,22 +95,23 @@ def _go_on(planner: HumanoidMotionPlanner, side: Side, regrip: dict) -> None:
         planner.regrips_left += 1
 
 
-def _pushed_on(planner: HumanoidMotionPlanner, side: Side, obj, regrip: dict) -> bool:
-    """A part that went on by itself toward the openness asked when let go and came to rest short of it: where the
-    task defines a fingertip push that way, push it on from there instead of gripping it again (a screen let go at 0.25 on its way shut fell to 0.08; gripped again it
-    was first lifted ajar to 0.24 to make room for the fingers, and the grip came off at 0.20). False where there
-    is no such push or it fails (then the part is gripped again)."""
+def _pushed_on(planner: HumanoidMotionPlanner, side: Side, obj, regrip: dict, now: float) -> bool:
+    """A part that went on by itself toward the openness asked when let go and came to rest short of it (at openness
+    `now`): where the task defines a fingertip push that way, push it on from there instead of gripping it again (a
+    screen let go at 0.25 on its way shut fell to 0.08; gripped again it was first lifted ajar to 0.24 to make room
+    for the fingers, and the grip came off at 0.20). False where there is no such push or it fails (then the part
+    is gripped again)."""
     from humanoidgen.planning.arm_moves import PlanningError
     from humanoidgen.planning.target_actions import scene_targets
 
     targets = scene_targets(planner.env)
     push = targets.push(obj.type_name, obj.obj_id) if targets is not None else None
-    now, wanted = follow_openness(planner.env, regrip["follow"]), regrip["openness"]
+    wanted = regrip["openness"]
     if push is None or (push.spec.push.to - now) * (wanted - now) <= 0:
         return False  # no push, or the task's push goes the other way
     went_on = (regrip["reached"] - now) * (regrip["reached"] - wanted)  # > 0: it went on toward the goal
-    if went_on < ARRIVED_TOL * abs(regrip["reached"] - wanted) or not _at_rest(planner.env, regrip["follow"]["joint"]):
-        return False  # it stayed where the hand let go (a lid at 0.66), or is still falling: grip it again
+    if went_on < ARRIVED_TOL * abs(regrip["reached"] - wanted):
+        return False  # it stayed where the hand let go (a lid at 0.66): grip it again
     try:
         cons = planner.generate_constraints(obj.type_name, obj.obj_id, "target2", side, openness=wanted)
         _, pose = planner.generate_end_effector_pose(cons, side)

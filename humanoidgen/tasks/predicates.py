@@ -207,20 +207,15 @@ class Inside(_Strict):
         return [self.obj, self.container]
 
     def evaluate(self, env) -> PredicateResult:
-        from humanoidgen.objects.queries import get_point_in_env
+        from humanoidgen.objects.queries import storage_region
 
-        c = _obj(env, self.container)
-        ann = c.annotations
-        store = next((f.point for f in (ann.functions if ann else []) if f.function == "storage"), None)
-        if store is None:
+        region = storage_region(env, _obj(env, self.container))
+        if region is None:
             return PredicateResult(ok=False, detail=f"{_name(self.container)} has no storage region")
-        s = get_point_in_env(env, store, c.type_name, c.obj_id)
-        root, R = _pose(env, self.container)
-        lo, hi = _bbox(env, self.container)
+        s, R, half, top = region
+        half = half - self.margin
         p, _ = _pose(env, self.obj)
         local = R.T @ (p - s)  # the container's frame, from the storage point
-        half = (hi[:2] - lo[:2]) / 2 - self.margin
-        top = float((root + R @ np.array([0, 0, hi[2]]))[2])
         lateral = bool(np.all(np.abs(local[:2]) <= half))
         vertical = s[2] - self.z_tol <= p[2] <= top + self.z_tol
         return PredicateResult(ok=lateral and vertical, detail=(
