@@ -40,6 +40,10 @@ TOUCH_SHORT_M = 0.05  # ... or this near, stopped by its fingers resting on the 
 PALM_ACROSS_DEG = (70.0, 110.0)
 FINGERS_SET = 0.05  # rad: finger targets this near the press posture already are it
 SHORT_SHARE = 0.5  # a part moved less than this share of the way did not follow the fingertip: an error
+# A push to the joint's end (openness 0 or 1) ends with the fingertip this far past the contact: the stop holds
+# the part, and the fingertip's pad, which yields, and its centre's offset from the face otherwise leave it a few
+# millimetres short (a drawer "shut" at openness 0.03-0.05, a lid left at 0.91 of the way).
+HOME_PRESS_M = 0.01
 
 
 @dataclass
@@ -77,13 +81,14 @@ def part_openness(env, obj: SceneObject) -> float:
     return float(np.clip(openness_of(env.model, env.data, obj), 0.0, 1.0))
 
 
-def contact_point(env, obj: SceneObject, spec: PushSpec, openness: float | None) -> np.ndarray:
-    """Where the fingertip's centre touches the part with the part at `openness` (None: as it is now)."""
+def contact_point(env, obj: SceneObject, spec: PushSpec, openness: float | None, press: float = 0.0) -> np.ndarray:
+    """Where the fingertip's centre touches the part with the part at `openness` (None: as it is now); `press`:
+    that many metres further, into the part along the push."""
     o = part_openness(env, obj) if openness is None else openness
     p = get_point_in_env(env, spec.point, obj.type_name, obj.obj_id, openness=openness)
     along, normal = (_axis(env, obj, a, openness) for a in spec.axes)
     side = 1.0 if spec.face == "inner" else -1.0  # the inner face lies along the normal, the outer against it
-    return p + spec.inset_at(o) * along + side * spec.depth * normal
+    return p + spec.inset_at(o) * along + side * (spec.depth - press) * normal
 
 
 def standoff_direction(env, obj: SceneObject, spec: PushSpec, openness: float | None) -> np.ndarray:
@@ -95,11 +100,12 @@ def standoff_direction(env, obj: SceneObject, spec: PushSpec, openness: float | 
 
 
 def stage_constraints(env, side: Side, obj: SceneObject, spec: PushSpec, openness: float | None,
-                      off: float = 0.0, what: str = "on", over_edge: bool = False) -> list[Constraint]:
+                      off: float = 0.0, what: str = "on", over_edge: bool = False,
+                      press: float = 0.0) -> list[Constraint]:
     """The fingertip on (or `off` metres off) the part at `openness`, pointing within the cone of the aim;
-    `over_edge`: as far again out past the part's edge (against axes[0])."""
+    `over_edge`: as far again out past the part's edge (against axes[0]); `press`: metres into it (contact_point)."""
     frame = HAND_BASE_FRAME[side]
-    goal = contact_point(env, obj, spec, openness)
+    goal = contact_point(env, obj, spec, openness, press)
     if off:
         goal = goal + off * standoff_direction(env, obj, spec, openness)
     if over_edge:
@@ -234,8 +240,9 @@ def execute(planner, side: Side, pose) -> None:
         else:
             _go(planner, side, pose, must_reach=False)  # onto the part (the goal solved for target2)
         for o in stages(start, move.to, spec.step):
+            home = HOME_PRESS_M if o == move.to and move.to in (0.0, 1.0) else 0.0
             try:
-                solve_and_go(planner, side, stage_constraints(env, side, obj, spec, o))
+                solve_and_go(planner, side, stage_constraints(env, side, obj, spec, o, press=home))
             except PlanningError as exc:  # out of reach there: the next stage may still be reached
                 skipped.append(f"{o:.2f} ({exc.reason[:80]})")
         try:  # the fingertip off the part again, at the openness it pushed it to
