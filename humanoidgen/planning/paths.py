@@ -97,7 +97,7 @@ def is_valid(kin: Kinematics, cw: CollisionWorld, sides: Which | JointSpace, q: 
     _set(kin, space, q)
     if state_ok is not None and not state_ok(kin):
         return False
-    return cw.min_distance(space.sides)[0] > clearance
+    return cw.clear_of(space.sides, clearance)
 
 
 def collision_reason(kin: Kinematics, cw: CollisionWorld, sides: Which | JointSpace, q: np.ndarray,
