@@ -170,3 +170,19 @@ def test_export_says_what_training_needs_and_episodes_picks_the_first(demos_zarr
     assert one.n_episodes == 1 and one.n_frames == d.episode_ends[0] and len(one.arrays["state"]) == one.n_frames
     with pytest.raises(DataError, match="fewer than the 3"):
         read_demos(demos_zarr, ("state",), episodes=3)
+
+
+def test_study_collects_in_a_child_so_training_can_follow(tmp_path):
+    """`hgen policy bench` collects missing data and then trains in one process. Collecting in-process loaded
+    Mesa's LLVM for the renderer, and importing diffusers afterwards (torch's triton brings its own LLVM)
+    killed the process with a segfault; the collection now runs in a child process."""
+    import subprocess
+    import sys
+
+    code = ("from pathlib import Path; from humanoidgen.policies.bench import StudyConfig, ensure_data; "
+            f"out = ensure_data('close_drawer', 1, StudyConfig(data_root=Path({str(tmp_path)!r})), progress=False); "
+            "import diffusers; from humanoidgen.policies.data import read_demos; "
+            "print('episodes', read_demos(out, ('state', 'action', 'point_cloud')).n_episodes)")
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr[-2000:]
+    assert "episodes 1" in r.stdout

@@ -9,6 +9,8 @@ not trained again, so an interrupted study continues where it stopped."""
 from __future__ import annotations
 
 import json
+import subprocess
+import sys
 import time
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
@@ -34,13 +36,29 @@ class StudyConfig:
     collect_workers: int = 1
 
 
+def _collect_child(task: str, n: int, folder: str, workers: int, resume: bool, progress: bool) -> None:
+    from humanoidgen.episodes.collect import collect
+    from humanoidgen.episodes.recorder import RecorderConfig
+
+    rec = RecorderConfig(every=5, cameras=("head",), point_cloud=True)
+    stats = collect(task, n, Path(folder), workers=workers, resume=resume, recorder=rec,
+                    progress=(lambda k, t: print(f"\rcollect {task}: kept {k}/{n}, tried {t}", end="",
+                                                 flush=True)) if progress else None)
+    if progress:
+        print(flush=True)
+    if stats.kept < n:
+        raise SystemExit(f"collected only {stats.kept} of {n} episodes of {task} in {stats.tried} attempts")
+
+
 def ensure_data(task: str, n: int, cfg: StudyConfig, progress: bool = True) -> Path:
-    """DATA/<task>.zarr with at least n episodes, collecting and exporting what is missing."""
+    """DATA/<task>.zarr with at least n episodes, collecting and exporting what is missing.
+
+    The collection runs in a child process: its renderer loads Mesa's LLVM (llvmpipe), and torch's triton,
+    which diffusers imports, brings another LLVM that crashes the process (a segfault in libc) when it is loaded
+    after Mesa's. The child keeps the rendering out of the process that trains."""
     import zarr
 
-    from humanoidgen.episodes.collect import collect
     from humanoidgen.episodes.dataset import EpisodeStore, export_zarr
-    from humanoidgen.episodes.recorder import RecorderConfig
 
     out = Path(cfg.data_root) / f"{task}.zarr"
     if out.exists() and zarr.open_group(str(out), mode="r")["meta/episode_ends"].shape[0] >= n:
@@ -49,15 +67,13 @@ def ensure_data(task: str, n: int, cfg: StudyConfig, progress: bool = True) -> P
     store = EpisodeStore(folder)
     have = len(store.kept()) if store.meta_path.exists() else 0
     if have < n:
-        rec = RecorderConfig(every=5, cameras=("head",), point_cloud=True)
-        stats = collect(task, n, folder, workers=cfg.collect_workers, resume=store.meta_path.exists(), recorder=rec,
-                        progress=(lambda k, t: print(f"\rcollect {task}: kept {k}/{n}, tried {t}", end="",
-                                                     flush=True)) if progress else None)
-        if progress:
-            print()
-        if stats.kept < n:
-            raise RuntimeError(f"collected only {stats.kept} of {n} episodes of {task} in {stats.tried} attempts")
-    export_zarr(store, out)
+        args = json.dumps([task, n, str(folder), cfg.collect_workers, store.meta_path.exists(), progress])
+        code = f"import json; from humanoidgen.policies.bench import _collect_child; _collect_child(*json.loads({args!r}))"
+        child = subprocess.run([sys.executable, "-c", code], stderr=subprocess.PIPE, text=True)
+        if child.returncode != 0:
+            lines = child.stderr.strip().splitlines()
+            raise RuntimeError(f"collecting {task} failed: {lines[-1] if lines else f'exit code {child.returncode}'}")
+    export_zarr(EpisodeStore(folder), out)
     return out
 
 
