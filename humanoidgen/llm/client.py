@@ -11,10 +11,11 @@ import math
 import threading
 import time
 from dataclasses import replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 from urllib.parse import urlparse
 
-import openai
+if TYPE_CHECKING:  # imported where a request is made: the SDK takes ~0.9 s to import, and the plan workers'
+    import openai  # fork server imports this module's package without ever calling an endpoint
 
 from humanoidgen.llm.config import ENV_BASE_URL, LLMConfig
 from humanoidgen.llm.errors import (
@@ -125,6 +126,8 @@ class LLMClient:
                     f"(or LLMConfig.api_key_env to the variable that holds it)"
                 )
             key = _PLACEHOLDER_KEY
+        import openai
+
         # Re-created per call so a key exported after construction is picked up; cheap.
         return openai.OpenAI(
             base_url=cfg.base_url, api_key=key, timeout=cfg.timeout_s, max_retries=0
@@ -179,6 +182,8 @@ class LLMClient:
         messages: list[dict[str, Any]],
         params: dict[str, Any],
     ) -> ChatResult:
+        import openai
+
         cfg = self.config
         t0 = time.perf_counter()
         try:
