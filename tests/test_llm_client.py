@@ -320,3 +320,14 @@ def test_script_callable_error_is_reported() -> None:
     ):
         LLMClient(cfg(srv.base_url, max_retries=0)).chat(MSGS)
     assert isinstance(srv.errors[0], KeyError)
+
+
+def test_plan_workers_do_not_import_the_sdk():
+    """The fork server imports the generation worker; the SDK (about 0.9 s to import) is for requests only."""
+    import subprocess
+    import sys
+
+    code = "import sys, humanoidgen.generation.worker; print('openai' in sys.modules)"
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.strip() == "False"
