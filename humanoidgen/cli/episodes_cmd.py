@@ -161,6 +161,10 @@ def collect(
     Example: hgen collect blocks_stack_easy -n 50 --out data/stack --workers 2
     """
     os.environ.setdefault("MUJOCO_GL", "egl")
+    if ray_address is None:
+        from humanoidgen.sandbox.forkserver import prestart
+
+        prestart()  # the workers' server warms up while this process imports and checks its arguments
     from tqdm import tqdm
 
     from humanoidgen.episodes.collect import collect as run_collect

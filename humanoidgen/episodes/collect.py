@@ -109,8 +109,10 @@ def collect(task: str, n: int, out: Path, workers: int = 1, seed: int = 0, resum
             randomize_visuals: bool = False) -> CollectStats:
     """Collect `n` successful episodes of `task` into `out` (see the module docstring). `room` (a seed or
     "random") and `randomize_visuals` dress each attempt (`scenes.dressing.episode_dressing`)."""
+    from humanoidgen.sandbox.forkserver import prestart
     from humanoidgen.scenes.dressing import episode_dressing
 
+    prestart()  # the plan workers' server warms up while the dataset is opened
     store, tally, recorder = open_collection(task, n, out, seed, resume, recorder, plan_path, max_attempts)
     t0 = time.perf_counter()
     pool = ThreadPoolExecutor(workers) if workers > 1 else None

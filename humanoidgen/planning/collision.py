@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 import mujoco
 import numpy as np
 
+from humanoidgen.planning.broadphase import candidate_pairs
 from humanoidgen.planning.kinematics import Kinematics
 from humanoidgen.sim.layout import HAND_PREFIX, SIDES, Side, arm_bodies
 
@@ -203,9 +204,9 @@ class CollisionWorld:
 
     def clear_of(self, sides: tuple[Side, ...], clearance: float) -> bool:
         """`min_distance(sides)[0] > clearance`, answered with less work: the path planners ask it thousands of
-        times per move and need only the yes or no. Only pairs whose bounding spheres come within the clearance
-        are measured (a pair's distance is at least its spheres' gap, and the slacks only add to it), and the
-        first pair too close ends the search."""
+        times per move and need only the yes or no. Only pairs that may come within the clearance are measured
+        (broadphase: a pair's distance is at least its bounding spheres' gap, or a box obstacle's, and the
+        slacks only add to it), and the first pair too close ends the search."""
         if self.held_slack < 0 or any(t[1] < 0 for t in self.touch.values()):
             return self.min_distance(sides)[0] > clearance  # a negative slack would void the sphere bound
         cut = max(clearance, 0.0)
@@ -215,9 +216,7 @@ class CollisionWorld:
             if not len(movers) or not len(obstacles):
                 continue
             held = self.kin.attached[side][0] if side in self.kin.attached else -1
-            centres = np.linalg.norm(d.geom_xpos[movers][:, None, :] - d.geom_xpos[obstacles][None, :, :], axis=2)
-            gaps = centres - m.geom_rbound[movers][:, None] - m.geom_rbound[obstacles][None, :]
-            for i, j in np.argwhere(gaps <= cut):
+            for i, j in candidate_pairs(m, d, movers, obstacles, cut):
                 g1, g2 = int(movers[i]), int(obstacles[j])
                 dd = mujoco.mj_geomDistance(m, d, g1, g2, self.influence, self._fromto)
                 if self._geom_body[g1] == held:

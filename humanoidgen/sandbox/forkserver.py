@@ -64,6 +64,12 @@ def context() -> mp.context.BaseContext:
     return ctx
 
 
+def prestart() -> None:
+    """Start the server now and return at once: it imports and warms up (`sandbox.preload`, seconds) while
+    this process goes on with its own imports and set-up, instead of when the first worker is asked for."""
+    context()
+
+
 def _server_alive() -> bool:
     pid = getattr(mp_forkserver._forkserver, "_forkserver_pid", None)
     if pid is None:

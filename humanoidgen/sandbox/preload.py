@@ -32,8 +32,12 @@ def _warm() -> None:
     from humanoidgen.sim.meshes import recording_faces, visual_detail
     from humanoidgen.sim.scene import SceneBuilder
 
+    from humanoidgen.planning import broadphase
+
     with contextlib.suppress(Exception):
         warm_up()  # the point-cloud kernel, compiled once here rather than in every worker
+    with contextlib.suppress(Exception):
+        broadphase.warm_up()  # the collision checks' kernel: loaded or compiled once, before any fork
     SceneBuilder().build()
     with visual_detail(recording_faces(320, 240)):  # the default recording's level of detail
         SceneBuilder().build()
