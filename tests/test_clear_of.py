@@ -111,3 +111,24 @@ def test_clear_of_near_a_small_obstacle(world):
         kin.data.qpos[:] = saved
         kin.forward()
     assert decided >= 10
+
+
+def test_warm_up_compiles_the_kernel_the_planner_calls(tmp_path):
+    """The fork server compiles the broadphase kernel before forking (broadphase.warm_up); a locked-down worker
+    cannot write a new compilation to numba's cache (a fresh checkout failed every plan with a PermissionError).
+    So warm_up must produce the one specialization the collision checks then use."""
+    import os
+    import subprocess
+    import sys
+
+    code = ("from humanoidgen.planning import broadphase as b; b.warm_up(); "
+            "from humanoidgen.sim.env import HumanoidEnv; from humanoidgen.sim.scene import SceneBuilder; "
+            "from humanoidgen.planning.kinematics import Kinematics; "
+            "from humanoidgen.planning.collision import CollisionWorld; "
+            "builder = SceneBuilder(); builder.add_cube(pos=(-0.35, -0.2, 0.02)); env = HumanoidEnv(builder.build()); "
+            "kin = Kinematics(env.model); kin.sync(env.data.qpos); cw = CollisionWorld(kin); "
+            "cw.clear_of(('left', 'right'), 0.005); print(len(b._pairs.signatures))")
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path))  # a cache of its own: compiled here, not loaded
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300, env=env)
+    assert r.returncode == 0, r.stderr[-2000:]
+    assert r.stdout.strip().splitlines()[-1] == "1"

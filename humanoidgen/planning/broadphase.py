@@ -19,15 +19,30 @@ def candidate_pairs(model, data, movers: np.ndarray, obstacles: np.ndarray, cut:
     """(k, 2) index pairs (i, j) into movers, obstacles whose lower-bound gap is at most `cut` (metres)."""
     out = np.empty((len(movers) * len(obstacles), 2), np.int64)
     k = _pairs(data.geom_xpos, data.geom_xmat, model.geom_rbound, model.geom_size, model.geom_type,
-               np.asarray(movers, np.int64), np.asarray(obstacles, np.int64), float(cut), out)
+               _read_only(movers), _read_only(obstacles), float(cut), out)
     return out[:k]
 
 
+def _read_only(ids) -> np.ndarray:
+    """Geom ids as one array type, whoever calls (the collision lists are read-only arrays): a new type would
+    compile the kernel again, which a locked-down worker cannot write to its cache."""
+    a = np.asarray(ids, np.int64)
+    if a.flags.writeable:
+        a = a.view()
+        a.flags.writeable = False
+    return a
+
+
 def warm_up() -> None:
-    """Compile the kernel now (a process that forks workers does this once)."""
-    z = np.zeros((2, 3))
-    _pairs(z, np.tile(np.eye(3).ravel(), (2, 1)), np.ones(2), np.ones((2, 3)), np.array([BOX, BOX], np.int32),
-           np.array([0], np.int64), np.array([1], np.int64), 0.0, np.empty((1, 2), np.int64))
+    """Compile (or load from the cache) the kernel now, for the array types MuJoCo hands it: a process that
+    forks locked-down workers does this once, since a worker may not write the compiled code to the cache."""
+    import mujoco
+
+    model = mujoco.MjModel.from_xml_string("<mujoco><worldbody><geom type='box' size='1 1 1'/>"
+                                           "<geom type='sphere' size='0.1' pos='0 0 3'/></worldbody></mujoco>")
+    data = mujoco.MjData(model)
+    mujoco.mj_kinematics(model, data)
+    candidate_pairs(model, data, np.array([1]), np.array([0]), 0.0)
 
 
 @njit(cache=True, nogil=True)
