@@ -25,22 +25,18 @@ for _name in _MODULES:
 
 def _warm() -> None:
     """Build the robot's scene once: MuJoCo keeps processed meshes in a process-wide cache, which every
-    forked worker then inherits (compiling a scene drops from about 2.3 s to 0.6 s here); the decimated
-    visual meshes (full and recording detail) are written to the user cache now, by a process that may
-    still write."""
-    from humanoidgen.sim.fps import warm_up
-    from humanoidgen.sim.meshes import recording_faces, visual_detail
+    forked worker then inherits (compiling a scene drops from about 2.3 s to 0.6 s here); compile the
+    collision checks' kernel, which a locked-down worker could not write to numba's cache.
+
+    Not here: the recording level of detail and the point-cloud kernel. Workers hand back configurations and
+    the collecting process renders and samples the clouds (`image_job`, which warms both up on its own), so
+    they cost every fork server's start (about 0.75 s, before the first worker can start) for nothing."""
+    from humanoidgen.planning import broadphase
     from humanoidgen.sim.scene import SceneBuilder
 
-    from humanoidgen.planning import broadphase
-
     with contextlib.suppress(Exception):
-        warm_up()  # the point-cloud kernel, compiled once here rather than in every worker
-    with contextlib.suppress(Exception):
-        broadphase.warm_up()  # the collision checks' kernel: loaded or compiled once, before any fork
+        broadphase.warm_up()
     SceneBuilder().build()
-    with visual_detail(recording_faces(320, 240)):  # the default recording's level of detail
-        SceneBuilder().build()
 
 
 with contextlib.suppress(Exception):
