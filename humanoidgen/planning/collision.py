@@ -179,13 +179,22 @@ class CollisionWorld:
                 grad[i] = -normal @ J
         return dist, grad
 
+    def _slackened_distance(self, g1: int, g2: int, held: int) -> float:
+        """Mover g1 to obstacle g2 at the scratch state, plus the slacks: `held_slack` when g1 belongs to the
+        held body `held`, and any touch slack (`allow_touch`, `touch_only`)."""
+        dd = mujoco.mj_geomDistance(self.kin.model, self.kin.data, g1, g2, self.influence, self._fromto)
+        if self._geom_body[g1] == held:
+            dd += self.held_slack
+        if self.touch:
+            dd += self._slack(g1, g2)
+        return dd
+
     def min_distance(self, sides: tuple[Side, ...] = SIDES) -> tuple[float, tuple[int, int] | None]:
         """Smallest distance between any moving geom of `sides` and its obstacles, and that pair.
 
         A held object's distances count `held_slack` more: it may touch what it is set down on or lifted
         from, where the hand itself must keep clear."""
         best, pair = FAR, None
-        m, d = self.kin.model, self.kin.data
         for side in sides:
             movers, obstacles = self._geom_lists(side)
             if not len(movers) or not len(obstacles):
@@ -193,11 +202,7 @@ class CollisionWorld:
             held = self.kin.attached[side][0] if side in self.kin.attached else -1
             for i, j in self._near_pairs(movers, obstacles):
                 g1, g2 = int(movers[i]), int(obstacles[j])
-                dd = mujoco.mj_geomDistance(m, d, g1, g2, self.influence, self._fromto)
-                if self._geom_body[g1] == held:
-                    dd += self.held_slack
-                if self.touch:
-                    dd += self._slack(g1, g2)
+                dd = self._slackened_distance(g1, g2, held)
                 if dd < best:
                     best, pair = dd, (g1, g2)
         return best, pair
@@ -217,13 +222,7 @@ class CollisionWorld:
                 continue
             held = self.kin.attached[side][0] if side in self.kin.attached else -1
             for i, j in candidate_pairs(m, d, movers, obstacles, cut):
-                g1, g2 = int(movers[i]), int(obstacles[j])
-                dd = mujoco.mj_geomDistance(m, d, g1, g2, self.influence, self._fromto)
-                if self._geom_body[g1] == held:
-                    dd += self.held_slack
-                if self.touch:
-                    dd += self._slack(g1, g2)
-                if dd <= clearance:
+                if self._slackened_distance(int(movers[i]), int(obstacles[j]), held) <= clearance:
                     return False
         return True
 
@@ -261,7 +260,7 @@ class CollisionWorld:
             for i, j in self._near_pairs(movers, obstacles):
                 g1, g2 = int(movers[i]), int(obstacles[j])
                 dd = mujoco.mj_geomDistance(m, d, g1, g2, self.influence, self._fromto) + self._slack(g1, g2)
-                if dd <= clearance:
+                if dd < clearance:
                     key = (self._owner(g1), self._owner(g2))
                     worst[key] = min(worst.get(key, FAR), dd)
         per_obstacle: dict[int, tuple[int, float]] = {}
