@@ -272,3 +272,21 @@ def test_step_overhead(worker: SandboxWorker) -> None:
     median = statistics.median(times)
     print(f"sandbox per-step overhead: median {median * 1e3:.2f} ms, max {max(times) * 1e3:.2f} ms")
     assert median < 0.020
+
+
+def test_close_survives_a_worker_whose_pipe_is_gone() -> None:
+    """kill_all (an interrupted collection) can leave a worker that still looks alive while its pipe is dead;
+    closing it must not raise (a module fixture's teardown did, with _NoReply: died)."""
+    from humanoidgen.sandbox import runner
+
+    w = SandboxWorker(fake_setup, memory_limit=2 << 30)
+    w.start()
+    try:
+        def dead(*_a, **_k):
+            raise runner._NoReply("died")
+
+        w._post = dead  # what _post reports once the worker's end of the pipe is closed
+        w.close()
+        assert not w.alive
+    finally:
+        w._kill()

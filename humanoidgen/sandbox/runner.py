@@ -135,7 +135,8 @@ class SandboxWorker:
 
     def close(self) -> None:
         if self.alive and self._send is not None:
-            with contextlib.suppress(OSError, frames.FrameClosed, frames.FrameTimeout):
+            # _post reports a dead or stuck pipe as _NoReply (a worker killed by kill_all may still look alive)
+            with contextlib.suppress(_NoReply):
                 self._post(("exit", None), 1.0)
             self._proc.join(2.0)
         self._kill()
