@@ -3,6 +3,7 @@
 - "grasp" / "pinch": the hand's grasp (pinch) point on the operation point, the hand turned to the operation's
   axes (an object the other hand holds: at the point farthest from that hand's grip, a hand-over); with `openness`, the same at the part's pose for that openness (pulling a drawer, lifting a lid). An
   object without that operation but with the other (an object annotated only for pinching is pinched when grasped) uses the other.
+  A `point=` on a rigid object comes first; its other grips of that kind follow as the last resort.
 - "target": the object the hand holds (its centre) to the object's target pose in this task (listed in the scene
   as the object's "targets": a hand-over pose, the place above the bowl, the spot to stack on), keeping the
   hand's orientation and the object upright. Where the task defines none, it lifts the held object 10 cm.
@@ -211,12 +212,29 @@ def grasp_or_pinch(env, side: Side, obj_name: str, obj_id: int, operation: str,
     the other hand holds (`holding`) is taken as far from that hand's grip as its annotations allow."""
     other_grip = other_hand_grip(env, holding or {}, side, obj_name, obj_id)
     ops = _rank_operations(env, side, obj_name, obj_id, operation, openness, point, other_grip)
-    turns = WRAP_TURNS_DEG if operation == "grasp" and all(op.width is not None for op in ops) else (0,)
-    ways = [g for turn in turns for op in ops
-            for g in _grip_variants(env, side, obj_name, obj_id, operation, op, openness, turn, finger_offset)]
+    ways = _ways(env, side, obj_name, obj_id, operation, ops, openness, finger_offset)
+    if point is not None and env.scene.object(obj_name, obj_id).annotations.articulation is None:
+        # A named point on a rigid object is the author's preference, not a different task: where it cannot be
+        # reached or approached (a cup's front grip on a cup standing beyond the arm's reach from the front),
+        # the object's other grips of this kind are the last resort (measured: a plan naming a cup's "side"
+        # failed on 5 of 10 seeds where its right flank was in reach). On a part, the point names which part.
+        others = [o for o in _rank_operations(env, side, obj_name, obj_id, operation, openness, None, other_grip)
+                  if o.point != point]
+        for op in others:
+            for g in _ways(env, side, obj_name, obj_id, operation, [op], openness, finger_offset):
+                g.notes.append(f"the {side} hand cannot take {obj_name} {obj_id} at '{point}' as asked (out of "
+                               f"reach, or no way in): it takes it at '{op.point}' instead")
+                ways.append(g)
     first = ways[0]
     first.alternatives = ways[1:]
     return first
+
+
+def _ways(env, side: Side, obj_name: str, obj_id: int, operation: str, ops: list[OperationAnnotation],
+          openness: float | None, finger_offset: float) -> list[Generated]:
+    turns = WRAP_TURNS_DEG if operation == "grasp" and all(op.width is not None for op in ops) else (0,)
+    return [g for turn in turns for op in ops
+            for g in _grip_variants(env, side, obj_name, obj_id, operation, op, openness, turn, finger_offset)]
 
 
 def _grip_variants(env, side: Side, obj_name: str, obj_id: int, operation: str, op: OperationAnnotation,
