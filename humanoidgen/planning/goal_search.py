@@ -190,8 +190,14 @@ class GoalSearch:
         wanted = art.openness_of(follow["q_target"])
         pushes = self._pushes_toward(side, obj, wanted, skip_point=None if held else follow["part_point"])
         self.kin.sync(self.env.data.qpos)
-        partial = (path[-1], float(q_steps[len(path) - 1])) if held and len(path) and reached >= REGRIP_MIN_SHARE * way \
-            else None
+        partial = None
+        if held and len(path) and reached >= REGRIP_MIN_SHARE * way:
+            partial = (path[-1], float(q_steps[len(path) - 1]))
+        elif held and part_stays(self.env, follow["joint"], q_now):
+            # Hardly any of the way from this grip (a screen lifted 0.3 -> 0.6 in one hold has the wrist turned so
+            # far that it gets 0.6 -> 0.68 of a 0.85 asked): where the part stays put if let go, let go here and
+            # grip it again in a posture that keeps its arc in reach (regrip.py; at most MAX_REGRIPS times).
+            partial = (path[-1], float(q_steps[len(path) - 1])) if len(path) else (q0, float(q_now))
         return GoalResult(False, None, partial=partial, violations=[
             f"the {side} hand {'holding' if held else 'pushing'} {obj.type_name} {obj.obj_id} can move it only "
             f"from openness {now:.2f} to {got:.2f} of the {wanted:.2f} asked ({reason}): the hand would have to go "
