@@ -124,8 +124,12 @@ def step(planner):
 '''
 
 
-def test_a_part_that_stays_is_gripped_again_where_the_grip_gets_hardly_any_further(tmp_path):
-    result = run_plan(tmp_path, "open_laptop_hard", 0, LIFT_IN_STAGES)
+# Seed 0: the goal search finds the last stage's goal only partway (goal_search); seed 1: it solves the stage, but
+# from the arm as it settled in the grip the move's own track of the screen ends at once (part_grip
+# `_regrip_from_here`): both let go there and go on.
+@pytest.mark.parametrize("seed", [0, 1])
+def test_a_part_that_stays_is_gripped_again_where_the_grip_gets_hardly_any_further(tmp_path, seed):
+    result = run_plan(tmp_path, "open_laptop_hard", seed, LIFT_IN_STAGES)
     events = [e for s in result.steps for e in s.events]
     assert any("grips it again" in e or "went on to openness" in e for e in events), events
     assert result.success, (result.failed_step.error if result.failed_step else None, result.checks)

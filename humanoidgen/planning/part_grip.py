@@ -223,6 +223,8 @@ class PartFollowing:
                 self.events.append(f"followed {f['obj'][0]} {f['obj'][1]} {100 * reached / way:.0f}% of the way: "
                                    f"the {side} arm's reach ends there")
             return np.vstack([q0, path])
+        if self._regrip_from_here(side, target, float(q_steps[len(path) - 1]) if len(path) else float(q_now)):
+            return np.vstack([q0, path]) if len(path) else np.vstack([q0, q0])
         if target.joint_q is not None:
             # The solver's goal may sit in another arm posture family: track backward from it to the start and
             # use that path if it ends where the arm is now.
@@ -232,3 +234,23 @@ class PartFollowing:
             if not back_reason and np.max(np.abs(back[-1] - q0)) < 0.15:
                 return np.vstack([q0, back[::-1][1:], target.joint_q])
         raise MotionError(f"following {f['body']}'s joint: {reason}")
+
+    def _regrip_from_here(self, side: Side, target: Pose, q_reached: float) -> bool:
+        """Where following the part runs out of reach partway on a move planned to go all the way (the goal search
+        tracks from the arm at solve time; the arm settled in the grip may run out sooner: open_laptop_hard's
+        screen lifted in stages, at 50-75% of its last stage), make the move go as far as it gets and then let go
+        and grip the part again (regrip.py), as a goal found partial does. Only for a held part that stays where
+        it is let go, and while the move may still grip again; True where the target was changed so."""
+        from humanoidgen.planning.goal_search import part_stays
+
+        f = target.follow
+        art = follow_articulation(self.env, f)
+        if target.regrip is not None:  # the move lets go and grips again after this anyway: from wherever it ends
+            target.regrip["reached"] = art.openness_of(q_reached)
+        elif self.regrips_left <= 0 or self.holding[side] is None or not part_stays(self.env, f["joint"], q_reached):
+            return False
+        else:
+            target.regrip = {"obj": f["obj"], "openness": art.openness_of(f["q_target"]), "verb": self.grip[side],
+                             "reached": art.openness_of(q_reached), "optional": False, "follow": f}
+        target.follow = dict(f, q_target=q_reached)
+        return True
