@@ -223,8 +223,6 @@ class PartFollowing:
                 self.events.append(f"followed {f['obj'][0]} {f['obj'][1]} {100 * reached / way:.0f}% of the way: "
                                    f"the {side} arm's reach ends there")
             return np.vstack([q0, path])
-        if self._regrip_from_here(side, target, float(q_steps[len(path) - 1]) if len(path) else float(q_now)):
-            return np.vstack([q0, path]) if len(path) else np.vstack([q0, q0])
         if target.joint_q is not None:
             # The solver's goal may sit in another arm posture family: track backward from it to the start and
             # use that path if it ends where the arm is now.
@@ -233,6 +231,8 @@ class PartFollowing:
             back, back_reason = track_poses(self.kin, side, target.joint_q, poses[-2::-1] + [start[0]])
             if not back_reason and np.max(np.abs(back[-1] - q0)) < 0.15:
                 return np.vstack([q0, back[::-1][1:], target.joint_q])
+        if self._regrip_from_here(side, target, float(q_steps[len(path) - 1]) if len(path) else float(q_now)):
+            return np.vstack([q0, path]) if len(path) else np.vstack([q0, q0])
         raise MotionError(f"following {f['body']}'s joint: {reason}")
 
     def _regrip_from_here(self, side: Side, target: Pose, q_reached: float) -> bool:
