@@ -26,6 +26,7 @@ from humanoidgen.planning.part_grip import FOLLOW_ENOUGH, PartFollowing  # noqa:
 from humanoidgen.planning.part_joint import follow_articulation, follow_openness
 from humanoidgen.planning.paths import time_parametrize
 from humanoidgen.planning.poses import Pose
+from humanoidgen.planning.regrip import SHUT
 from humanoidgen.planning.finger_room import OPEN_CLEARANCE_M, FingerRoom, finger_sweep_clearance
 from humanoidgen.sim.action import ARM_SLICE, HAND_SLICE
 from humanoidgen.sim.geometry import mat_to_quat, rotation_angle
@@ -364,6 +365,13 @@ class ArmMoves(PartFollowing, Approaches, FingerRoom):
         label = f"{obj.type_name} {obj.obj_id}"
         if share >= 0.5:
             self.events.append(f"{label} reached openness {got:.2f} of the {wanted:g} asked")
+            if wanted <= SHUT < got and self.holding[side] is not None and target.regrip is None \
+                    and self.regrips_left > 0:
+                # Short of shut, held: let go and push it shut where the task has a push (regrip.go_on), as
+                # where the arm's reach ends; where that fails it stays here, as before.
+                target.regrip = {"obj": f["obj"], "openness": wanted, "verb": self.grip[side], "reached": got,
+                                 "optional": True, "follow": f,
+                                 "why": f"{label} stopped at openness {got:.2f} in the {side} hand"}
             return
         if self.holding[side] is not None:
             why = (f"the {side} hand's grip on it {'came off' if not self._holds(side, obj) else 'held, but the part did not follow'}: "

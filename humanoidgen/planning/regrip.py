@@ -5,6 +5,8 @@ screen that starts nearly upright and is to be closed to 0.3). A person lets go 
 from a posture that suits the rest of the way. The goal search (`GoalSearch._partial_goal`) returns the goal as
 far as the arm gets, with `Pose.regrip` saying where the plan asked to go; after that move, `go_on` does the rest
 with the plan's own verb (grasp or pinch) through the planner's API, so every call is logged as the plan's are.
+A part to be shut is not taken shut in the fingers (they would end shut in under it): let go on its way, or
+stopped short in the hand, it is pushed shut with the task's fingertip push where the task has one.
 """
 
 from __future__ import annotations
@@ -19,6 +21,7 @@ if TYPE_CHECKING:
 
 MAX_REGRIPS = 2  # a part is gripped again at most this many times on one move
 ARRIVED_TOL = 0.05  # openness: a part let go this near the openness asked, and at rest there, got there
+SHUT = 0.05  # openness: a part asked this near its closed end is to be shut (tasks check shut parts to 0.05)
 AT_REST_RAD_S = 0.05  # a part's joint turning or sliding slower than this is at rest
 
 
@@ -57,9 +60,8 @@ def _go_on(planner: HumanoidMotionPlanner, side: Side, regrip: dict) -> None:
     obj = planner.env.scene.object(*regrip["obj"])
     verb = regrip["verb"] or "grasp"
     label = f"{obj.type_name} {obj.obj_id}"
-    planner.events.append(
-        f"the {side} arm reaches only openness {regrip['reached']:.2f} holding {label}: it lets go there, "
-        f"grips it again and moves it on to {regrip['openness']:g}")
+    why = regrip.get("why") or f"the {side} arm reaches only openness {regrip['reached']:.2f} holding {label}"
+    planner.events.append(f"{why}: it lets go there, grips it again and moves it on to {regrip['openness']:g}")
     planner.regrips_left -= 1
     try:
         planner.regripping = True  # letting go to grip again: the hand may stay on the part (part_release)
@@ -110,7 +112,10 @@ def _pushed_on(planner: HumanoidMotionPlanner, side: Side, obj, regrip: dict, no
     if push is None or (push.spec.push.to - now) * (wanted - now) <= 0:
         return False  # no push, or the task's push goes the other way
     went_on = (regrip["reached"] - now) * (regrip["reached"] - wanted)  # > 0: it went on toward the goal
-    if went_on < ARRIVED_TOL * abs(regrip["reached"] - wanted):
+    # A part to be shut is pushed the rest of the way even where it stayed: gripped again and taken shut, the
+    # fingers around its edge end up shut in under it (a screen pinched shut to 0.04 had the thumb between screen
+    # and base; every way of letting go dragged it, and the hand going home lifted it to 0.48).
+    if went_on < ARRIVED_TOL * abs(regrip["reached"] - wanted) and wanted > SHUT:
         return False  # it stayed where the hand let go (a lid at 0.66): grip it again
     try:
         cons = planner.generate_constraints(obj.type_name, obj.obj_id, "target2", side, openness=wanted)
