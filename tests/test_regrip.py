@@ -161,3 +161,29 @@ def test_a_part_to_be_shut_is_pushed_shut_not_taken_shut_in_the_fingers(tmp_path
     events = [e for s in result.steps for e in s.events]
     assert any("is pushed on to 0 with the fingertip" in e for e in events), events
     assert result.success, (result.failed_step.error if result.failed_step else None, result.checks)
+
+
+# The corpus's open_box_easy/alt_folder: pinch the lid's tab, lift it to 0.5 then 0.95. Let go where the arm's
+# reach ends (0.68), the lid went on to 0.82 and the fingertip pushed it on to 0.95 came to 0.90, just under the
+# task's 0.9 on some seeds; asked that near the end of the task's push (1.0), it is pushed to the end.
+PINCH_LIFT_LID = '''
+def step(planner):
+    planner.hand_pre_pinch("right")
+    c = planner.generate_constraints(obj_name="box", obj_id=0, action="pinch", hand_name="right")
+    _, pose = planner.generate_end_effector_pose(c, "right")
+    planner.move_to_pose_with_screw(pose, "right", attach_obj=False)
+    planner.hand_pinch("right", pinch_object="box", obj_id=0)
+    for o in (0.5, 0.95):
+        c = planner.generate_constraints(obj_name="box", obj_id=0, action="pinch", hand_name="right", openness=o)
+        _, pose = planner.generate_end_effector_pose(c, "right")
+        planner.move_to_pose_with_screw(pose, "right", attach_obj=True, object_name="box", object_id=0)
+    planner.open_hand("right")
+'''
+
+
+def test_a_part_asked_near_the_end_of_the_tasks_push_is_pushed_to_that_end(tmp_path):
+    result = run_plan(tmp_path, "open_box_easy", 0, PINCH_LIFT_LID)
+    events = [e for s in result.steps for e in s.events]
+    assert any("is pushed on to 1 with the fingertip" in e for e in events), events
+    assert result.objects["box[0]"]["openness"] > 0.97
+    assert result.success, result.checks
