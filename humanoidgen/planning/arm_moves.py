@@ -363,15 +363,28 @@ class ArmMoves(PartFollowing, Approaches, FingerRoom):
                 return
         share = (got - start) / way
         label = f"{obj.type_name} {obj.obj_id}"
+        to_shut = wanted <= SHUT < got and self.holding[side] is not None and target.regrip is None \
+            and self.regrips_left > 0
         if share >= 0.5:
             self.events.append(f"{label} reached openness {got:.2f} of the {wanted:g} asked")
-            if wanted <= SHUT < got and self.holding[side] is not None and target.regrip is None \
-                    and self.regrips_left > 0:
+            if to_shut:
                 # Short of shut, held: let go and push it shut where the task has a push (regrip.go_on), as
                 # where the arm's reach ends; where that fails it stays here, as before.
                 target.regrip = {"obj": f["obj"], "openness": wanted, "verb": self.grip[side], "reached": got,
                                  "optional": True, "follow": f,
                                  "why": f"{label} stopped at openness {got:.2f} in the {side} hand"}
+            return
+        if target.regrip is not None and target.regrip["openness"] <= SHUT:
+            # It is let go and pushed shut anyway (part_grip, regrip.py): from here.
+            target.regrip.update(reached=got, why=f"{label} stayed at openness {got:.2f}, the {side} hand's grip "
+                                                  f"on it slipping")
+            return
+        if to_shut:
+            # The grip came off (a lid's tab slips out of the fingers): the same, but where neither the push nor a
+            # second grip gets it shut, the move fails as before.
+            target.regrip = {"obj": f["obj"], "openness": wanted, "verb": self.grip[side], "reached": got,
+                             "optional": False, "follow": f,
+                             "why": f"{label} stayed at openness {got:.2f}, the {side} hand's grip on it slipping"}
             return
         if self.holding[side] is not None:
             why = (f"the {side} hand's grip on it {'came off' if not self._holds(side, obj) else 'held, but the part did not follow'}: "

@@ -210,6 +210,7 @@ class PartFollowing:
 
     def _follow_part(self, side: Side, q0: np.ndarray, target: Pose) -> np.ndarray:
         """Track the hand along an articulated part's joint path (a drawer slides, a lid turns)."""
+        self._stop_short_of_shut(side, target)
         f = target.follow
         path, q_steps, q_now, reason = self._track_part(side, q0, f)
         if not reason:
@@ -234,6 +235,33 @@ class PartFollowing:
         if self._regrip_from_here(side, target, float(q_steps[len(path) - 1]) if len(path) else float(q_now)):
             return np.vstack([q0, path]) if len(path) else np.vstack([q0, q0])
         raise MotionError(f"following {f['body']}'s joint: {reason}")
+
+    def _stop_short_of_shut(self, side: Side, target: Pose) -> None:
+        """A hinged plate (a lid, a screen) held by its edge and to be shut: the fingers around the edge would end
+        shut in under it (a thumb between screen and base; every way of letting go then dragged it open again, to
+        0.28-0.48). Where the task has a fingertip push that shuts it, the hand takes it to STOP_SHORT_OF_SHUT,
+        lets go there and the part falls or is pushed shut (regrip.go_on)."""
+        from humanoidgen.planning.regrip import SHUT, STOP_SHORT_OF_SHUT
+        from humanoidgen.planning.target_actions import scene_targets
+
+        f = target.follow
+        if target.regrip is not None or self.regrips_left <= 0 or self.holding[side] is None:
+            return
+        m = self.env.model
+        if m.jnt_type[m.joint(f["joint"]).id] != mujoco.mjtJoint.mjJNT_HINGE:
+            return  # a drawer's handle is outside it: nothing gets shut in
+        art = follow_articulation(self.env, f)
+        wanted, now = art.openness_of(f["q_target"]), follow_openness(self.env, f)
+        obj = self.env.scene.object(*f["obj"])
+        targets = scene_targets(self.env)
+        push = targets.push(obj.type_name, obj.obj_id) if targets is not None else None
+        if wanted > SHUT or now <= STOP_SHORT_OF_SHUT or push is None or push.spec.push.to > SHUT:
+            return
+        target.regrip = {"obj": f["obj"], "openness": wanted, "verb": self.grip[side], "reached": STOP_SHORT_OF_SHUT,
+                         "optional": False, "follow": f,
+                         "why": f"{obj.type_name} {obj.obj_id} is to be shut: the {side} hand takes it to openness "
+                                f"{STOP_SHORT_OF_SHUT:g}, not shut in its fingers"}
+        target.follow = dict(f, q_target=art.joint_position(STOP_SHORT_OF_SHUT))
 
     def _regrip_from_here(self, side: Side, target: Pose, q_reached: float) -> bool:
         """Where following the part runs out of reach partway on a move planned to go all the way (the goal search

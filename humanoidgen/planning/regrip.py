@@ -22,6 +22,7 @@ if TYPE_CHECKING:
 MAX_REGRIPS = 2  # a part is gripped again at most this many times on one move
 ARRIVED_TOL = 0.05  # openness: a part let go this near the openness asked, and at rest there, got there
 NEAR_END = 0.1  # openness: a part asked this near the end of the task's push is pushed to that end
+STOP_SHORT_OF_SHUT = 0.2  # a hinged part to be shut is let go here by a hand holding it by its edge (part_grip)
 SHUT = 0.05  # openness: a part asked this near its closed end is to be shut (tasks check shut parts to 0.05)
 AT_REST_RAD_S = 0.05  # a part's joint turning or sliding slower than this is at rest
 
