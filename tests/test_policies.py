@@ -186,3 +186,13 @@ def test_study_collects_in_a_child_so_training_can_follow(tmp_path):
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
     assert r.returncode == 0, r.stderr[-2000:]
     assert "episodes 1" in r.stdout
+
+
+def test_a_study_asked_for_more_epochs_resumes_a_finished_run(demos_zarr, tmp_path):
+    from humanoidgen.policies.bench import _finished
+
+    run = tmp_path / "run"
+    assert not _finished(run)
+    train("dp3", demos_zarr, run, _with(TINY_DP3, epochs=2), device="cpu", progress=False)
+    assert _finished(run) and _finished(run, 2) and _finished(run, None)
+    assert not _finished(run, 3)  # asked for 3 epochs: it trains one more (it used to be evaluated at 2)

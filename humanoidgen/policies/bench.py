@@ -89,7 +89,7 @@ def run_study(cfg: StudyConfig, progress: bool = True) -> list[dict]:
                 over = _with(cfg.overrides.get(policy, {}), {"train": {"episodes": n}})
                 run = Path(cfg.runs_root) / f"{task}_{policy}_{n}"
                 result = None
-                if not _finished(run):
+                if not _finished(run, over.get("train", {}).get("epochs")):
                     result = train(policy, data, run, over, device=cfg.device, resume=(run / ck.LATEST).exists(),
                                    progress=progress)
                     if result.interrupted:
@@ -158,12 +158,14 @@ def plot(rows: list[dict], path: Path) -> bool:
     return True
 
 
-def _finished(run: Path) -> bool:
+def _finished(run: Path, epochs: int | None = None) -> bool:
+    """Whether the run has trained all its epochs: its own, or `epochs` where the study asks for more (a run of
+    18 epochs asked again with 40 resumes and trains 22 more instead of being evaluated as it is)."""
     latest = run / ck.LATEST
     if not latest.exists():
         return False
     state = ck.read(latest)
-    return int(state["epoch"]) >= int(state["config"]["train"]["epochs"])
+    return int(state["epoch"]) >= max(int(state["config"]["train"]["epochs"]), int(epochs or 0))
 
 
 def _with(base: dict, extra: dict) -> dict:
