@@ -26,6 +26,7 @@ from humanoidgen.planning.part_grip import FOLLOW_ENOUGH, PartFollowing  # noqa:
 from humanoidgen.planning.part_joint import follow_articulation, follow_openness
 from humanoidgen.planning.paths import time_parametrize
 from humanoidgen.planning.poses import Pose
+from humanoidgen.planning import regrip
 from humanoidgen.planning.regrip import SHUT
 from humanoidgen.planning.finger_room import OPEN_CLEARANCE_M, FingerRoom, finger_sweep_clearance
 from humanoidgen.sim.action import ARM_SLICE, HAND_SLICE
@@ -370,9 +371,8 @@ class ArmMoves(PartFollowing, Approaches, FingerRoom):
             if to_shut:
                 # Short of shut, held: let go and push it shut where the task has a push (regrip.go_on), as
                 # where the arm's reach ends; where that fails it stays here, as before.
-                target.regrip = {"obj": f["obj"], "openness": wanted, "verb": self.grip[side], "reached": got,
-                                 "optional": True, "follow": f,
-                                 "why": f"{label} stopped at openness {got:.2f} in the {side} hand"}
+                target.regrip = regrip.request(f, wanted, self.grip[side], got, optional=True,
+                                               why=f"{label} stopped at openness {got:.2f} in the {side} hand")
             return
         if target.regrip is not None and target.regrip["openness"] <= SHUT:
             # It is let go and pushed shut anyway (part_grip, regrip.py): from here.
@@ -382,9 +382,9 @@ class ArmMoves(PartFollowing, Approaches, FingerRoom):
         if to_shut:
             # The grip came off (a lid's tab slips out of the fingers): the same, but where neither the push nor a
             # second grip gets it shut, the move fails as before.
-            target.regrip = {"obj": f["obj"], "openness": wanted, "verb": self.grip[side], "reached": got,
-                             "optional": False, "follow": f,
-                             "why": f"{label} stayed at openness {got:.2f}, the {side} hand's grip on it slipping"}
+            target.regrip = regrip.request(f, wanted, self.grip[side], got, optional=False,
+                                           why=f"{label} stayed at openness {got:.2f}, the {side} hand's grip on "
+                                               f"it slipping")
             return
         if self.holding[side] is not None:
             why = (f"the {side} hand's grip on it {'came off' if not self._holds(side, obj) else 'held, but the part did not follow'}: "

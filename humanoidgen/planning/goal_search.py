@@ -31,6 +31,7 @@ from humanoidgen.planning.goal_solver import GoalResult
 from humanoidgen.planning.goal_targets import AxisWithin
 from humanoidgen.planning.motion import track_poses
 from humanoidgen.planning.part_joint import follow_articulation, follow_openness, point_motion
+from humanoidgen.planning import regrip
 from humanoidgen.planning.poses import Pose
 from humanoidgen.sim.layout import HAND_PREFIX, OPERABLE_RANGE, Side
 
@@ -131,9 +132,8 @@ class GoalSearch:
         # A part already most of the way that stays put is worth going on with (a lid left at 0.88 of a task's
         # 0.9) but not worth failing the move for.
         optional = share >= PARTIAL_ENOUGH and part_stays(self.env, follow["joint"], q_reached)
-        regrip = {"obj": follow["obj"], "openness": wanted, "verb": self.grip[side], "reached": reached,
-                  "optional": optional, "follow": follow}
-        return self._goal_at(side, q, failed.solve_time), (q_reached, regrip)
+        return self._goal_at(side, q, failed.solve_time), (
+            q_reached, regrip.request(follow, wanted, self.grip[side], reached, optional))
 
     def _goal_at(self, side: Side, q: np.ndarray, solve_time: float) -> GoalResult:
         """A solved goal at arm configuration q (its end-effector pose read from the kinematics)."""

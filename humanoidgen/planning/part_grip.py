@@ -241,7 +241,7 @@ class PartFollowing:
         shut in under it (a thumb between screen and base; every way of letting go then dragged it open again, to
         0.28-0.48). Where the task has a fingertip push that shuts it, the hand takes it to STOP_SHORT_OF_SHUT,
         lets go there and the part falls or is pushed shut (regrip.go_on)."""
-        from humanoidgen.planning.regrip import SHUT, STOP_SHORT_OF_SHUT
+        from humanoidgen.planning.regrip import SHUT, STOP_SHORT_OF_SHUT, request
         from humanoidgen.planning.target_actions import scene_targets
 
         f = target.follow
@@ -257,10 +257,9 @@ class PartFollowing:
         push = targets.push(obj.type_name, obj.obj_id) if targets is not None else None
         if wanted > SHUT or now <= STOP_SHORT_OF_SHUT or push is None or push.spec.push.to > SHUT:
             return
-        target.regrip = {"obj": f["obj"], "openness": wanted, "verb": self.grip[side], "reached": STOP_SHORT_OF_SHUT,
-                         "optional": False, "follow": f,
-                         "why": f"{obj.type_name} {obj.obj_id} is to be shut: the {side} hand takes it to openness "
-                                f"{STOP_SHORT_OF_SHUT:g}, not shut in its fingers"}
+        target.regrip = request(f, wanted, self.grip[side], STOP_SHORT_OF_SHUT, optional=False,
+                                why=f"{obj.type_name} {obj.obj_id} is to be shut: the {side} hand takes it to "
+                                    f"openness {STOP_SHORT_OF_SHUT:g}, not shut in its fingers")
         target.follow = dict(f, q_target=art.joint_position(STOP_SHORT_OF_SHUT))
 
     def _regrip_from_here(self, side: Side, target: Pose, q_reached: float) -> bool:
@@ -270,6 +269,7 @@ class PartFollowing:
         and grip the part again (regrip.py), as a goal found partial does. Only for a held part that stays where
         it is let go, and while the move may still grip again; True where the target was changed so."""
         from humanoidgen.planning.goal_search import part_stays
+        from humanoidgen.planning.regrip import request
 
         f = target.follow
         art = follow_articulation(self.env, f)
@@ -278,7 +278,7 @@ class PartFollowing:
         elif self.regrips_left <= 0 or self.holding[side] is None or not part_stays(self.env, f["joint"], q_reached):
             return False
         else:
-            target.regrip = {"obj": f["obj"], "openness": art.openness_of(f["q_target"]), "verb": self.grip[side],
-                             "reached": art.openness_of(q_reached), "optional": False, "follow": f}
+            target.regrip = request(f, art.openness_of(f["q_target"]), self.grip[side], art.openness_of(q_reached),
+                                    optional=False)
         target.follow = dict(f, q_target=q_reached)
         return True

@@ -27,6 +27,19 @@ SHUT = 0.05  # openness: a part asked this near its closed end is to be shut (ta
 AT_REST_RAD_S = 0.05  # a part's joint turning or sliding slower than this is at rest
 
 
+def request(follow: dict, wanted: float, verb: str | None, reached: float, optional: bool,
+            why: str | None = None) -> dict:
+    """What a move does after it (`Pose.regrip`, read by `go_on`): let go of the part `follow` moves where it is
+    (at openness `reached`), then get it to `wanted` (pushed on, or gripped again with `verb`). `optional`: where
+    that fails the part stays, with an event, instead of the move failing. `why`: the event's reason for letting
+    go (default: the arm's reach ends there)."""
+    out = {"obj": follow["obj"], "openness": wanted, "verb": verb, "reached": reached, "optional": optional,
+           "follow": follow}
+    if why:
+        out["why"] = why
+    return out
+
+
 def arrived(now: float, wanted: float) -> bool:
     """Whether a part let go on its way is, at openness `now`, where it was to go (a screen let go at 0.17 on its
     way shut falls shut by itself; gripped again it was lifted to 0.25 for the fingers and left at 0.20). Past it
