@@ -27,7 +27,6 @@ from humanoidgen.planning.part_joint import follow_articulation, follow_openness
 from humanoidgen.planning.paths import time_parametrize
 from humanoidgen.planning.poses import Pose
 from humanoidgen.planning import regrip
-from humanoidgen.planning.regrip import SHUT
 from humanoidgen.planning.finger_room import OPEN_CLEARANCE_M, FingerRoom, finger_sweep_clearance
 from humanoidgen.sim.action import ARM_SLICE, HAND_SLICE
 from humanoidgen.sim.geometry import mat_to_quat, rotation_angle
@@ -364,7 +363,7 @@ class ArmMoves(PartFollowing, Approaches, FingerRoom):
                 return
         share = (got - start) / way
         label = f"{obj.type_name} {obj.obj_id}"
-        to_shut = wanted <= SHUT < got and self.holding[side] is not None and target.regrip is None \
+        to_shut = wanted <= regrip.SHUT < got and self.holding[side] is not None and target.regrip is None \
             and self.regrips_left > 0
         if share >= 0.5:
             self.events.append(f"{label} reached openness {got:.2f} of the {wanted:g} asked")
@@ -374,17 +373,15 @@ class ArmMoves(PartFollowing, Approaches, FingerRoom):
                 target.regrip = regrip.request(f, wanted, self.grip[side], got, optional=True,
                                                why=f"{label} stopped at openness {got:.2f} in the {side} hand")
             return
-        if target.regrip is not None and target.regrip["openness"] <= SHUT:
-            # It is let go and pushed shut anyway (part_grip, regrip.py): from here.
-            target.regrip.update(reached=got, why=f"{label} stayed at openness {got:.2f}, the {side} hand's grip "
-                                                  f"on it slipping")
-            return
-        if to_shut:
-            # The grip came off (a lid's tab slips out of the fingers): the same, but where neither the push nor a
-            # second grip gets it shut, the move fails as before.
-            target.regrip = regrip.request(f, wanted, self.grip[side], got, optional=False,
-                                           why=f"{label} stayed at openness {got:.2f}, the {side} hand's grip on "
-                                               f"it slipping")
+        shut_after = target.regrip is not None and target.regrip["openness"] <= regrip.SHUT  # part_grip stops short
+        if to_shut or shut_after:
+            # The grip came off (a lid's tab slips out of the fingers): let go and push it shut from here; where
+            # neither the push nor a second grip gets it shut, the move fails as before.
+            why = f"{label} stayed at openness {got:.2f}, the {side} hand's grip on it slipping"
+            if shut_after:
+                target.regrip.update(reached=got, why=why)
+            else:
+                target.regrip = regrip.request(f, wanted, self.grip[side], got, optional=False, why=why)
             return
         if self.holding[side] is not None:
             why = (f"the {side} hand's grip on it {'came off' if not self._holds(side, obj) else 'held, but the part did not follow'}: "

@@ -21,6 +21,7 @@ from humanoidgen.planning.kinematics import Kinematics
 from humanoidgen.planning.motion import ROT_WEIGHT, MotionError, track_poses
 from humanoidgen.planning.part_joint import follow_articulation, follow_openness, rolls_about_joint
 from humanoidgen.planning.poses import Pose
+from humanoidgen.planning.regrip import SHUT, STOP_SHORT_OF_SHUT, request
 from humanoidgen.sim.geometry import axis_angle_mat, rotation_error
 from humanoidgen.sim.layout import Side
 
@@ -241,7 +242,6 @@ class PartFollowing:
         shut in under it (a thumb between screen and base; every way of letting go then dragged it open again, to
         0.28-0.48). Where the task has a fingertip push that shuts it, the hand takes it to STOP_SHORT_OF_SHUT,
         lets go there and the part falls or is pushed shut (regrip.go_on)."""
-        from humanoidgen.planning.regrip import SHUT, STOP_SHORT_OF_SHUT, request
         from humanoidgen.planning.target_actions import scene_targets
 
         f = target.follow
@@ -269,7 +269,6 @@ class PartFollowing:
         and grip the part again (regrip.py), as a goal found partial does. Only for a held part that stays where
         it is let go, and while the move may still grip again; True where the target was changed so."""
         from humanoidgen.planning.goal_search import part_stays
-        from humanoidgen.planning.regrip import request
 
         f = target.follow
         art = follow_articulation(self.env, f)

@@ -116,8 +116,9 @@ def _pushed_on(planner: HumanoidMotionPlanner, side: Side, obj, regrip: dict, no
     """A part that went on by itself toward the openness asked when let go and came to rest short of it (at openness
     `now`): where the task defines a fingertip push that way, push it on from there instead of gripping it again (a
     screen let go at 0.25 on its way shut fell to 0.08; gripped again it was first lifted ajar to 0.24 to make room
-    for the fingers, and the grip came off at 0.20). False where there is no such push or it fails (then the part
-    is gripped again)."""
+    for the fingers, and the grip came off at 0.20). A part to be shut is pushed on even where it stayed; one asked
+    within NEAR_END of where the task's push ends is pushed to that end. False where there is no such push or it
+    fails (then the part is gripped again)."""
     from humanoidgen.planning.arm_moves import PlanningError
     from humanoidgen.planning.target_actions import scene_targets
 
