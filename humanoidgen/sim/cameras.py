@@ -8,6 +8,7 @@ third-person cameras watch the table from the front, the left and the right.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Protocol
 
 import mujoco
 import numpy as np
@@ -58,6 +59,19 @@ def add_cameras(spec: mujoco.MjSpec, cameras: tuple[CameraSpec, ...] = CAMERAS) 
         )
 
 
+def pose_data(model: mujoco.MjModel, data: mujoco.MjData, qpos: np.ndarray) -> None:
+    """Put `data` at configuration `qpos`: kinematics, centres of mass and camera/light poses only (all a
+    picture needs; the same functions the simulator ran, so the same poses bit for bit)."""
+    data.qpos[:] = qpos
+    mujoco.mj_kinematics(model, data)
+    mujoco.mj_comPos(model, data)
+    mujoco.mj_camlight(model, data)
+
+
+class StillLayerLike(Protocol):
+    def under(self, rgb: np.ndarray, zbuf: np.ndarray) -> None: ...
+
+
 @dataclass
 class Frame:
     """One camera's images: RGB (H, W, 3) uint8, depth (H, W) float32 metres, segmentation (H, W) int32 labels."""
@@ -85,6 +99,9 @@ class CameraRig:
     shadows: bool = False
     max_geom: int = 2000
     hide_robot: bool = False  # pictures of objects alone
+    # Geom groups drawn besides MuJoCo's default three (their meshes are uploaded too): `still_layer.STILL_GROUP`
+    # for a rig that draws still geoms apart.
+    extra_groups: tuple[int, ...] = ()
 
     def __post_init__(self) -> None:
         vis = self.model.vis.global_
@@ -100,6 +117,8 @@ class CameraRig:
             from humanoidgen.sim.robot import ROBOT_VISUAL_GROUP
 
             self._opt.geomgroup[ROBOT_VISUAL_GROUP] = 0
+        for g in self.extra_groups:
+            self._opt.geomgroup[g] = 1
         self._gl = gl_context.GLContext(self.width, self.height)
         self._gl.make_current()
         self._con = mujoco.MjrContext(drawn_meshes_only(self.model, self._opt),
@@ -130,14 +149,26 @@ class CameraRig:
     def __exit__(self, *exc: object) -> None:
         self.close()
 
+    @property
+    def zero_far(self) -> bool:
+        """Depth-buffer values read 0 at the far plane and grow nearer (MuJoCo's reversed map, set above)."""
+        return self._con.readDepthMap == mujoco.mjtDepthMap.mjDEPTH_ZEROFAR
+
+    @property
+    def groups(self) -> tuple[int, ...]:
+        """The geom groups this rig draws."""
+        return tuple(int(g) for g in np.flatnonzero(np.asarray(self._opt.geomgroup)))
+
     def render(
-        self, data: mujoco.MjData, camera: str, rgb: bool = True, depth: bool = True, segmentation: bool = True
+        self, data: mujoco.MjData, camera: str, rgb: bool = True, depth: bool = True, segmentation: bool = True,
+        groups: tuple[int, ...] | None = None, over: "StillLayerLike | None" = None,
     ) -> Frame:
+        """`camera`'s frame of `data`: only geoms of `groups` (default: the rig's `groups`), and, with `over`,
+        drawn over a layer of what was left out (`still_layer.StillLayer`: colour and depth only)."""
+        if over is not None and (segmentation or not rgb):
+            raise ValueError("a still layer goes under colour and depth only: render it with segmentation=False")
         cam_id = self.model.camera(camera).id
-        self._gl.make_current()
-        self._cam.fixedcamid = cam_id
-        mujoco.mjv_updateScene(self.model, data, self._opt, self._pert, self._cam,
-                               mujoco.mjtCatBit.mjCAT_ALL.value, self._scn)
+        self._update_scene(data, cam_id, groups)
         flags = self._scn.flags
         rgb_img = np.zeros((0, 0, 3), np.uint8)
         depth_img = np.zeros((0, 0), np.float32)
@@ -146,7 +177,10 @@ class CameraRig:
             # The lit pass fills the depth buffer too: read both from it.
             flags[mujoco.mjtRndFlag.mjRND_SHADOW] = self.shadows
             mujoco.mjr_render(self._rect, self._scn, self._con)
-            mujoco.mjr_readPixels(self._rgb, self._depth if depth else None, self._rect, self._con)
+            mujoco.mjr_readPixels(self._rgb, self._depth if depth or over is not None else None, self._rect,
+                                  self._con)
+            if over is not None:
+                over.under(self._rgb, self._depth)
             rgb_img = np.flipud(self._rgb).copy()
             if depth:
                 depth_img = np.flipud(self._metric_depth(self._depth)).copy()
@@ -171,6 +205,31 @@ class CameraRig:
             cam_pos=data.cam_xpos[cam_id].copy(),
             cam_mat=data.cam_xmat[cam_id].reshape(3, 3).copy(),
         )
+
+    def draw_raw(self, data: mujoco.MjData, camera: str, groups: tuple[int, ...]) -> tuple[np.ndarray, np.ndarray]:
+        """Colour and depth-buffer values of `camera`'s lit pass over geoms of `groups`, as the renderer holds
+        them (bottom row first, depth not yet in metres, see `zero_far`): copies, for `still_layer.StillLayer`."""
+        self._update_scene(data, self.model.camera(camera).id, groups)
+        self._scn.flags[mujoco.mjtRndFlag.mjRND_SHADOW] = self.shadows
+        mujoco.mjr_render(self._rect, self._scn, self._con)
+        mujoco.mjr_readPixels(self._rgb, self._depth, self._rect, self._con)
+        return self._rgb.copy(), self._depth.copy()
+
+    def _update_scene(self, data: mujoco.MjData, cam_id: int, groups: tuple[int, ...] | None) -> None:
+        self._gl.make_current()
+        self._cam.fixedcamid = cam_id
+        saved = None
+        if groups is not None:  # the groups decide which geoms go into the scene: set them for this update only
+            saved = np.array(self._opt.geomgroup)
+            self._opt.geomgroup[:] = 0
+            for g in groups:
+                self._opt.geomgroup[g] = 1
+        try:
+            mujoco.mjv_updateScene(self.model, data, self._opt, self._pert, self._cam,
+                                   mujoco.mjtCatBit.mjCAT_ALL.value, self._scn)
+        finally:
+            if saved is not None:
+                self._opt.geomgroup[:] = saved
 
     def render_all(self, data: mujoco.MjData, cameras: tuple[str, ...] = CAMERA_NAMES, **kw: bool) -> dict[str, Frame]:
         return {name: self.render(data, name, **kw) for name in cameras}
