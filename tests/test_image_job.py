@@ -88,7 +88,9 @@ def test_warm_up_fills_the_caches_and_never_raises():
     loaded for the depth type rendering gives (float32), and a task it cannot build costs nothing but time."""
     from humanoidgen.episodes.image_job import warm_up
     from humanoidgen.sim.pointcloud import _crop_pixels
+    from humanoidgen.sim.still_layer import _under
 
     warm_up("no_such_task", SMALL)  # no exception
     warm_up("block_stack_single", SMALL)
     assert any(str(sig[0]).startswith("array(float32") for sig in _crop_pixels.signatures)
+    assert any(str(sig[0]).startswith("array(uint8, 3d") for sig in _under.signatures)

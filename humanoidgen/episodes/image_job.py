@@ -97,17 +97,20 @@ class ImageJob:
 def warm_up(task: str, recorder: RecorderConfig, seed: int | None = 0) -> None:
     """Pay the collecting process's one-off rendering costs now, while the first attempt plans in its worker:
     the first build of the task's scene at the recording detail (MuJoCo compiles the robot's meshes once per
-    process, about 2.4 s of the first build's 2.7; later builds take 0.3 s) and the compiled point-cloud
-    code's loading (about 0.7 s). Nothing is kept but those caches; any failure is left to the real render."""
+    process, about 2.4 s of the first build's 2.7; later builds take 0.3 s) and the loading of the compiled
+    point-cloud and still-layer code (about 0.7 s). Nothing is kept but those caches; any failure is left to
+    the real render."""
     try:
         from humanoidgen.sim.fps import warm_up as warm_fps
         from humanoidgen.sim.meshes import visual_detail
+        from humanoidgen.sim.still_layer import warm_up as warm_layers
         from humanoidgen.tasks.registry import load_task
         from humanoidgen.tasks.scene import build_layout
 
         spec = load_task(task)
         with visual_detail(recorder.faces):
             build_layout(spec.sample_layout(seed), settle_s=0.0, aliases=spec.aliases())
+        warm_layers()
         if recorder.point_cloud:
             from humanoidgen.sim.pointcloud import PointCloudConfig, fuse_point_cloud
 
