@@ -11,7 +11,7 @@ from humanoidgen.episodes.collect import collect
 from humanoidgen.episodes.dataset import EpisodeStore, export_zarr
 from humanoidgen.episodes.plans import PlanFormatError, parse_plan
 from humanoidgen.episodes.recorder import RecorderConfig
-from humanoidgen.episodes.task_episode import EpisodeRequest, run_task_episode
+from humanoidgen.episodes.task_episode import EpisodeRequest, run_task_episode, start_worker
 
 runner = CliRunner()
 
@@ -102,6 +102,34 @@ def test_collection_is_the_same_with_one_or_two_workers(collected):
         assert ea["point_cloud"].shape == (len(ea["action"]), 256, 3)
         assert ea["rgb/head"].shape == (len(ea["action"]), 48, 64, 3)
         assert ea["depth/head"].dtype == np.float32  # stored in millimetres, read back in metres
+
+
+def test_a_worker_started_ahead_runs_the_same_episode_and_a_stray_one_is_closed():
+    """collect starts the next attempt's worker while one runs (`start_worker`): the episode is the same, its
+    clock starts with its plan (not when its worker was started), and a worker for another seed is closed."""
+    import time
+
+    from humanoidgen.episodes.collect import _WorkerAhead
+
+    req = EpisodeRequest("block_stack_single", seed=1, recorder=RecorderConfig(every=10))
+    plain, plain_arrays = run_task_episode(req)
+    worker = start_worker(req)
+    assert worker.alive
+    time.sleep(2.0)
+    ahead, ahead_arrays = run_task_episode(req, worker=worker)
+    assert not worker.alive
+    assert plain.success and ahead.success
+    assert set(plain_arrays) == set(ahead_arrays)
+    for key in plain_arrays:
+        assert np.array_equal(plain_arrays[key], ahead_arrays[key]), key
+    assert ahead.wall_seconds < sum(s.seconds for s in ahead.steps) + 1.0
+    runs = _WorkerAhead(lambda s: EpisodeRequest("block_stack_single", s, recorder=RecorderConfig(every=10)))
+    try:
+        runs.next = (5, runs.starter.submit(start_worker, runs.request(5)))
+        stray = runs.next[1].result()
+        assert stray.alive and runs._take(4) is None and not stray.alive
+    finally:
+        runs.close()
 
 
 def test_interrupted_collection_resumes_without_duplicates_or_loss(collected, tmp_path):

@@ -15,7 +15,7 @@ from pathlib import Path
 
 from humanoidgen.episodes.dataset import EpisodeStore
 from humanoidgen.episodes.recorder import RecorderConfig
-from humanoidgen.episodes.task_episode import EpisodeRequest, run_task_episode
+from humanoidgen.episodes.task_episode import EpisodeRequest, run_task_episode, start_worker
 from humanoidgen.sim.action import ACTION_JOINTS
 from humanoidgen.sim.cameras import CAMERA_NAMES
 
@@ -31,14 +31,18 @@ class CollectStats:
         return self.kept / self.tried if self.tried else 0.0
 
 
-def attempt(req: EpisodeRequest) -> tuple[dict, dict | None]:
+def attempt(req: EpisodeRequest, worker=None) -> tuple[dict, dict | None]:
     """One attempt, as a plain record plus the arrays of a kept episode (local and Ray collection both run
-    this; its plan runs in a locked-down plan worker). The images of a kept episode are not rendered yet:
-    they are when its file is written (`image_job`), while the next attempts run."""
+    this; its plan runs in a locked-down plan worker, `worker` if one was started for it ahead). The images
+    of a kept episode are not rendered yet: they are when its file is written (`image_job`), while the next
+    attempts run."""
     try:
-        result, arrays = run_task_episode(req, render=False)
+        result, arrays = run_task_episode(req, render=False, worker=worker)
     except Exception as exc:  # a broken attempt is a failed attempt, not a dead collection
         return {"seed": req.seed, "success": False, "error": f"{type(exc).__name__}: {exc}"}, None
+    finally:
+        if worker is not None:
+            worker.close()  # already closed by the episode, unless it failed before starting
     failed = result.failed_step
     record = {
         "seed": req.seed, "success": result.success, "wall_seconds": round(result.wall_seconds, 3),
@@ -125,13 +129,23 @@ def collect(task: str, n: int, out: Path, workers: int = 1, seed: int = 0, resum
         from humanoidgen.episodes.image_job import warm_up
 
         writer.submit(warm_up, task, recorder, tally.next_seed)  # while the first attempts plan
+    def request(s: int) -> EpisodeRequest:
+        return EpisodeRequest(task, s, plan_path, recorder, dressing=episode_dressing(room, randomize_visuals, s))
+
+    # One attempt at a time: the next attempt's worker starts (fork, lock-down, scene) while one runs, on the
+    # core that attempt leaves idle; about a fifth of a short camera-less attempt. Not with a replaced attempt.
+    ahead = _WorkerAhead(request) if pool is None and _attempt is attempt else None
     try:
         while not tally.done:
             seeds = tally.seeds()[: max(workers, 1)]
-            batch = [EpisodeRequest(task, s, plan_path, recorder, dressing=episode_dressing(room, randomize_visuals, s))
-                     for s in seeds]
+            batch = [request(s) for s in seeds]
             tally.next_seed += len(batch)
-            results = list(pool.map(_attempt, batch)) if pool is not None else [_attempt(r) for r in batch]
+            if pool is not None:
+                results = list(pool.map(_attempt, batch))
+            elif ahead is not None:
+                results = [ahead.run(r, next_seed=tally.seeds()[0] if len(tally.seeds()) else None) for r in batch]
+            else:
+                results = [_attempt(r) for r in batch]
             for done in writing:
                 done.result()  # the previous batch is on disk (or its error is raised here)
             writing = []
@@ -147,10 +161,45 @@ def collect(task: str, n: int, out: Path, workers: int = 1, seed: int = 0, resum
         kill_all()  # Ctrl-C: the attempts in flight end now; what was written stays
         raise
     finally:
+        if ahead is not None:
+            ahead.close()
         if pool is not None:
             pool.shutdown(wait=True, cancel_futures=True)  # each attempt's worker ends with its attempt
         writer.shutdown(wait=True)  # an episode being written is finished, never left half-written
     return CollectStats(tally.kept, tally.tried, time.perf_counter() - t0)
+
+
+class _WorkerAhead:
+    """Runs attempts one by one, each in a worker started while the attempt before it ran."""
+
+    def __init__(self, request: Callable[[int], EpisodeRequest]) -> None:
+        self.request = request
+        self.starter = ThreadPoolExecutor(1, thread_name_prefix="hgen-start")
+        self.next: tuple[int, Future] | None = None
+
+    def run(self, req: EpisodeRequest, next_seed: int | None) -> tuple[dict, dict | None]:
+        worker = self._take(req.seed)
+        if next_seed is not None:
+            self.next = (next_seed, self.starter.submit(start_worker, self.request(next_seed)))
+        return attempt(req, worker)
+
+    def _take(self, seed: int | None):
+        """The worker started for `seed`, if it started; any other is closed."""
+        pending, self.next = self.next, None
+        if pending is None:
+            return None
+        try:
+            worker = pending[1].result()
+        except Exception:  # noqa: BLE001 - the attempt starts its own worker and reports what goes wrong
+            return None
+        if pending[0] == seed:
+            return worker
+        worker.close()
+        return None
+
+    def close(self) -> None:
+        self._take(None)
+        self.starter.shutdown(wait=True)
 
 
 def _write(store: EpisodeStore, record: dict, arrays: dict | None, progress: Callable[[int, int], None] | None,

@@ -110,8 +110,17 @@ def worker_for(req: EpisodeRequest, spec, plan_text: str, on_frame: Callable[[np
     return SandboxWorker(setup, memory_limit=limit, on_stream=frames, max_message_bytes=MESSAGE_LIMIT)
 
 
+def start_worker(req: EpisodeRequest):
+    """`req`'s worker, started now (forked, locked down, its scene built) for a later
+    `run_task_episode(req, worker=...)`: collecting starts the next attempt's worker while one runs."""
+    spec = load_spec(req.task)
+    worker = worker_for(req, spec, read_plan_text(plan_file(req.task, spec, req.plan_path)))
+    worker.start()
+    return worker
+
+
 def run_task_episode(req: EpisodeRequest, on_frame: Callable[[np.ndarray], None] | None = None,
-                     render: bool = True) -> tuple[EpisodeResult, dict | None]:
+                     render: bool = True, worker=None) -> tuple[EpisodeResult, dict | None]:
     """Run one attempt in a locked-down worker; returns the result and, when recording, the arrays.
 
     A successful attempt recorded with cameras is rendered here, after its worker has ended (`image_job`):
@@ -119,8 +128,9 @@ def run_task_episode(req: EpisodeRequest, on_frame: Callable[[np.ndarray], None]
     `EpisodeStore` to render while it writes the episode, frame by frame.
     `on_frame(rgb)` receives the frames of `req.video` (default: the front camera at 25 fps) as they are
     rendered. Raises PlanFormatError for a plan that cannot be parsed; a step that fails, times out or kills
-    its worker is a failed step in the result."""
-    result, arrays = _run_in_worker(req, on_frame)
+    its worker is a failed step in the result. `worker`: one `start_worker(req)` started for this request
+    (without video); this call closes it."""
+    result, arrays = _run_in_worker(req, on_frame, worker)
     if arrays is None or "configurations" not in arrays:
         return result, arrays
     try:
@@ -137,15 +147,20 @@ def run_task_episode(req: EpisodeRequest, on_frame: Callable[[np.ndarray], None]
     return result, arrays
 
 
-def _run_in_worker(req: EpisodeRequest, on_frame: Callable[[np.ndarray], None] | None
+def _run_in_worker(req: EpisodeRequest, on_frame: Callable[[np.ndarray], None] | None, started=None
                    ) -> tuple[EpisodeResult, dict | None]:
     from humanoidgen.sandbox import SandboxError
 
     spec = load_spec(req.task)
-    text = read_plan_text(plan_file(req.task, spec, req.plan_path))
-    if on_frame is not None and req.video is None:
-        req = replace(req, video=VideoSpec())
-    with worker_for(req, spec, text, on_frame) as worker:
+    if started is not None and on_frame is not None:
+        started.close()  # started without a video stream: this episode needs one
+        started = None
+    if started is None:
+        text = read_plan_text(plan_file(req.task, spec, req.plan_path))
+        if on_frame is not None and req.video is None:
+            req = replace(req, video=VideoSpec())
+        started = worker_for(req, spec, text, on_frame)
+    with started as worker:
         try:
             plan = worker.call(PLAN, timeout_s=CONTROL_TIMEOUT_S)
         except SandboxError as exc:
