@@ -104,6 +104,18 @@ def test_collection_is_the_same_with_one_or_two_workers(collected):
         assert ea["depth/head"].dtype == np.float32  # stored in millimetres, read back in metres
 
 
+def test_camera_less_collection_with_workers_started_ahead_keeps_the_same_episodes(collected, tmp_path):
+    _, two, _, _ = collected
+    stats = collect("block_stack_single", 2, tmp_path / "ahead", workers=1, seed=0, recorder=RecorderConfig(every=10))
+    assert stats.kept == 2
+    a, b = EpisodeStore(tmp_path / "ahead"), EpisodeStore(two)
+    assert [k["seed"] for k in a.kept()] == [k["seed"] for k in b.kept()]
+    for i in range(2):
+        ea, eb = a.load(i), b.load(i)
+        for key in ea:  # the state: the same whether a worker was started ahead, and with cameras or not
+            assert np.array_equal(ea[key], eb[key]), key
+
+
 def test_a_worker_started_ahead_runs_the_same_episode_and_a_stray_one_is_closed():
     """collect starts the next attempt's worker while one runs (`start_worker`): the episode is the same, its
     clock starts with its plan (not when its worker was started), and a worker for another seed is closed."""

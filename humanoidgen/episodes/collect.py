@@ -132,9 +132,10 @@ def collect(task: str, n: int, out: Path, workers: int = 1, seed: int = 0, resum
     def request(s: int) -> EpisodeRequest:
         return EpisodeRequest(task, s, plan_path, recorder, dressing=episode_dressing(room, randomize_visuals, s))
 
-    # One attempt at a time: the next attempt's worker starts (fork, lock-down, scene) while one runs, on the
-    # core that attempt leaves idle; about a fifth of a short camera-less attempt. Not with a replaced attempt.
-    ahead = _WorkerAhead(request) if pool is None and _attempt is attempt else None
+    # One attempt at a time and no images: the next attempt's worker starts (fork, lock-down, scene) while one
+    # runs, on the core that attempt leaves idle (about a fifth of a short camera-less attempt). With images
+    # that core renders the kept attempts, and a worker started ahead only takes time from it (measured).
+    ahead = (_WorkerAhead(request) if pool is None and not recorder.renders and _attempt is attempt else None)
     try:
         while not tally.done:
             seeds = tally.seeds()[: max(workers, 1)]
