@@ -12,8 +12,9 @@ each frame draws the moving geoms alone and keeps their pixels where they are ne
 depth test the renderer does, on the same depth-buffer values. The frames are the renderer's own pixels
 (tested against drawing everything at once); the one case that could differ, a moving and a still surface at
 exactly the same depth value, is left to the still one here and to draw order there. Measured on recorded
-episodes (six 320x240 cameras, four of them still; identical arrays): drawing a hand-over frame took 36% less
-CPU, and rendering its episode (with clouds and depth encoding) 24% less; block_stack_single's 17-22% less.
+episodes (six 320x240 cameras, four of them still; `bench/still_layers.py`, identical arrays): drawing a
+hand-over frame took 36% less CPU, rendering its episode with clouds and depth 28% less, block_stack_single's
+23% less.
 
 The still geoms are moved to a group of their own (`STILL_GROUP`) in a copy of the model, so a rig can draw
 them, or everything else, by geom group.
