@@ -45,13 +45,17 @@ def test_a_pinched_block_that_shifted_but_is_still_held_is_carried_on(carrying):
 
 def test_a_pinched_block_that_shifted_and_is_not_held_was_lost(carrying):
     planner, script = carrying
-    with pytest.raises(PlanningError, match="slipped 15 mm"):
+    with pytest.raises(PlanningError, match="slipped 15 mm") as lost:
         script(0.015, {"index"})  # no thumb on it: no hold
     assert planner.holding["right"] is None
+    # The message is the plan author's feedback: the grip, the weight, what still touches, what to try.
+    assert "(pinch, 0.0" in str(lost.value) and "touching it now: index" in str(lost.value)
+    assert "try action='grasp'" in str(lost.value)
 
 
 def test_a_block_that_moved_past_the_grasp_limit_was_lost_even_if_touched(carrying):
     planner, script = carrying
     far = SLIP_LIMIT["grasp"] + 0.005
-    with pytest.raises(PlanningError, match=f"slipped {far * 1000:.0f} mm"):
+    with pytest.raises(PlanningError, match=f"slipped {far * 1000:.0f} mm") as lost:
         script(far, {"thumb", "index"})
+    assert "touching it now: index, thumb" in str(lost.value)

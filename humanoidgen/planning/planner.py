@@ -387,6 +387,20 @@ class HumanoidMotionPlanner(GoalSearch, ArmMoves):
             return set()
         return {self.env.model.body(gen.approach_object).id}
 
+    def _slipped(self, side: Side, obj: SceneObject, slip: float) -> str:
+        """Why a carried object was lost, and what the plan could do instead (the message is the LLM's feedback)."""
+        grip = self.grip.get(side, "pinch")
+        touching = finger_contacts(self.env.model, self.env.data, side, obj.body)
+        mass = float(self.env.model.body_subtreemass[self.env.model.body(obj.body).id])
+        now = f"touching it now: {', '.join(sorted(touching))}" if touching else "no longer touching it"
+        if grip == "pinch":
+            advice = ("two fingertips did not hold it through the move: try action='grasp' (the whole hand), "
+                      "a point= nearer its middle, or shorter moves")
+        else:
+            advice = "the grasp did not hold it through the move: try a point= nearer its middle, or shorter moves"
+        return (f"{obj.type_name} {obj.obj_id} slipped {slip * 1000:.0f} mm in the {side} hand ({grip}, "
+                f"{mass:.2f} kg; {now}): {advice}")
+
     def _stopped_short(self, side: Side, err: float) -> str:
         """Why the hand did not get there, for the plan's author: what it is pressing against, and what to try."""
         touches = hand_touches(self.env.scene, self.env.model, self.env.data, side)
@@ -481,5 +495,4 @@ class HumanoidMotionPlanner(GoalSearch, ArmMoves):
                     self.events.append(f"{obj.type_name} {obj.obj_id} shifted {slip * 1000:.0f} mm in the {side} hand")
             else:
                 self.holding[side] = None
-                raise PlanningError("move_to_pose_with_screw",
-                                    f"{obj.type_name} {obj.obj_id} slipped {slip * 1000:.0f} mm in the {side} hand")
+                raise PlanningError("move_to_pose_with_screw", self._slipped(side, obj, slip))
