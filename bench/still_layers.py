@@ -27,22 +27,12 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
 
 import numpy as np  # noqa: E402
 
-from humanoidgen.episodes.image_job import PENDING_IMAGES  # noqa: E402
-from humanoidgen.episodes.recorder import RecorderConfig  # noqa: E402
+from render_levers import episode_job  # noqa: E402  (bench/ is the script's folder: the same recorded episode)
+
 from humanoidgen.episodes.render_replay import render_recording  # noqa: E402
-from humanoidgen.episodes.task_episode import EpisodeRequest, run_task_episode  # noqa: E402
-from humanoidgen.sim.cameras import CAMERA_NAMES  # noqa: E402
 from humanoidgen.sim.still_layer import still_parts  # noqa: E402
 
 RESULTS = Path(__file__).parent / "results"
-
-
-def recorded_job(task: str, seed: int = 0):
-    rec = RecorderConfig(every=5, cameras=CAMERA_NAMES, point_cloud=True)
-    result, arrays = run_task_episode(EpisodeRequest(task, seed=seed, recorder=rec), render=False)
-    if not result.success:
-        raise SystemExit(f"{task} seed {seed} failed; pick another seed")
-    return arrays[PENDING_IMAGES]
 
 
 def render(job, model, layered: bool) -> tuple[dict, float, float]:
@@ -54,7 +44,7 @@ def render(job, model, layered: bool) -> tuple[dict, float, float]:
 
 
 def measure(task: str, rounds: int) -> dict:
-    job = recorded_job(task)
+    job = episode_job(task)
     model = job.model()
     still = still_parts(model, job.configurations)
     drawn = np.isin(model.geom_group, (0, 1, 2))
