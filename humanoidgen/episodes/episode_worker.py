@@ -46,6 +46,7 @@ class EpisodeSetup:
         from humanoidgen.episodes.runner import object_states, step_namespace
         from humanoidgen.episodes.task_episode import judge
         from humanoidgen.planning.planner import HumanoidMotionPlanner
+        from humanoidgen.planning.settling import wait_until_still
         from humanoidgen.sim.env import HumanoidEnv
         from humanoidgen.tasks.registry import parse_task
         from humanoidgen.tasks.scene import build_scene
@@ -77,6 +78,8 @@ class EpisodeSetup:
             recorded, `render` (the parent: every step succeeded) and every success check holds, the arrays
             also hold what the parent renders them from (`image_job`): the recorded configurations and the
             model's clipping-plane statistics. A failed attempt is never rendered."""
+            if render is True:  # every step ran: judge the scene once what the last move set going has landed
+                wait_until_still(planner)
             checks = judge(spec, env)
             arrays = None
             if recorder is not None and recorder.frames:

@@ -49,6 +49,7 @@ def setup() -> dict[str, Any]:
     from humanoidgen.episodes.task_episode import judge
     from humanoidgen.objects.describe import describe_scene
     from humanoidgen.planning.planner import HumanoidMotionPlanner
+    from humanoidgen.planning.settling import wait_until_still
     from humanoidgen.tasks.registry import parse_task
     from humanoidgen.tasks.scene import build_scene
 
@@ -70,6 +71,7 @@ def setup() -> dict[str, Any]:
         """The task's predicates on the current state, plus the planner's event log."""
         if "env" not in state:
             raise RuntimeError("no scene is loaded")
+        wait_until_still(state["planner"])  # as an episode is judged: what the last move set going lands first
         checks = judge(state["spec"], state["env"])
         return {"checks": checks, "events": list(state["planner"].events),
                 "status": describe_scene(state["env"], as_json=False)["status"]}
