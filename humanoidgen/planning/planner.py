@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from humanoidgen.objects.hands import HAND_POSTURES
-from humanoidgen.planning import constraint_gen, grip_intent, part_ajar, part_release, push_actions, regrip, shared_hold
+from humanoidgen.planning import constraint_gen, grip_intent, handover, part_ajar, part_release, push_actions, regrip, shared_hold
 from humanoidgen.planning.collision import CollisionWorld
 from humanoidgen.planning.constraints import Const, Constraint, ConstraintError
 from humanoidgen.planning.goal_solver import GoalResult, GoalSolver
@@ -225,6 +225,11 @@ class HumanoidMotionPlanner(GoalSearch, ArmMoves):
         fingers do not drag the object along on the next move. Where the released object came to rest is an
         event."""
         sides = _sides(hand_name)
+        for s in sides:  # a hand-over: the other hand is to keep the object
+            held = self.holding[s]
+            if (held is not None and held.annotations is not None and held.annotations.articulation is None
+                    and self.holding[handover.other_side(s)] is held and handover.other_side(s) not in sides):
+                handover.secure_taker(self, s, held)
         released = [(s, self.holding[s]) for s in sides if self.holding[s] is not None]
         # Let go by loosening into the grip's "pre" posture (a small finger motion that does not sweep the
         # object), back out, and only then open fully.

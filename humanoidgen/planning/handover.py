@@ -1,0 +1,118 @@
+"""A hand-over in mid-air: the hand that gives lets go only once the hand that takes holds the object alone.
+
+The taking hand closes on the object while the giving hand still holds it, so `hand_pinch` sees thumb and a
+finger touching and calls it a hold; whether it is one shows only when the giver opens. Measured on the paper
+authors' hand-over plans (handover_and_storage seed 0, _cooperation seed 2): the left hand's pinch of the block's
+free end stopped short, the thumb 1 cm from the end and the index on the next face, and the block fell to the
+table the moment the right hand opened; the plan failed two moves later with "slipped 392 mm".
+
+So before the giver lets go, that is tried in the simulation from a snapshot, with nothing recorded: the giver
+loosens, backs out and opens as `open_hand` does, and the object must stay in the taker's fingers. Where it would fall, the taker loosens, goes
+deeper along the way it came in (REGRIP_DEPTHS) and closes again, and the trial is repeated; the first grip that
+holds alone is kept, with an event. Where none does, the plan goes on as asked (its next move says what fell).
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from humanoidgen.objects.hands import HAND_POSTURES
+from humanoidgen.planning.hand_ops import finger_contacts, is_held
+from humanoidgen.planning.motion import MotionError, plan_arm_motion, time_dense_path
+from humanoidgen.planning.snapshot import restore_snapshot, take_snapshot
+from humanoidgen.sim.layout import Side
+from humanoidgen.sim.scene import SceneObject
+
+if TYPE_CHECKING:
+    from humanoidgen.planning.planner import HumanoidMotionPlanner
+
+TRIAL_S = 0.4  # after the giver let go, the object is watched this long
+DROP_M = 0.01  # an object that moved this far from the taking hand in the trial is not held by it
+REGRIP_DEPTHS = (0.006, 0.012)  # deeper along the taker's way in, tried in turn
+DEEPER_SPEED = 0.1  # m/s, the taker's short move in
+
+
+def other_side(side: Side) -> Side:
+    return "left" if side == "right" else "right"
+
+
+def holds_alone(planner: HumanoidMotionPlanner, giver: Side, taker: Side, obj: SceneObject) -> bool:
+    """Whether `taker` keeps `obj` once `giver` loosens its grip (tried from a snapshot; the state is restored)."""
+    env = planner.env
+    start = take_snapshot(planner)
+    hook = planner.on_step
+    before = _in_hand(planner, taker, obj)
+    try:
+        planner.on_step = None
+        # As open_hand lets go: loosen, back out the way it came in, open.
+        planner._move_fingers((giver,), f"pre_{planner.grip.get(giver) or 'pinch'}")
+        planner.holding[giver] = None
+        planner.kin.detach(giver)
+        planner._settle(0.3)
+        planner._retreat(giver)
+        planner._move_fingers((giver,), "open")
+        planner._settle(TRIAL_S)
+        moved = float(np.linalg.norm(_in_hand(planner, taker, obj) - before))
+        return moved <= DROP_M and is_held(finger_contacts(env.model, env.data, taker, obj.body))
+    finally:
+        planner.on_step = hook
+        restore_snapshot(planner, start)
+
+
+def secure_taker(planner: HumanoidMotionPlanner, giver: Side, obj: SceneObject) -> None:
+    """Before `giver` lets go of `obj` that the other hand also holds: make the other hand's grip one that holds
+    it alone (see the module's doc)."""
+    taker = other_side(giver)
+    if holds_alone(planner, giver, taker, obj):
+        return
+    axis = planner.last_approach.get(taker)
+    if axis is None:
+        return
+    posture = planner.grip.get(taker) or "pinch"
+    for depth in REGRIP_DEPTHS:
+        start = take_snapshot(planner)
+        if _close_deeper(planner, taker, obj, np.asarray(axis, float), depth, posture) \
+                and holds_alone(planner, giver, taker, obj):
+            planner.events.append(f"the {taker} hand's {posture} would not hold {obj.type_name} {obj.obj_id} alone: "
+                                  f"it took it again {depth * 1000:.0f} mm deeper before the {giver} hand let go")
+            return
+        restore_snapshot(planner, start)
+    planner.events.append(f"the {taker} hand's {posture} may not hold {obj.type_name} {obj.obj_id} alone when the "
+                          f"{giver} hand lets go (taking it deeper did not help)")
+
+
+def _in_hand(planner: HumanoidMotionPlanner, side: Side, obj: SceneObject) -> np.ndarray:
+    p_hand, R_hand = planner.env.hand_pose(side)
+    return R_hand.T @ (planner.env.object_pose(obj.body)[0] - p_hand)
+
+
+def _close_deeper(planner: HumanoidMotionPlanner, side: Side, obj: SceneObject, axis: np.ndarray, depth: float,
+                  posture: str) -> bool:
+    """Loosen `side`'s fingers, move the hand `depth` further along `axis` (its way in) and close again; False
+    where that move cannot be planned."""
+    kin = planner.kin
+    body = planner.env.model.body(obj.body).id
+    ignored = set(planner.collisions.ignored_bodies)
+    planner._move_fingers((side,), f"pre_{posture}")
+    try:
+        kin.sync(planner.env.data.qpos)
+        kin.set_hand(side, np.array(HAND_POSTURES[f"pre_{posture}"]))
+        kin.forward()
+        planner.collisions.ignored_bodies.add(body)
+        p, R = kin.ee_pose(side)
+        arm = kin.arms[side]
+        path = plan_arm_motion(kin, planner.collisions, side, np.clip(kin.arm_q(side), arm.lo, arm.hi),
+                               (p + depth * axis, R), allow_sampling=False)
+    except MotionError:
+        planner._move_fingers((side,), posture)
+        return False
+    finally:
+        planner.collisions.ignored_bodies = ignored
+        kin.sync(planner.env.data.qpos)
+    planner._run_arm_samples({side: time_dense_path(path.waypoints, 1.0 / planner.env.control_hz,
+                                                    v_max=DEEPER_SPEED)})
+    planner._move_fingers((side,), posture)
+    planner._settle(0.3)
+    return is_held(finger_contacts(planner.env.model, planner.env.data, side, obj.body))

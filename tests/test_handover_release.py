@@ -1,0 +1,97 @@
+"""A mid-air hand-over: the giving hand lets go only once the taking hand holds the object alone
+(`planning/handover.py`).
+
+block_handover seed 0: the right hand presents the block at the hand-over pose and the left hand pinches its free
+end, as the task's reference plan does."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from humanoidgen.planning import handover
+from humanoidgen.planning.hand_ops import finger_contacts, is_held
+from humanoidgen.planning.planner import HumanoidMotionPlanner
+from humanoidgen.tasks.registry import load_task
+from humanoidgen.tasks.scene import build_scene
+
+
+def _mid_air(close_left: bool = True):
+    _, env = build_scene(load_task("block_handover"), 0)
+    planner = HumanoidMotionPlanner(env, seed=0)
+    planner.hand_pre_pinch("right")
+    c = planner.generate_constraints("cube", 0, "pinch", "right")
+    _, pose = planner.generate_end_effector_pose(c, "right")
+    planner.move_to_pose_with_screw(pose, "right")
+    planner.hand_pinch("right", "cube", 0)
+    c = planner.generate_constraints("cube", 0, "target", "right")
+    _, pose = planner.generate_end_effector_pose(c, "right")
+    planner.move_to_pose_with_screw(pose, "right", attach_obj=True, object_name="cube", object_id=0)
+    planner.hand_pre_pinch("left")
+    c = planner.generate_constraints("cube", 0, "pinch", "left")
+    _, pose = planner.generate_end_effector_pose(c, "left")
+    planner.move_to_pose_with_screw(pose, "left")
+    cube = env.scene.object("cube", 0)
+    if close_left:
+        planner.hand_pinch("left", "cube", 0)
+    else:  # the fingers stay open around the end: the left hand "holds" nothing
+        planner.holding["left"], planner.grip["left"] = cube, "pinch"
+    return env, planner, cube
+
+
+@pytest.fixture(scope="module")
+def taken():
+    return _mid_air()
+
+
+@pytest.mark.slow
+def test_a_real_pinch_holds_alone_and_the_trial_changes_nothing(taken):
+    env, planner, cube = taken
+    qpos, action, events = env.data.qpos.copy(), planner.action.copy(), list(planner.events)
+    approach = {s: None if a is None else np.array(a) for s, a in planner.last_approach.items()}
+    assert handover.holds_alone(planner, "right", "left", cube)
+    assert np.array_equal(env.data.qpos, qpos) and np.array_equal(planner.action, action)
+    assert planner.events == events and planner.holding["right"] is cube and planner.holding["left"] is cube
+    assert all((a is None and planner.last_approach[s] is None) or np.allclose(a, planner.last_approach[s])
+               for s, a in approach.items())
+
+
+@pytest.mark.slow
+def test_open_fingers_do_not_hold_alone():
+    env, planner, cube = _mid_air(close_left=False)
+    assert not handover.holds_alone(planner, "right", "left", cube)
+
+
+@pytest.mark.slow
+def test_a_grip_that_would_not_hold_is_taken_again_deeper(monkeypatch):
+    env, planner, cube = _mid_air()
+    verdicts = iter([False, True])
+    monkeypatch.setattr(handover, "holds_alone", lambda *a: next(verdicts))
+    axis = np.asarray(planner.last_approach["left"], float)
+    before = env.hand_pose("left")[0].copy()
+    handover.secure_taker(planner, "right", cube)
+    moved = env.hand_pose("left")[0] - before
+    assert float(moved @ axis) == pytest.approx(handover.REGRIP_DEPTHS[0], abs=0.003)  # in along the way it came
+    assert "took it again 6 mm deeper" in planner.events[-1]
+    assert is_held(finger_contacts(env.model, env.data, "left", cube.body))
+
+
+@pytest.mark.slow
+def test_where_no_deeper_grip_holds_the_first_one_is_kept_and_said(monkeypatch):
+    env, planner, cube = _mid_air()
+    monkeypatch.setattr(handover, "holds_alone", lambda *a: False)
+    qpos = env.data.qpos.copy()
+    handover.secure_taker(planner, "right", cube)
+    assert np.array_equal(env.data.qpos, qpos)
+    assert "may not hold cube 0 alone" in planner.events[-1]
+
+
+@pytest.mark.slow
+def test_open_hand_of_the_giver_asks_first(monkeypatch):
+    env, planner, cube = _mid_air()
+    asked = []
+    monkeypatch.setattr(handover, "secure_taker", lambda p, giver, obj: asked.append((giver, obj.obj_id)))
+    planner.open_hand("right")
+    assert asked == [("right", 0)]
+    planner.open_hand("left")  # nobody else holds it: no hand-over
+    assert asked == [("right", 0)]
