@@ -81,8 +81,11 @@ def test_where_no_deeper_grip_holds_the_first_one_is_kept_and_said(monkeypatch):
     env, planner, cube = _mid_air()
     monkeypatch.setattr(handover, "holds_alone", lambda *a: False)
     qpos = env.data.qpos.copy()
+    recorded = []
+    planner.on_step = recorded.append
     handover.secure_taker(planner, "right", cube)
     assert np.array_equal(env.data.qpos, qpos)
+    assert recorded == []  # the deeper grips tried were trials: no frame of them is recorded
     assert "may not hold cube 0 alone" in planner.events[-1]
 
 

@@ -7,9 +7,10 @@ free end stopped short, the thumb 1 cm from the end and the index on the next fa
 table the moment the right hand opened; the plan failed two moves later with "slipped 392 mm".
 
 So before the giver lets go, that is tried in the simulation from a snapshot, with nothing recorded: the giver
-loosens, backs out and opens as `open_hand` does, and the object must stay in the taker's fingers. Where it would fall, the taker loosens, goes
-deeper along the way it came in (REGRIP_DEPTHS) and closes again, and the trial is repeated; the first grip that
-holds alone is kept, with an event. Where none does, the plan goes on as asked (its next move says what fell).
+loosens, backs out and opens as `open_hand` does, and the object must stay in the taker's fingers. Where it would
+fall, the taker loosens, goes deeper along the way it came in (REGRIP_DEPTHS) and closes again, and the release is
+tried once more (all of it a trial); the first deeper grip that holds alone is then taken for real, with an event.
+Where none does, the plan goes on as asked (its next move says what fell).
 """
 
 from __future__ import annotations
@@ -71,14 +72,21 @@ def secure_taker(planner: HumanoidMotionPlanner, giver: Side, obj: SceneObject) 
     if axis is None:
         return
     posture = planner.grip.get(taker) or "pinch"
+    axis = np.asarray(axis, float)
     for depth in REGRIP_DEPTHS:
+        # A trial too (nothing recorded): a recording must not hold a grip that is then undone.
         start = take_snapshot(planner)
-        if _close_deeper(planner, taker, obj, np.asarray(axis, float), depth, posture) \
-                and holds_alone(planner, giver, taker, obj):
+        hook, planner.on_step = planner.on_step, None
+        try:
+            works = _close_deeper(planner, taker, obj, axis, depth, posture) and holds_alone(planner, giver, taker, obj)
+        finally:
+            planner.on_step = hook
+            restore_snapshot(planner, start)
+        if works:
+            _close_deeper(planner, taker, obj, axis, depth, posture)  # the same, for real (the state is restored)
             planner.events.append(f"the {taker} hand's {posture} would not hold {obj.type_name} {obj.obj_id} alone: "
                                   f"it took it again {depth * 1000:.0f} mm deeper before the {giver} hand let go")
             return
-        restore_snapshot(planner, start)
     planner.events.append(f"the {taker} hand's {posture} may not hold {obj.type_name} {obj.obj_id} alone when the "
                           f"{giver} hand lets go (taking it deeper did not help)")
 
