@@ -32,7 +32,7 @@ from humanoidgen.planning import placing
 from humanoidgen.planning.constraints import Const, Constraint
 from humanoidgen.planning.part_joint import point_articulation
 from humanoidgen.sim.geometry import axis_angle_mat
-from humanoidgen.sim.layout import HAND_BASE_FRAME, Side
+from humanoidgen.sim.layout import HAND_BASE_FRAME, OTHER_SIDE, Side
 
 ACTIONS = ("grasp", "pinch", "target", "target1", "target2", "move", "pour")
 # Not the paper's, but plans use them: the object's push / flip / press point (as target1 / target2).
@@ -198,7 +198,7 @@ def _rank_operations(env, side: Side, obj_name: str, obj_id: int, operation: str
 
 def other_hand_grip(env, holding: dict, side: Side, obj_name: str, obj_id: int) -> list[np.ndarray] | None:
     """Where the other hand holds this object (its pinch and grasp points), or None if it does not hold it."""
-    other: Side = "left" if side == "right" else "right"
+    other = OTHER_SIDE[side]
     held = holding.get(other)
     if held is None or (held.type_name, held.obj_id) != (obj_name, obj_id):
         return None

@@ -11,8 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from humanoidgen.sim.layout import HAND_PREFIX, OPERABLE_RANGE, SIDES, Side
-
-OTHER: dict[Side, Side] = {"left": "right", "right": "left"}
+from humanoidgen.sim.layout import OTHER_SIDE as OTHER
 
 
 def _fmt_range(side: Side) -> str:

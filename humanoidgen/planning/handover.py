@@ -23,7 +23,7 @@ from humanoidgen.objects.hands import HAND_POSTURES
 from humanoidgen.planning.hand_ops import finger_contacts, is_held
 from humanoidgen.planning.motion import MotionError, plan_arm_motion, time_dense_path
 from humanoidgen.planning.snapshot import restore_snapshot, take_snapshot
-from humanoidgen.sim.layout import Side
+from humanoidgen.sim.layout import OTHER_SIDE, Side
 from humanoidgen.sim.scene import SceneObject
 
 if TYPE_CHECKING:
@@ -33,10 +33,6 @@ TRIAL_S = 0.4  # after the giver let go, the object is watched this long
 DROP_M = 0.01  # an object that moved this far from the taking hand in the trial is not held by it
 REGRIP_DEPTHS = (0.006, 0.012)  # deeper along the taker's way in, tried in turn
 DEEPER_SPEED = 0.1  # m/s, the taker's short move in
-
-
-def other_side(side: Side) -> Side:
-    return "left" if side == "right" else "right"
 
 
 def holds_alone(planner: HumanoidMotionPlanner, giver: Side, taker: Side, obj: SceneObject) -> bool:
@@ -65,7 +61,7 @@ def holds_alone(planner: HumanoidMotionPlanner, giver: Side, taker: Side, obj: S
 def secure_taker(planner: HumanoidMotionPlanner, giver: Side, obj: SceneObject) -> None:
     """Before `giver` lets go of `obj` that the other hand also holds: make the other hand's grip one that holds
     it alone (see the module's doc)."""
-    taker = other_side(giver)
+    taker = OTHER_SIDE[giver]
     if holds_alone(planner, giver, taker, obj):
         return
     axis = planner.last_approach.get(taker)

@@ -33,7 +33,7 @@ from humanoidgen.planning.poses import Pose
 from humanoidgen.planning.regrip import MAX_REGRIPS
 from humanoidgen.sim.action import ARM_SLICE, HAND_SLICE
 from humanoidgen.sim.env import HumanoidEnv
-from humanoidgen.sim.layout import SIDES, Side
+from humanoidgen.sim.layout import OTHER_SIDE, SIDES, Side
 from humanoidgen.sim.scene import SceneObject
 
 SLIP_LIMIT = {"pinch": 0.01, "grasp": 0.025}  # a held object moving more than this in the hand was lost (m)
@@ -226,9 +226,9 @@ class HumanoidMotionPlanner(GoalSearch, ArmMoves):
         event."""
         sides = _sides(hand_name)
         for s in sides:  # a hand-over: the other hand is to keep the object
-            held = self.holding[s]
+            held, other = self.holding[s], OTHER_SIDE[s]
             if (held is not None and held.annotations is not None and held.annotations.articulation is None
-                    and self.holding[handover.other_side(s)] is held and handover.other_side(s) not in sides):
+                    and self.holding[other] is held and other not in sides):
                 handover.secure_taker(self, s, held)
         released = [(s, self.holding[s]) for s in sides if self.holding[s] is not None]
         # Let go by loosening into the grip's "pre" posture (a small finger motion that does not sweep the

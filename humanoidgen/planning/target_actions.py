@@ -21,7 +21,7 @@ from humanoidgen.planning import push_actions
 from humanoidgen.planning import placing
 from humanoidgen.planning.constraint_gen import LIFT, ConstraintGenerationError, Generated, keep_orientation
 from humanoidgen.planning.constraints import Const, Constraint
-from humanoidgen.sim.layout import HAND_BASE_FRAME, Side
+from humanoidgen.sim.layout import HAND_BASE_FRAME, OTHER_SIDE, Side
 from humanoidgen.sim.scene import SceneObject
 
 TARGET_ACTIONS = ("target", "target1", "target2")
@@ -80,7 +80,7 @@ def require_held(holding: dict, obj: SceneObject, side: Side, action: str) -> Sc
     held = holding.get(side)
     if held is obj or (held is not None and (held.type_name, held.obj_id) == (obj.type_name, obj.obj_id)):
         return held
-    other = "left" if side == "right" else "right"
+    other = OTHER_SIDE[side]
     o = holding.get(other)
     if o is not None and (o.type_name, o.obj_id) == (obj.type_name, obj.obj_id):
         raise ConstraintGenerationError(f"{_label(obj)} is held by the {other} hand, not the {side}: use "

@@ -12,6 +12,7 @@ import numpy as np
 
 Side = Literal["left", "right"]
 SIDES: tuple[Side, Side] = ("left", "right")
+OTHER_SIDE: dict[Side, Side] = {"left": "right", "right": "left"}
 
 # The robot's base (the joint between pelvis and torso) stands here, facing +x (paper, scene prompt).
 ROBOT_BASE_POS = np.array([-0.85, 0.0, 0.0])
