@@ -225,6 +225,22 @@ def test_snapshot_restores_the_episode_exactly(two_cubes):
     assert env.object_pose("cube_0")[0][2] > 0.1
 
 
+def test_a_trial_records_nothing_and_leaves_the_planner_where_it_was_even_when_it_fails(cube_scene):
+    from humanoidgen.planning.snapshot import trial
+
+    env = HumanoidEnv(cube_scene)
+    recorded = []
+    planner = HumanoidMotionPlanner(env, on_step=recorded.append)
+    planner._settle(0.2)
+    hook, qpos, events = planner.on_step, env.data.qpos.copy(), list(planner.events)
+    with pytest.raises(RuntimeError), trial(planner):
+        planner.hand_pre_pinch("right")
+        planner.events.append("tried")
+        raise RuntimeError("the way out failed")
+    assert np.array_equal(env.data.qpos, qpos) and planner.events == events
+    assert planner.on_step is hook and len(recorded) == round(0.2 * env.control_hz)  # only the settle before
+
+
 def test_grip_alternatives_and_choosing_an_annotated_point(two_cubes):
     env = HumanoidEnv(two_cubes)
     planner = HumanoidMotionPlanner(env)

@@ -22,7 +22,7 @@ import numpy as np
 from humanoidgen.objects.hands import HAND_POSTURES
 from humanoidgen.planning.hand_ops import finger_contacts, is_held
 from humanoidgen.planning.motion import MotionError, plan_arm_motion, time_dense_path
-from humanoidgen.planning.snapshot import restore_snapshot, take_snapshot
+from humanoidgen.planning.snapshot import trial
 from humanoidgen.sim.layout import OTHER_SIDE, Side
 from humanoidgen.sim.scene import SceneObject
 
@@ -38,11 +38,8 @@ DEEPER_SPEED = 0.1  # m/s, the taker's short move in
 def holds_alone(planner: HumanoidMotionPlanner, giver: Side, taker: Side, obj: SceneObject) -> bool:
     """Whether `taker` keeps `obj` once `giver` loosens its grip (tried from a snapshot; the state is restored)."""
     env = planner.env
-    start = take_snapshot(planner)
-    hook = planner.on_step
     before = _in_hand(planner, taker, obj)
-    try:
-        planner.on_step = None
+    with trial(planner):
         # As open_hand lets go: loosen, back out the way it came in, open.
         planner._move_fingers((giver,), f"pre_{planner.grip.get(giver) or 'pinch'}")
         planner.holding[giver] = None
@@ -53,9 +50,6 @@ def holds_alone(planner: HumanoidMotionPlanner, giver: Side, taker: Side, obj: S
         planner._settle(TRIAL_S)
         moved = float(np.linalg.norm(_in_hand(planner, taker, obj) - before))
         return moved <= DROP_M and is_held(finger_contacts(env.model, env.data, taker, obj.body))
-    finally:
-        planner.on_step = hook
-        restore_snapshot(planner, start)
 
 
 def secure_taker(planner: HumanoidMotionPlanner, giver: Side, obj: SceneObject) -> None:
@@ -71,13 +65,8 @@ def secure_taker(planner: HumanoidMotionPlanner, giver: Side, obj: SceneObject) 
     axis = np.asarray(axis, float)
     for depth in REGRIP_DEPTHS:
         # A trial too (nothing recorded): a recording must not hold a grip that is then undone.
-        start = take_snapshot(planner)
-        hook, planner.on_step = planner.on_step, None
-        try:
+        with trial(planner):
             works = _close_deeper(planner, taker, obj, axis, depth, posture) and holds_alone(planner, giver, taker, obj)
-        finally:
-            planner.on_step = hook
-            restore_snapshot(planner, start)
         if works:
             _close_deeper(planner, taker, obj, axis, depth, posture)  # the same, for real (the state is restored)
             planner.events.append(f"the {taker} hand's {posture} would not hold {obj.type_name} {obj.obj_id} alone: "

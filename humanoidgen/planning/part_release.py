@@ -30,7 +30,7 @@ from humanoidgen.planning.hand_ops import finger_contacts
 from humanoidgen.planning.motion import MotionError, plan_arm_motion, time_dense_path
 from humanoidgen.planning.paths import time_parametrize
 from humanoidgen.planning.part_joint import follow_articulation, follow_openness, hinge_line, point_motion
-from humanoidgen.planning.snapshot import restore_snapshot, take_snapshot
+from humanoidgen.planning.snapshot import take_snapshot, trial
 from humanoidgen.objects.hands import HAND_POSTURES
 from humanoidgen.sim.action import HAND_SLICE
 from humanoidgen.sim.layout import Side
@@ -55,24 +55,20 @@ def let_go(planner, side: Side, part: SceneObject, follow: dict | None) -> None:
     # Only a part going back counts: one going on the way the hand moved it (a lid let go low falls shut, as a
     # plan may mean it to) is not undone.
     onward = 0.0 if follow is None else 1.0 if _opens(planner, follow) else -1.0
-    hook = planner.on_step
     start = take_snapshot(planner)
     tried: list[tuple[bool, float, int]] = []
     first_drift = None
     chosen = None
     for k, (_, way) in enumerate(ways):
-        planner.on_step = None  # a trial: nothing of it is recorded
         try:
-            way()
-            planner._settle(TRIAL_SETTLE_S)
-            drift = max(0.0, (before - measure()) * onward) if onward else abs(measure() - before)
-            touching = bool(finger_contacts(planner.env.model, planner.env.data, side, part.body))
+            with trial(planner, start):  # nothing of it is recorded
+                way()
+                planner._settle(TRIAL_SETTLE_S)
+                drift = max(0.0, (before - measure()) * onward) if onward else abs(measure() - before)
+                touching = bool(finger_contacts(planner.env.model, planner.env.data, side, part.body))
         except (MotionError, PlanningError) as exc:
             log.debug("letting go %s: no way (%s)", ways[k][0], exc)
             continue
-        finally:
-            planner.on_step = hook
-            restore_snapshot(planner, start)
         if k == 0:
             first_drift = drift
         log.debug("letting go %s: drift %.3f, %s", ways[k][0], drift, "touching" if touching else "off the part")

@@ -4,6 +4,8 @@ the episode back exactly where it was, so a tree search can resume a branch with
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass
 
 import mujoco
@@ -71,3 +73,16 @@ def restore_snapshot(planner, snap: Snapshot) -> None:
     planner.kin.sync(env.data.qpos)
     for side in planner.holding:
         planner.kin.detach(side)
+
+
+@contextmanager
+def trial(planner, start: Snapshot | None = None) -> Iterator[None]:
+    """Run the block as a trial in the simulation itself: nothing it does is recorded (the planner's step hook is
+    off) and afterwards the planner is back at `start` (default: its state on entry), whatever the block did."""
+    snap = start if start is not None else take_snapshot(planner)
+    hook, planner.on_step = planner.on_step, None
+    try:
+        yield
+    finally:
+        planner.on_step = hook
+        restore_snapshot(planner, snap)
