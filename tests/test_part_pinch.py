@@ -41,5 +41,25 @@ def test_a_half_open_screens_top_edge_is_pinched_with_the_fingers_slanted_and_th
 
 
 def test_a_pinched_screen_is_lifted_open(tmp_path):
-    result = run_plan(tmp_path, "open_laptop_easy", 0, PINCH_OPEN.read_text())
+    result = run_plan(tmp_path, "open_laptop_easy", 4, PINCH_OPEN.read_text())  # the seed that lost the pinch
     assert result.success, [s.error for s in result.steps if not s.ok] + [c["detail"] for c in result.checks]
+
+
+def _first_squeeze(env) -> np.ndarray:
+    planner = HumanoidMotionPlanner(env, seed=0)
+    cons = planner.generate_constraints(obj_name="laptop", obj_id=0, action="pinch", hand_name="right")
+    return next(c.object_axis for c in cons if c.name == "pinch along the attach axis")
+
+
+def test_a_low_screen_is_pinched_thumb_on_its_outer_face_and_index_under_it():
+    # Seeds where the most natural hand would put the thumb under the screen's edge (it then slipped off as the
+    # screen was lifted, or the index coming in over the screen pressed it shut).
+    for seed in (2, 3, 4):
+        _, env = build_scene(load_task("open_laptop_easy"), seed)
+        lid_in = get_axis_in_env(env, "lid_in", obj_type="laptop", obj_id=0)
+        assert float(_first_squeeze(env) @ lid_in) > 0.9, seed  # thumb -> index: into the lid from its outer face
+    # An upright screen (to be shut) keeps the most natural hand: the preference is only for parts pinched low.
+    _, env = build_scene(load_task("close_laptop_easy"), 2)
+    lid_in = get_axis_in_env(env, "lid_in", obj_type="laptop", obj_id=0)
+    assert float(_first_squeeze(env) @ lid_in) < -0.9
+

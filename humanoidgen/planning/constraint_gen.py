@@ -25,6 +25,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from humanoidgen.objects.describe import openness as openness_now
 from humanoidgen.objects.hands import hand_axes, wrap_point
 from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env, wrist_point_in_env
 from humanoidgen.objects.schema import OperationAnnotation
@@ -48,6 +49,7 @@ PUSH_CONE_DEG = 30
 # straight in is out of reach (an open screen's top edge would need the hand high above it, fingers down).
 PART_PINCH_LEAD_TURNS_DEG = (0, 30, -30, 60, -60)
 PART_PINCH_INSET_M = 0.012
+LOW_PART = 0.5  # a part pinched below this openness is taken index under it, thumb on its outer face
 # How far a hand holding a part may turn about the part's parallel axis (a bar, a tab, a screen's edge) while it
 # moves the part: a grasp around a bar or tab lets the part turn in the fingers; a pinch with the pads 12 mm over
 # the plate (PART_PINCH_INSET_M) holds through a 30 deg roll (measured: with the fingertips on the very edge, a
@@ -237,6 +239,14 @@ def _ways(env, side: Side, obj_name: str, obj_id: int, operation: str, ops: list
             for g in _grip_variants(env, side, obj_name, obj_id, operation, op, openness, turn, finger_offset)]
 
 
+def _openness_of(env, obj_name: str, obj_id: int, point: str) -> float:
+    """The openness of the joint that moves `point`'s part (a safe's knob: its own)."""
+    obj = env.scene.object(obj_name, obj_id)
+    part = obj.annotations.point(point).part
+    got = openness_now(env.model, env.data, obj, part)
+    return 1.0 if got is None else float(got)
+
+
 def _grip_variants(env, side: Side, obj_name: str, obj_id: int, operation: str, op: OperationAnnotation,
                    openness: float | None, turn_deg: float = 0.0, finger_offset: float = 0.0) -> list[Generated]:
     frame = HAND_BASE_FRAME[side]
@@ -283,6 +293,12 @@ def _grip_variants(env, side: Side, obj_name: str, obj_id: int, operation: str, 
         on_part = ann is not None and ann.articulation is not None and ann.point(op.point).part is not None
         options = _natural_choices(side, loc["ring_2_index"], approach, loc["pinch"],
                                    [attach] if on_part else [attach, parallel], fingers_now)
+        if on_part and openness is None and _openness_of(env, obj_name, obj_id, op.point) < LOW_PART:
+            # A lid or screen pinched low is lifted next: the index, which reaches deeper along the plate, goes
+            # under it and the thumb on its outer face (the squeeze along +attach). Measured, a laptop screen
+            # pinched at 0.15: with the thumb under the edge it lifted on 1 of 4 seeds (the thumb, at the very
+            # edge, slipped off, or the index coming in over the screen pressed it shut); thumb on top, 6 of 6.
+            options = sorted(options, key=lambda sq: -float(sq @ attach))
         if not on_part and _off_centre(env, obj_name, obj_id, target) > OFF_CENTRE_PINCH_M:
             # Pinched away from its centre of mass (the free end of a block held level), the object's weight
             # turns it about the squeeze axis, which only the pads' torsional friction resists: squeeze top
