@@ -2,7 +2,8 @@
 snapshot, and the one that leaves the part where it was is run for real.
 
 - the choice: a way that moves the part loses to one that does not, a way that leaves the hand on the part loses
-  to one that takes it off, and only the chosen way's control steps reach the recorder;
+  to one that takes it off, each is judged after the hand has also gone home (in the trial), and only the chosen
+  way's control steps reach the recorder;
 - end to end: a plan (written outside the project) pinches a laptop screen, lifts it to 0.85 and opens the hand.
   Backing out as usual, the open thumb behind the screen drags it back below the task's 0.75; the planner lets go
   another way and says so.
@@ -107,6 +108,38 @@ def test_no_event_when_the_usual_way_is_clean(laptop_scene, monkeypatch):
     assert len(steps) == round(0.1 * env.control_hz)
 
 
+def test_a_way_is_judged_once_the_hand_has_gone_home(laptop_scene, monkeypatch):
+    """Each way is judged after the trial has also sent the hand home (as the plans do next): a way that leaves the
+    part in place with the hand on it, whose move home then drags it, loses to one whose move home does not. Letting
+    go to grip again at once, the hand stays (the trial does not send it home)."""
+    env, planner, laptop, steps = laptop_scene
+    adr = env.model.jnt_qposadr[env.model.joint(f"{laptop.body}_{laptop.annotations.articulation.joint}").id]
+    tried: list[str] = []
+
+    def ways_out(*_):
+        return [(how, (lambda go=go, how=how: (tried.append(how), go())))
+                for how, go in _scripted(planner, [("as usual", 0.0, 0.1), ("other", 0.0, 0.1)])]
+
+    def leave(planner, side):  # the move home drags the part after the usual way only
+        if tried[-1] == "as usual":
+            env.data.qpos[adr] -= 0.3
+        planner._settle(0.1)
+        left.append(tried[-1])
+
+    left: list[str] = []
+    monkeypatch.setattr(part_release, "_ways_out", ways_out)
+    monkeypatch.setattr(part_release, "finger_contacts", lambda *a: {"thumb"})  # the hand on the part either way
+    monkeypatch.setattr(part_release, "_leave", leave)
+    part_release.let_go(planner, "right", laptop, None)
+    assert left == ["as usual", "other"]
+    assert "let go of laptop 0 other" in planner.events[-1]
+    assert len(steps) == round(0.1 * env.control_hz)  # the chosen way only: the trials' moves home are not recorded
+    left.clear()
+    planner.regripping = True
+    part_release.let_go(planner, "right", laptop, None)
+    assert left == []
+
+
 # A corpus plan (written outside the planner): pinch the screen edge, lift it to 0.85, open the hand, go home.
 LIFT_AND_LET_GO = Path(__file__).resolve().parents[1] / "bench" / "foreign_plans" / "open_laptop_easy" / "alt_pinch_open.py"
 
@@ -136,3 +169,13 @@ def test_a_trial_leaves_no_trace():
     planner.action[:7] += 0.02
     planner._settle(0.3)
     assert np.array_equal(env.data.qpos, first)
+
+
+def test_a_turned_knob_stays_turned_once_the_hand_has_gone_home():
+    """A corpus plan (written outside the planner) pinches the knob's fin, turns it to 0.8 and lets go. On seed 1
+    the way out that looked best before the move home left the knob at 0.44; judged after it, the knob stays."""
+    from humanoidgen.episodes.task_episode import EpisodeRequest, run_task_episode
+
+    plan = Path(__file__).resolve().parents[1] / "bench" / "foreign_plans" / "rotate_safe_knob" / "alt_folder"
+    result, _ = run_task_episode(EpisodeRequest("rotate_safe_knob", 1, plan_path=str(plan)))
+    assert result.success, [c["detail"] for c in result.checks]

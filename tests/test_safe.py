@@ -221,3 +221,14 @@ def test_a_grip_on_the_knob_follows_the_knobs_own_joint(safe_env):
     bar = get_point_in_env(env, "handle", "safe", 0)
     assert not rolls_about_joint(m, d, grasp.follow["joint"], get_axis_in_env(env, "door_hinge", "safe", 0), bar)
     _set_knob(env, obj, 0.0)
+
+
+def test_the_bodies_a_part_joint_moves(safe_env):
+    from humanoidgen.planning.part_joint import moving_bodies
+
+    env, obj = safe_env
+    m = env.model
+    names = lambda ids: {m.body(b).name for b in ids}  # noqa: E731
+    assert names(moving_bodies(m, f"{obj.body}_knob_hinge")) == {f"{obj.body}_knob"}
+    assert names(moving_bodies(m, f"{obj.body}_hinge")) == {f"{obj.body}_door", f"{obj.body}_knob"}
+

@@ -24,6 +24,7 @@ from humanoidgen.objects.hands import HAND_POSTURES
 from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env
 from humanoidgen.planning.arm_moves import PlanningError
 from humanoidgen.planning.constraints import Constraint
+from humanoidgen.planning.part_joint import moving_bodies
 from humanoidgen.planning.push_actions import fingers_for_push, part_openness, solve_and_go
 from humanoidgen.sim.action import HAND_SLICE
 from humanoidgen.sim.layout import HAND_BASE_FRAME, Side
@@ -77,8 +78,7 @@ def edge_frame(env, obj: SceneObject, op, openness: float | None = None) -> Edge
 def half_thickness(env, obj: SceneObject, frame: EdgeFrame) -> float:
     """How far the part's inner face lies beyond the flip point along `frame.into` (from its geoms' boxes)."""
     m, d = env.model, env.data
-    hinge_body = int(m.jnt_bodyid[m.joint(f"{obj.body}_{obj.annotations.articulation.joint}").id])
-    part_bodies = {b for b in range(m.nbody) if b == hinge_body or _descends(m, b, hinge_body)}
+    part_bodies = moving_bodies(m, f"{obj.body}_{obj.annotations.articulation.joint}")
     depth = 0.0
     for g in range(m.ngeom):
         if int(m.geom_bodyid[g]) not in part_bodies or m.geom_contype[g] == 0 and m.geom_conaffinity[g] == 0:
@@ -91,14 +91,6 @@ def half_thickness(env, obj: SceneObject, frame: EdgeFrame) -> float:
         if abs(float((c - frame.point) @ frame.along)) <= np.abs(R.T @ frame.along) @ half + 0.01:
             depth = max(depth, float((c - frame.point) @ frame.into) + reach)
     return depth
-
-
-def _descends(m, body: int, ancestor: int) -> bool:
-    while body > 0:
-        body = int(m.body_parentid[body])
-        if body == ancestor:
-            return True
-    return False
 
 
 def _tip_constraints(env, side: Side, goal: np.ndarray, aim: np.ndarray, normal: np.ndarray, what: str) -> list:

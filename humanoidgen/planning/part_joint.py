@@ -74,3 +74,16 @@ def rolls_about_joint(model: mujoco.MjModel, data: mujoco.MjData, joint: str, ax
         return False
     off = np.asarray(centre, float) - anchor
     return float(np.linalg.norm(off - (off @ hinge) * hinge)) < tol_m
+
+
+def moving_bodies(model: mujoco.MjModel, joint: str) -> set[int]:
+    """The bodies that `joint` moves: its own and all below it (a knob on a door moves only the knob)."""
+    top = int(model.jnt_bodyid[model.joint(joint).id])
+    out = set()
+    for b in range(model.nbody):
+        x = b
+        while x > 0 and x != top:
+            x = int(model.body_parentid[x])
+        if x == top:
+            out.add(b)
+    return out

@@ -10,10 +10,14 @@ So the ways out are tried in the simulation itself, from a snapshot, with nothin
 (unhook along the grip's attach axis, or back out the way the hand came in, opening on the way); then the fingers
 loosened to the grip's "pre" posture (a pinch opens only thumb and index), or opened, where they are, and the hand
 backed out the way in, off the part's edge away from its hinge, or along the hinge; then opened and backed out
-straight up, up by a sampled path, the way the part went, or not at all. The first that leaves the part
-where it was, or further on the way the hand moved it (going back at most RELEASE_DRIFT), with the hand off it
-runs for real (letting go to grip again at once, the usual way may leave the hand on it); where none does, the one
-off the part that lets it go back least. The extra cost is one simulated release where the usual way is fine.
+straight up, up by a sampled path, the way the part went, or not at all. Each is judged once the trial has also
+sent the hand home, as the plans do next (a hand left with a finger on a turned knob dragged it from 0.76 to 0.68
+on its way home); the back-outs are planned with the fingers where they are (driven open against a door, the
+commanded posture lies 2 cm inside it on the planner's model, and every way out looked blocked). The first that
+leaves the part where it was, or further on the way the hand moved it (going back at most RELEASE_DRIFT), with the
+hand off it runs for real, and only the way, not the trial's move home (letting go to grip again at once, the usual
+way may leave the hand on it, and the hand does not go home); where none does, the one that lets it go back least.
+The extra cost is one simulated release and move home where the usual way is fine.
 """
 
 from __future__ import annotations
@@ -32,7 +36,6 @@ from humanoidgen.planning.paths import time_parametrize
 from humanoidgen.planning.part_joint import follow_articulation, follow_openness, hinge_line, point_motion
 from humanoidgen.planning.snapshot import take_snapshot, trial
 from humanoidgen.objects.hands import HAND_POSTURES
-from humanoidgen.sim.action import HAND_SLICE
 from humanoidgen.sim.layout import Side
 from humanoidgen.sim.scene import SceneObject
 
@@ -64,8 +67,10 @@ def let_go(planner, side: Side, part: SceneObject, follow: dict | None) -> None:
             with trial(planner, start):  # nothing of it is recorded
                 way()
                 planner._settle(TRIAL_SETTLE_S)
-                drift = max(0.0, (before - measure()) * onward) if onward else abs(measure() - before)
                 touching = bool(finger_contacts(planner.env.model, planner.env.data, side, part.body))
+                if not planner.regripping:
+                    _leave(planner, side)  # judged once the hand has gone, as the plan's next move takes it
+                drift = max(0.0, (before - measure()) * onward) if onward else abs(measure() - before)
         except (MotionError, PlanningError) as exc:
             log.debug("letting go %s: no way (%s)", ways[k][0], exc)
             continue
@@ -83,14 +88,25 @@ def let_go(planner, side: Side, part: SceneObject, follow: dict | None) -> None:
     if not tried:
         ways[0][1]()
         return
-    # Else off the part first: a hand left on it drags it on the plan's next move (measured: a lid left pressed
-    # shut came back to 0.46 as the hand went home); then the least drift.
-    _, drift, k = chosen or min(tried)
+    # Else, letting go for good, the least drift once the hand has gone home (a hand left on the part drags it
+    # then: measured, a lid left pressed shut came back to 0.46); letting go to grip again, off the part first.
+    key = (lambda t: t) if planner.regripping else (lambda t: (t[1], t[0], t[2]))
+    _, drift, k = chosen or min(tried, key=key)
     ways[k][1]()
     if k:
         usual = "" if first_drift is None else f" (backing out as usual: by {first_drift:.2f})"
         planner.events.append(f"the {side} hand let go of {part.type_name} {part.obj_id} {ways[k][0]}, which let "
                               f"it go back by {drift:.2f} in openness{usual}")
+
+
+def _leave(planner, side: Side) -> None:
+    """In a trial: the hand goes to its arm's init pose, as the paper's plans send a hand after letting go (any
+    move away drags a part the fingers still rest on alike); where there is no way, it stays."""
+    try:
+        planner._run_arm_samples({side: planner._plan_side(side, getattr(planner, f"{side}_hand_init_pose"))})
+    except (MotionError, PlanningError):
+        return
+    planner._settle(TRIAL_SETTLE_S)
 
 
 def _openness_gauge(planner, part: SceneObject, follow: dict | None) -> Callable[[], float | None]:
@@ -150,10 +166,9 @@ def _back_out(planner, side: Side, u: np.ndarray, sampled: bool = False,
     """Move the hand RETREAT_DISTANCE (else half that) along `u`, straight (`sampled`: by any free path to
     there); MotionError where neither is free."""
     kin = planner.kin
-    kin.sync(planner.env.data.qpos)
+    kin.sync(planner.env.data.qpos)  # the fingers where they are: driven open against a door, the commanded
+    # posture lies 2 cm inside it on the planner's model and every way out looked blocked (a turned knob, measured)
     try:
-        kin.set_hand(side, planner.action[HAND_SLICE[side]])  # the posture the fingers are driven to now
-        kin.forward()
         p, R = kin.ee_pose(side)
         arm = kin.arms[side]
         q0 = np.clip(kin.arm_q(side), arm.lo, arm.hi)
