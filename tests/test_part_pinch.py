@@ -62,4 +62,3 @@ def test_a_low_screen_is_pinched_thumb_on_its_outer_face_and_index_under_it():
     _, env = build_scene(load_task("close_laptop_easy"), 2)
     lid_in = get_axis_in_env(env, "lid_in", obj_type="laptop", obj_id=0)
     assert float(_first_squeeze(env) @ lid_in) < -0.9
-

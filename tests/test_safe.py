@@ -231,4 +231,3 @@ def test_the_bodies_a_part_joint_moves(safe_env):
     names = lambda ids: {m.body(b).name for b in ids}  # noqa: E731
     assert names(moving_bodies(m, f"{obj.body}_knob_hinge")) == {f"{obj.body}_knob"}
     assert names(moving_bodies(m, f"{obj.body}_hinge")) == {f"{obj.body}_door", f"{obj.body}_knob"}
-

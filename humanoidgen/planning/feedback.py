@@ -10,8 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from humanoidgen.sim.layout import HAND_PREFIX, OPERABLE_RANGE, SIDES, Side
-from humanoidgen.sim.layout import OTHER_SIDE as OTHER
+from humanoidgen.sim.layout import HAND_PREFIX, OPERABLE_RANGE, OTHER_SIDE, SIDES, Side
 
 
 def _fmt_range(side: Side) -> str:
@@ -37,7 +36,7 @@ def body_label(env, body: int) -> str:
 
 def range_advice(side: Side, point: np.ndarray) -> str:
     """Where the target stands against the hands' operable ranges, and what to do about it ('' if nothing)."""
-    mine, other = OPERABLE_RANGE[side], OPERABLE_RANGE[OTHER[side]]
+    mine, other = OPERABLE_RANGE[side], OPERABLE_RANGE[OTHER_SIDE[side]]
     at = f"({point[0]:.2f}, {point[1]:.2f})"
     if mine.contains(point, tol=0.01):
         if point[0] < -0.40:
@@ -46,7 +45,7 @@ def range_advice(side: Side, point: np.ndarray) -> str:
         return ""
     if other.contains(point, tol=0.01):
         return (f"the target {at} is out of the {side} hand's range ({_fmt_range(side)}) but in the "
-                f"{OTHER[side]} hand's: use the {OTHER[side]} hand, or move the object into the {side} hand's range first")
+                f"{OTHER_SIDE[side]} hand's: use the {OTHER_SIDE[side]} hand, or move the object into the {side} hand's range first")
     return (f"the target {at} is out of both hands' ranges (left {_fmt_range('left')}; right {_fmt_range('right')}): "
             f"move the object into range first (push it, or hand it over)")
 
@@ -62,18 +61,18 @@ def contact_advice(env, side: Side, contacts: list[tuple[int, int, float]], appr
         other_obj = next((f"{o.type_name} {o.obj_id}" for o in env.scene.objects if o.body == approach_object), None)
     for _, obstacle, _ in contacts:
         what = body_label(env, obstacle)
-        if what.startswith(f"the {OTHER[side]}") and held_by_other is not None and held_by_other == other_obj:
-            tip = (f"the {OTHER[side]} hand holds {held_by_other} where the {side} hand's fingers would go: present "
-                   f"it with more of it free (the {OTHER[side]} hand holding it nearer one end, e.g. "
+        if what.startswith(f"the {OTHER_SIDE[side]}") and held_by_other is not None and held_by_other == other_obj:
+            tip = (f"the {OTHER_SIDE[side]} hand holds {held_by_other} where the {side} hand's fingers would go: present "
+                   f"it with more of it free (the {OTHER_SIDE[side]} hand holding it nearer one end, e.g. "
                    f"finger_offset=, or turned), or take it from the other side (another `point=`)")
         elif what == "the table":
             tip = ("the hand cannot take this pose without touching the table: approach from above (e.g. "
                    f"Constraint 'parallel' of {side}_grasp_axis with [0, 0, -1]), grip a higher point (`point=` or "
                    "`finger_offset=`), or lift the object first")
-        elif what.startswith(f"the {OTHER[side]}"):
-            tip = (f"the {OTHER[side]} arm is in the way: move it aside first (e.g. "
-                   f"move_to_pose_with_screw(planner.{OTHER[side]}_hand_init_pose, '{OTHER[side]}')) or use the "
-                   f"{OTHER[side]} hand")
+        elif what.startswith(f"the {OTHER_SIDE[side]}"):
+            tip = (f"the {OTHER_SIDE[side]} arm is in the way: move it aside first (e.g. "
+                   f"move_to_pose_with_screw(planner.{OTHER_SIDE[side]}_hand_init_pose, '{OTHER_SIDE[side]}')) or use the "
+                   f"{OTHER_SIDE[side]} hand")
         elif what == "the torso":
             tip = "the target is too close to the robot's body: move the object further out first"
         elif approach_object is not None and m.body(obstacle).name == approach_object:
@@ -99,7 +98,7 @@ def approach_advice(side: Side, reasons: list[str], target_p: np.ndarray, axis: 
     if any("reach" in r or "out of reach" in r for r in reasons):
         tip = range_advice(side, target_p)
         tips.append(tip or f"the straight line runs out of the {side} arm's reach: a shorter move, a target nearer "
-                           f"the {side} shoulder, or the {OTHER[side]} hand")
+                           f"the {side} shoulder, or the {OTHER_SIDE[side]} hand")
     return "; ".join(tips)
 
 
