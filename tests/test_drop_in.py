@@ -66,5 +66,6 @@ HANDOVER_AND_STORE = (Path(__file__).resolve().parents[1] / "bench" / "foreign_p
 @pytest.mark.slow
 def test_a_block_moved_to_a_point_between_the_drawer_walls_is_dropped_in(tmp_path):
     result = run_plan(tmp_path, "handover_and_storage", 1, HANDOVER_AND_STORE.read_text())
-    assert result.success, result.message
+    failed = result.failed_step
+    assert result.success, (failed.error if failed else None, result.checks)
     assert any("above where asked, clear of drawer 0's top" in e for e in result.events), result.events

@@ -16,7 +16,9 @@ The transit to the pre-pose is a screw motion, else RRT-Connect (`motion.plan_ar
 A movable part (a drawer's handle, a box lid) gives way when pushed, so an approach may touch the part it
 comes to by at most PART_TOUCH. Where the fingers as they are would push it (the pre-grasp thumb stands 10 cm
 out of the palm, in front of a handle) but open fingers would not, the hand opens at the pre-pose and comes in
-open; the grasp then closes around the handle.
+open; the grasp then closes around the handle. Not where the fingers would strike something as they open there:
+a pre-pinch's tucked fingers, unfolding at a safe's knob, stuck on the door beside it and the hand slid in
+dragging them, 4 cm short; they come in as they are.
 """
 
 from __future__ import annotations
@@ -31,6 +33,7 @@ from humanoidgen.objects.hands import HAND_POSTURES
 from humanoidgen.planning.feedback import approach_advice
 from humanoidgen.planning.goal_targets import PoseTarget, pose_within
 from humanoidgen.planning.motion import JointPath, MotionError, first_collision, plan_arm_motion, track_poses
+from humanoidgen.planning.part_joint import moving_bodies
 from humanoidgen.planning.poses import Pose, screw_interpolate
 from humanoidgen.sim.layout import HAND_PREFIX, Side
 
@@ -116,7 +119,7 @@ class Approaches:
             fwd, reason = track_poses(self.kin, side, solved.q, screw_interpolate(*pre, p, R))
             if not reason:
                 path = np.vstack([solved.q, fwd])
-                posture, reason = self._check_way_in(side, path, body, wrap)
+                posture, reason = self._check_way_in(side, path, body, wrap, target.approach_part)
                 if not reason:
                     yield ComeIn(path, pre, label, posture)
                     continue
@@ -133,7 +136,7 @@ class Approaches:
             label = f"{distance * 100:.0f} cm{how}"
             if not reason:
                 path = np.vstack([back[::-1], target.joint_q])
-                posture, reason = self._check_way_in(side, path, body, target.posture == "wrap")
+                posture, reason = self._check_way_in(side, path, body, target.posture == "wrap", target.approach_part)
                 if not reason:
                     yield ComeIn(path, pre, label, posture, axis=u if other else None)
                     continue
@@ -176,9 +179,11 @@ class Approaches:
         finally:
             self.kin.sync(self.env.data.qpos)
 
-    def _check_way_in(self, side: Side, path: np.ndarray, body: str | None, wrap: bool) -> tuple[str | None, str]:
+    def _check_way_in(self, side: Side, path: np.ndarray, body: str | None, wrap: bool,
+                      part: str | None = None) -> tuple[str | None, str]:
         """(finger posture to come in with, "") when the approach path fits, else (None, why not). The body
-        approached may be touched; everything else is avoided."""
+        approached may be touched; everything else is avoided. `part`: the joint of the articulated part the
+        hand comes to grip (`Pose.approach_part`)."""
         if first_collision_ignoring(self, side, path, body) is not None:
             return None, "the straight approach along the operation's axis collides"
         if body is None:
@@ -191,13 +196,39 @@ class Approaches:
             self.kin.set_hand(side, np.array(HAND_POSTURES["open"]))
             self.kin.forward()
             try:
-                if first_collision_ignoring(self, side, path, body) is None and self._part_clear(side, path, body):
-                    return "open", ""
+                fits_open = first_collision_ignoring(self, side, path, body) is None and self._part_clear(side, path,
+                                                                                                        body)
             finally:
                 self.kin.set_hand(side, saved)
                 self.kin.forward()
+            if fits_open and self._room_to_change(side, path[0], "open", part):
+                return "open", ""
             # Neither fits without pushing the part; come in as before (a part at its end stop does not move).
         return None, ""
+
+    def _room_to_change(self, side: Side, q: np.ndarray, posture: str, part: str | None, steps: int = 6) -> bool:
+        """Whether the fingers can go from how they are to `posture` with the arm at `q` and come no nearer than
+        PART_TOUCH into anything but the part moved by joint `part`, which gives way (a drawer the opening thumb
+        touches); the rest of its object counts (a safe's door, beside the knob gripped). Unchecked (True) where
+        the part is not known."""
+        if part is None:
+            return True
+        base = self.kin.data.qpos.copy()
+        ignored = set(self.collisions.ignored_bodies)
+        self.collisions.ignored_bodies |= moving_bodies(self.env.model, part)
+        start, goal = self.kin.hand_q(side), np.array(HAND_POSTURES[posture])
+        self.kin.set_arm(side, q)
+        try:
+            for s in np.linspace(0.0, 1.0, steps + 1)[1:]:
+                self.kin.set_hand(side, start + s * (goal - start))
+                self.kin.forward()
+                if not self.collisions.clear_of((side,), -PART_TOUCH):
+                    return False
+            return True
+        finally:
+            self.collisions.ignored_bodies = ignored
+            self.kin.data.qpos[:] = base
+            self.kin.forward()
 
     def _is_movable_part(self, body: str) -> bool:
         obj = next((o for o in self.env.scene.objects if o.body == body), None)
@@ -220,7 +251,7 @@ class Approaches:
 
     def _straight_approach(self, side: Side, q_goal: np.ndarray, p: np.ndarray, R: np.ndarray, axis: np.ndarray,
                            approach_object: str | None, distances: tuple[float, ...] = APPROACH_DISTANCES,
-                           wrap: bool = False):
+                           wrap: bool = False, part: str | None = None):
         """The straight approach into a goal along `axis` tracked back from the goal, over the first distance
         that fits: (joint path from the pre-pose to the goal, the pre-pose, reasons) or (None, None, reasons)."""
         reasons = []
@@ -229,7 +260,7 @@ class Approaches:
             back, reason = track_poses(self.kin, side, q_goal, screw_interpolate(p, R, *pre))
             if not reason:
                 approach = np.vstack([back[::-1], q_goal])
-                _, reason = self._check_way_in(side, approach, approach_object, wrap)
+                _, reason = self._check_way_in(side, approach, approach_object, wrap, part)
                 if not reason:
                     return approach, pre, reasons
             reasons.append(f"{distance * 100:.0f} cm: {reason}")
@@ -243,7 +274,8 @@ class Approaches:
         self._attach_held(side)
         approach, _, _ = self._straight_approach(side, result.q, result.ee_pos, result.ee_mat, gen.approach_axis,
                                                  gen.approach_object, distances=APPROACH_DISTANCES[-1:],
-                                                 wrap=gen.posture == "wrap")
+                                                 wrap=gen.posture == "wrap",
+                                                 part=gen.grip_part["joint"] if getattr(gen, "grip_part", None) else None)
         self.kin.sync(self.env.data.qpos)
         return approach is not None
 

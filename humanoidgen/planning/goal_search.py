@@ -111,6 +111,7 @@ class GoalSearch:
         if gen is not None:
             pose.approach_axis = gen.approach_axis
             pose.approach_object = gen.approach_object
+            pose.approach_part = gen.grip_part["joint"] if getattr(gen, "grip_part", None) else None
             pose.follow = gen.follow
             pose.posture = gen.posture
         if partial is not None:
