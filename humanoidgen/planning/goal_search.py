@@ -13,6 +13,9 @@ In order, each rung tried only when the ones before found nothing (so a goal fou
    approach direction, ROLL_DEG about it), the exact axes kept as a preference, then wider (WIDE_CONE_DEG,
    WIDE_ROLL_DEG); for at most RELAXED_WAYS grips and RELAX_BUDGET_S seconds (an event gives the angles taken).
 
+A goal found for a carried object that turns a joint past near_goal.FAR_JOINT_DEG is solved again near the arm's
+posture (near_goal.py; an event says so).
+
 A failure then says which constraint missed and by how much, or which bodies collide, and what to change
 (`feedback`). A push that cannot move a part the way asked (the fingertip would have to pull) is refused first.
 """
@@ -30,6 +33,7 @@ from humanoidgen.planning.feedback import body_label, contact_advice, push_advic
 from humanoidgen.planning.goal_solver import GoalResult
 from humanoidgen.planning.goal_targets import AxisWithin
 from humanoidgen.planning.motion import track_poses
+from humanoidgen.planning.near_goal import joint_turn, nearer_goal
 from humanoidgen.planning.part_joint import follow_articulation, follow_openness, point_motion
 from humanoidgen.planning import regrip
 from humanoidgen.planning.poses import Pose
@@ -74,6 +78,7 @@ class GoalSearch:
 
     def _solve_goal(self, constraints: list, side: Side) -> tuple[GoalResult, Pose]:
         self.kin.sync(self.env.data.qpos)
+        q_now = self.kin.arm_q(side)
         gen = getattr(constraints[0], "meta", None)
         held = self.holding[side]
         follow = getattr(gen, "follow", None) if gen is not None else None
@@ -97,6 +102,14 @@ class GoalSearch:
                 result, gen, slack = self._wider_goal(side, gen, tried, ignored_before, result)
             if result.success and not riding and getattr(gen, "grip_part", None) is not None:
                 result, gen = self._prefer_arc(side, gen, result, ignored_before)
+            if result.success and not riding and self._carries(side):
+                near = nearer_goal(self.solver, side, gen.constraints if gen is not None else constraints, q_now,
+                                   result, self.seed)
+                if near is not None:
+                    self.events.append(f"the {side} arm takes a goal near its posture: the first found turned a joint "
+                                       f"{np.degrees(joint_turn(q_now, result.q)):.0f} deg, swinging {held.type_name} "
+                                       f"{held.obj_id} through a wide arc")
+                    result = near
         finally:
             self.collisions.ignored_bodies = ignored_before
             self.kin.sync(self.env.data.qpos)
