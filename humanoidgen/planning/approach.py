@@ -33,7 +33,7 @@ from humanoidgen.objects.hands import HAND_POSTURES
 from humanoidgen.planning.feedback import approach_advice
 from humanoidgen.planning.goal_targets import PoseTarget, pose_within
 from humanoidgen.planning.motion import JointPath, MotionError, first_collision, plan_arm_motion, track_poses
-from humanoidgen.planning.part_joint import moving_bodies
+from humanoidgen.planning.part_joint import grip_joint, moving_bodies
 from humanoidgen.planning.poses import Pose, screw_interpolate
 from humanoidgen.sim.layout import HAND_PREFIX, Side
 
@@ -275,7 +275,7 @@ class Approaches:
         approach, _, _ = self._straight_approach(side, result.q, result.ee_pos, result.ee_mat, gen.approach_axis,
                                                  gen.approach_object, distances=APPROACH_DISTANCES[-1:],
                                                  wrap=gen.posture == "wrap",
-                                                 part=gen.grip_part["joint"] if getattr(gen, "grip_part", None) else None)
+                                                 part=grip_joint(gen))
         self.kin.sync(self.env.data.qpos)
         return approach is not None
 

@@ -34,7 +34,7 @@ from humanoidgen.planning.goal_solver import GoalResult
 from humanoidgen.planning.goal_targets import AxisWithin
 from humanoidgen.planning.motion import track_poses
 from humanoidgen.planning.near_goal import joint_turn, nearer_goal
-from humanoidgen.planning.part_joint import follow_articulation, follow_openness, point_motion
+from humanoidgen.planning.part_joint import follow_articulation, follow_openness, grip_joint, point_motion
 from humanoidgen.planning import regrip
 from humanoidgen.planning.poses import Pose
 from humanoidgen.sim.layout import HAND_PREFIX, OPERABLE_RANGE, Side
@@ -103,8 +103,9 @@ class GoalSearch:
             if result.success and not riding and getattr(gen, "grip_part", None) is not None:
                 result, gen = self._prefer_arc(side, gen, result, ignored_before)
             if result.success and not riding and self._carries(side):
-                near = nearer_goal(self.solver, side, gen.constraints if gen is not None else constraints, q_now,
-                                   result, self.seed)
+                # The constraints as passed (a plan may add its own to generated ones), or the other grip taken.
+                cons = constraints if gen is None or gen is getattr(constraints[0], "meta", None) else gen.constraints
+                near = nearer_goal(self.solver, side, cons, q_now, result, self.seed)
                 if near is not None:
                     self.events.append(f"the {side} arm takes a goal near its posture: the first found turned a joint "
                                        f"{np.degrees(joint_turn(q_now, result.q)):.0f} deg, swinging {held.type_name} "
@@ -124,7 +125,7 @@ class GoalSearch:
         if gen is not None:
             pose.approach_axis = gen.approach_axis
             pose.approach_object = gen.approach_object
-            pose.approach_part = gen.grip_part["joint"] if getattr(gen, "grip_part", None) else None
+            pose.approach_part = grip_joint(gen)
             pose.follow = gen.follow
             pose.posture = gen.posture
         if partial is not None:

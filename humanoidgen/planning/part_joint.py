@@ -24,6 +24,12 @@ def point_articulation(obj: SceneObject, point: str) -> Articulation | None:
     return ann.articulation_for(ann.point(point).part)
 
 
+def grip_joint(gen) -> str | None:
+    """The joint of the articulated part a generated grip takes (its `grip_part` record), else None."""
+    part = getattr(gen, "grip_part", None)
+    return part["joint"] if part else None
+
+
 def follow_articulation(env, follow: dict) -> Articulation:
     """The articulation a follow (or grip_part) record moves: its own, else the object's main one."""
     art = follow.get("articulation")
