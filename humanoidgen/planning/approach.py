@@ -31,6 +31,7 @@ import numpy as np
 
 from humanoidgen.objects.hands import HAND_POSTURES
 from humanoidgen.planning.feedback import approach_advice
+from humanoidgen.planning.finger_room import finger_sweep_clearance
 from humanoidgen.planning.goal_targets import PoseTarget, pose_within
 from humanoidgen.planning.motion import JointPath, MotionError, first_collision, plan_arm_motion, track_poses
 from humanoidgen.planning.part_joint import grip_joint, moving_bodies
@@ -206,7 +207,7 @@ class Approaches:
             # Neither fits without pushing the part; come in as before (a part at its end stop does not move).
         return None, ""
 
-    def _room_to_change(self, side: Side, q: np.ndarray, posture: str, part: str | None, steps: int = 6) -> bool:
+    def _room_to_change(self, side: Side, q: np.ndarray, posture: str, part: str | None) -> bool:
         """Whether the fingers can go from how they are to `posture` with the arm at `q` and come no nearer than
         PART_TOUCH into anything but the part moved by joint `part`, which gives way (a drawer the opening thumb
         touches); the rest of its object counts (a safe's door, beside the knob gripped). Unchecked (True) where
@@ -216,15 +217,12 @@ class Approaches:
         base = self.kin.data.qpos.copy()
         ignored = set(self.collisions.ignored_bodies)
         self.collisions.ignored_bodies |= moving_bodies(self.env.model, part)
-        start, goal = self.kin.hand_q(side), np.array(HAND_POSTURES[posture])
-        self.kin.set_arm(side, q)
         try:
-            for s in np.linspace(0.0, 1.0, steps + 1)[1:]:
-                self.kin.set_hand(side, start + s * (goal - start))
-                self.kin.forward()
-                if not self.collisions.clear_of((side,), -PART_TOUCH):
-                    return False
-            return True
+            self.kin.set_arm(side, q)
+            self.kin.forward()
+            clearance, _ = finger_sweep_clearance(self.kin, self.collisions, side, self.kin.hand_q(side),
+                                                  np.array(HAND_POSTURES[posture]), self.collisions.obstacles(side))
+            return clearance > -PART_TOUCH
         finally:
             self.collisions.ignored_bodies = ignored
             self.kin.data.qpos[:] = base
