@@ -52,7 +52,10 @@ def attempt(req: EpisodeRequest, worker=None) -> tuple[dict, dict | None]:
     }
     if req.dressing is not None:
         record["dressing"] = req.dressing  # the room and look, whole: the episode re-renders from it
-    return record, (arrays if result.success else None)
+    if result.success and req.recorder is not None and not arrays:
+        record["success"] = False  # nothing to keep: a success is only counted with its recording
+        record["error"] = "the episode succeeded but its replay recorded nothing"
+    return record, (arrays if record["success"] else None)
 
 
 _attempt = attempt  # what `collect` calls (looked up at call time, so tests can replace it)

@@ -2,9 +2,13 @@
 
 `EpisodeSetup` is what the parent hands the worker: the task spec as data (the parent read the YAML), the
 plan's text (the parent read the file; parsing it happens here, so a parser bomb only hits the worker), the
-seed, what to record and whether to stream video frames. Calling it builds the scene, the planner and the
-recorders and returns the step namespace plus control functions with dunder names: step code cannot name
-them (the checker refuses dunder names) and, were it to reach them anyway, could only spoil its own episode.
+seed and whether to stream video frames. Calling it builds the scene and the planner and returns the step
+namespace plus control functions with dunder names: step code cannot name them (the checker refuses dunder
+names) and, were it to reach them anyway, could only spoil its own episode.
+
+Nothing this process says is believed: it streams the robot's commands (`action_log`) and the parent
+re-simulates them and judges the task there (`episodes.replay`); what the worker reports of its own checks,
+state and model is only compared with that replay, to explain a rejection.
 """
 
 from __future__ import annotations
@@ -17,6 +21,7 @@ from typing import Any
 import numpy as np
 
 PLAN, PROGRESS, FINISH = "__hgen_plan__", "__hgen_progress__", "__hgen_finish__"
+MAX_EVENTS_PER_STEP = 200  # planner events handed back per step (the parent caps them again)
 
 
 @dataclass(frozen=True)
@@ -34,68 +39,62 @@ class EpisodeSetup:
     spec_data: dict
     plan_text: str
     seed: int | None
-    recorder: Any = None  # RecorderConfig or None
     video: VideoSpec | None = None
     control_hz: float = 50.0
     dressing: dict | None = None  # scenes.dressing.SceneDressing.to_dict(): a room and/or a look
 
     def __call__(self) -> dict[str, Any]:
         os.environ.setdefault("MUJOCO_GL", "egl")
+        from humanoidgen.episodes.action_log import ActionLog
         from humanoidgen.episodes.plans import parse_plan
-        from humanoidgen.episodes.recorder import EpisodeRecorder
-        from humanoidgen.episodes.runner import object_states, step_namespace
-        from humanoidgen.episodes.task_episode import judge
+        from humanoidgen.episodes.runner import step_namespace
         from humanoidgen.planning.planner import HumanoidMotionPlanner
         from humanoidgen.planning.settling import wait_until_still
+        from humanoidgen.sandbox.runner import stream
+        from humanoidgen.scenes.dressing import SceneDressing
         from humanoidgen.sim.env import HumanoidEnv
+        from humanoidgen.sim.fingerprint import fingerprint
         from humanoidgen.tasks.registry import parse_task
         from humanoidgen.tasks.scene import build_scene
-
-        from humanoidgen.scenes.dressing import SceneDressing
 
         spec = parse_task(self.spec_data, "<task>")
         dressing = SceneDressing.from_dict(self.dressing) if self.dressing else None
         _, env = build_scene(spec, self.seed, dressing=dressing)
         if self.control_hz != env.control_hz:
             env = HumanoidEnv(env.scene, control_hz=self.control_hz)
-        recorder = EpisodeRecorder(env, self.recorder) if self.recorder is not None else None
+        log = ActionLog(env.data, send=stream)
         frames = _FrameStream(env, self.video) if self.video is not None else None
-        hooks = [h for h in (recorder, frames) if h is not None]
-        planner = HumanoidMotionPlanner(env, seed=self.seed or 0,
-                                        on_step=(lambda a: [h(a) for h in hooks]) if hooks else None)
-        clock = [time.perf_counter(), env.time]
+        hooks = [h for h in (log, frames) if h is not None]
+        planner = HumanoidMotionPlanner(env, seed=self.seed or 0, on_step=lambda a: [h(a) for h in hooks])
+        clock = [time.perf_counter()]
+        said = [0]  # events already handed to the parent
 
         def plan() -> list[dict]:
             clock[0] = time.perf_counter()  # the episode starts now: a worker may be started ahead of its turn
             return [{"title": s.title, "code": s.code} for s in parse_plan(self.plan_text).steps]
 
         def progress() -> dict:
-            """The clock and the planner's events so far (the parent asks after each step)."""
-            return {"sim_time": env.time, "events": list(planner.events)}
+            """The planner's events since the last call; the commands so far are streamed first."""
+            log.flush()
+            new = [str(e) for e in planner.events[said[0]:said[0] + MAX_EVENTS_PER_STEP]]
+            said[0] = len(planner.events)
+            return {"steps": len(log), "events": new}
 
-        def finish(render: bool = True) -> dict:
-            """Judge the task, close the recorders and hand back everything the parent keeps. When images are
-            recorded, `render` (the parent: every step succeeded) and every success check holds, the arrays
-            also hold what the parent renders them from (`image_job`): the recorded configurations and the
-            model's clipping-plane statistics. A failed attempt is never rendered."""
-            if render is True:  # every step ran: judge the scene once what the last move set going has landed
+        def finish(settle: bool = True) -> dict:
+            """Hand back the last commands and what this process believes (its checks, final configuration and
+            model fingerprint), for the parent to compare with its replay. With `settle` (every step
+            succeeded) the robot first holds its command until the scene is still, as the replay checks."""
+            if settle is True:
                 wait_until_still(planner)
-            checks = judge(spec, env)
-            arrays = None
-            if recorder is not None and recorder.frames:
-                arrays = recorder.arrays(images=False)
-                if render is True and all(c["ok"] for c in checks) and recorder.config.renders:
-                    from humanoidgen.episodes.image_job import model_stat
-
-                    arrays["configurations"] = np.stack(recorder.configurations)
-                    arrays["model_stat"] = model_stat(env.model)
-            if recorder is not None:
-                recorder.close()
+            log.flush()
             if frames is not None:
                 frames.close()
-            return {"task": spec.name, "checks": checks, "wall_seconds": time.perf_counter() - clock[0],
-                    "sim_seconds": env.time - clock[1], "plan_seconds": float(sum(planner.plan_seconds)),
-                    "objects": object_states(env), "events": list(planner.events), "arrays": arrays}
+            from humanoidgen.episodes.replay import judge
+
+            return {"task": spec.name, "checks": judge(spec, env), "wall_seconds": time.perf_counter() - clock[0],
+                    "plan_seconds": float(sum(planner.plan_seconds)), "steps": len(log),
+                    "events": [str(e) for e in planner.events[said[0]:said[0] + MAX_EVENTS_PER_STEP]],
+                    "qpos": env.data.qpos.copy(), "fingerprint": fingerprint(env.model, env.data)}
 
         ns = step_namespace(planner)
         ns[PLAN], ns[PROGRESS], ns[FINISH] = plan, progress, finish

@@ -1,10 +1,11 @@
 """A task episode: the task's scene for a seed, its plan, its success predicates, optional recording/video.
 
 The parent (this module) reads the task and the plan file, starts a locked-down plan worker
-(`sandbox.runner.SandboxWorker` with `episode_worker.EpisodeSetup`), sends it the plan's steps one by one
-with a wall-time budget each, and gets back the step outcomes, the verdict and the recorded arrays. The
-worker cannot write files, so video frames are streamed back and written here; datasets are written by the
-caller (`collect`).
+(`sandbox.runner.SandboxWorker` with `episode_worker.EpisodeSetup`) and sends it the plan's steps one by one
+with a wall-time budget each. The worker streams back the robot's commands as it runs; a replay here
+(`episodes.replay`) re-simulates them from the task's scene on a thread of its own and gives the verdict and
+the recorded arrays, so nothing kept rests on the plan's process. The worker cannot write files, so video
+frames are streamed back and written here; datasets are written by the caller (`collect`).
 """
 
 from __future__ import annotations
@@ -19,16 +20,19 @@ from humanoidgen.episodes.episode_worker import FINISH, PLAN, PROGRESS, EpisodeS
 from humanoidgen.episodes.image_job import PENDING_IMAGES, ImageJob
 from humanoidgen.episodes.plans import PlanFormatError
 from humanoidgen.episodes.recorder import RecorderConfig
+from humanoidgen.episodes.replay import OverTime, ReplayFeed, ReplayVerdict
 from humanoidgen.episodes.runner import EpisodeResult, StepResult
-from humanoidgen.sim.env import HumanoidEnv
 
 DEFAULT_STEP_TIMEOUT_S = 300.0
-CONTROL_TIMEOUT_S = 300.0  # building the scene, judging, handing back the recording (never its images)
+START_TIMEOUT_S = 300.0  # the worker building the task's scene and parsing the plan
 MEMORY_LIMIT = 4 << 30
 MEMORY_LIMIT_VIDEO = 12 << 30  # the renderer's buffers (recorded images are rendered by the parent: image_job)
-# The largest message the parent accepts from an episode's worker: a step's outcome is small, a recording
-# is not. A worker cannot make the parent hold more than this at once.
-MESSAGE_LIMIT = 256 << 20
+# The largest message the parent accepts from an episode's worker: a video frame (640x480 RGB is 0.9 MB), a
+# chunk of commands (about 40 kB), the end of the episode (its fingerprint, about 10 kB). A worker cannot
+# make the parent hold more than this at once.
+MESSAGE_LIMIT = 16 << 20
+MAX_EVENTS = 2000  # planner events kept per episode (each cut to MAX_EVENT_CHARS)
+MAX_EVENT_CHARS = 500
 MAX_VIDEO_S = 600.0  # frames past this much video are dropped (a worker cannot fill the disk)
 
 
@@ -80,66 +84,71 @@ def read_plan_text(path: Path) -> str:
         raise PlanFormatError(f"{path}: cannot read the plan ({exc.strerror})") from None
 
 
-def judge(spec, env: HumanoidEnv) -> list[dict]:
-    out = []
-    for pred in spec.success:
-        r = pred.evaluate(env)
-        out.append({"predicate": pred.type, "ok": bool(r.ok), "detail": r.detail})
-    return out
-
-
 def worker_for(req: EpisodeRequest, spec, plan_text: str, on_frame: Callable[[np.ndarray], None] | None = None):
-    """A (not yet started) locked-down worker that will hold this episode."""
+    """A (not yet started) locked-down worker that will hold this episode. What it streams goes to its
+    `on_stream`, which `_run_in_worker` sets (`_Streams`): video frames and chunks of commands."""
     from humanoidgen.sandbox import SandboxWorker
 
-    setup = EpisodeSetup(spec.model_dump(mode="json"), plan_text, req.seed, req.recorder,
+    setup = EpisodeSetup(spec.model_dump(mode="json"), plan_text, req.seed,
                          req.video if on_frame is not None else None, req.control_hz, req.dressing)
     limit = MEMORY_LIMIT_VIDEO if on_frame is not None else MEMORY_LIMIT
-
-    video = setup.video
-    budget = [int(MAX_VIDEO_S * video.fps) if video is not None else 0]
-
-    def frames(payload) -> None:
-        frame = payload.get("frame") if isinstance(payload, dict) else None
-        if (on_frame is None or video is None or budget[0] <= 0 or not isinstance(frame, np.ndarray)
-                or frame.shape != (video.height, video.width, 3) or frame.dtype != np.uint8):
-            return  # only the frames the parent asked for, of the size it asked for
-        budget[0] -= 1
-        on_frame(frame)
-
-    return SandboxWorker(setup, memory_limit=limit, on_stream=frames, max_message_bytes=MESSAGE_LIMIT)
+    return SandboxWorker(setup, memory_limit=limit, max_message_bytes=MESSAGE_LIMIT)
 
 
-def start_worker(req: EpisodeRequest):
-    """`req`'s worker, started now (forked, locked down, its scene built) for a later
-    `run_task_episode(req, worker=...)`: collecting starts the next attempt's worker while one runs."""
+@dataclass
+class StartedEpisode:
+    """A request's worker, started (forked, locked down, its scene built), and its replay, building its own
+    scene meanwhile: what `start_worker` hands `run_task_episode(req, worker=...)`."""
+
+    worker: object  # SandboxWorker
+    replay: ReplayFeed
+
+    @property
+    def alive(self) -> bool:
+        return self.worker.alive
+
+    def close(self) -> None:
+        self.worker.close()
+        self.replay.cancel()
+
+
+def start_worker(req: EpisodeRequest) -> StartedEpisode:
+    """`req`'s worker and replay, started now for a later `run_task_episode(req, worker=...)`: collecting
+    starts the next attempt's while one runs."""
     spec = load_spec(req.task)
     worker = worker_for(req, spec, read_plan_text(plan_file(req.task, spec, req.plan_path)))
-    worker.start()
-    return worker
+    replay = _replay_for(req, spec)
+    try:
+        worker.start()
+    except BaseException:
+        replay.cancel()
+        raise
+    return StartedEpisode(worker, replay)
+
+
+def _replay_for(req: EpisodeRequest, spec) -> ReplayFeed:
+    return ReplayFeed(spec, req.seed, req.dressing, req.control_hz, req.recorder)
 
 
 def run_task_episode(req: EpisodeRequest, on_frame: Callable[[np.ndarray], None] | None = None,
-                     render: bool = True, worker=None) -> tuple[EpisodeResult, dict | None]:
-    """Run one attempt in a locked-down worker; returns the result and, when recording, the arrays.
+                     render: bool = True, worker: StartedEpisode | None = None) -> tuple[EpisodeResult, dict | None]:
+    """Run one attempt in a locked-down worker, judged and recorded by its replay here; returns the result
+    and, when recording, the arrays (from the replay).
 
-    A successful attempt recorded with cameras is rendered here, after its worker has ended (`image_job`):
-    with `render`, into the arrays; without, the arrays carry the `ImageJob` under `PENDING_IMAGES`, for
-    `EpisodeStore` to render while it writes the episode, frame by frame.
+    A successful attempt recorded with cameras is rendered here from the replay's configurations
+    (`image_job`): with `render`, into the arrays; without, the arrays carry the `ImageJob` under
+    `PENDING_IMAGES`, for `EpisodeStore` to render while it writes the episode, frame by frame.
     `on_frame(rgb)` receives the frames of `req.video` (default: the front camera at 25 fps) as they are
     rendered. Raises PlanFormatError for a plan that cannot be parsed; a step that fails, times out or kills
     its worker is a failed step in the result. `worker`: one `start_worker(req)` started for this request
     (without video); this call closes it."""
-    result, arrays = _run_in_worker(req, on_frame, worker)
-    if arrays is None or "configurations" not in arrays:
-        return result, arrays
-    try:
-        job = ImageJob(req.task, req.seed, req.dressing, req.recorder, arrays.pop("configurations"),
-                       arrays.pop("model_stat", None))
-    except ValueError as exc:  # the worker's numbers are not a recording: a failed attempt, said so
-        result.success = False
-        result.checks.append({"predicate": "recording", "ok": False, "detail": f"unusable recording: {exc}"})
+    result, verdict = _run_in_worker(req, on_frame, worker)
+    if verdict is None or verdict.arrays is None:
         return result, None
+    arrays = dict(verdict.arrays)
+    if not result.success or verdict.configurations is None:
+        return result, arrays
+    job = ImageJob(req.task, req.seed, req.dressing, req.recorder, verdict.configurations, verdict.model_stat)
     if render:
         arrays.update(job.render_arrays())
     else:
@@ -147,10 +156,32 @@ def run_task_episode(req: EpisodeRequest, on_frame: Callable[[np.ndarray], None]
     return result, arrays
 
 
-def _run_in_worker(req: EpisodeRequest, on_frame: Callable[[np.ndarray], None] | None, started=None
-                   ) -> tuple[EpisodeResult, dict | None]:
-    from humanoidgen.sandbox import SandboxError
+class _Streams:
+    """The worker's stream messages: video frames of the size asked for (at most MAX_VIDEO_S of them) to
+    `on_frame`, chunks of commands to the replay; anything else is dropped."""
 
+    def __init__(self, replay: ReplayFeed, video: VideoSpec | None, on_frame) -> None:
+        from humanoidgen.episodes.action_log import STREAM_KEY
+
+        self.key, self.replay, self.video, self.on_frame = STREAM_KEY, replay, video, on_frame
+        self.frames_left = int(MAX_VIDEO_S * video.fps) if video is not None else 0
+
+    def __call__(self, payload) -> None:
+        if not isinstance(payload, dict):
+            return
+        if self.key in payload:
+            self.replay.feed(payload[self.key])  # raises OverTime past the task's time limit
+            return
+        frame, video = payload.get("frame"), self.video
+        if (self.on_frame is None or video is None or self.frames_left <= 0 or not isinstance(frame, np.ndarray)
+                or frame.shape != (video.height, video.width, 3) or frame.dtype != np.uint8):
+            return
+        self.frames_left -= 1
+        self.on_frame(frame)
+
+
+def _run_in_worker(req: EpisodeRequest, on_frame: Callable[[np.ndarray], None] | None,
+                   started: StartedEpisode | None = None) -> tuple[EpisodeResult, ReplayVerdict | None]:
     spec = load_spec(req.task)
     if started is not None and on_frame is not None:
         started.close()  # started without a video stream: this episode needs one
@@ -159,64 +190,126 @@ def _run_in_worker(req: EpisodeRequest, on_frame: Callable[[np.ndarray], None] |
         text = read_plan_text(plan_file(req.task, spec, req.plan_path))
         if on_frame is not None and req.video is None:
             req = replace(req, video=VideoSpec())
-        started = worker_for(req, spec, text, on_frame)
-    with started as worker:
-        try:
-            plan = worker.call(PLAN, timeout_s=CONTROL_TIMEOUT_S)
-        except SandboxError as exc:
-            if exc.outcome.error_type == "PlanFormatError":
-                raise PlanFormatError(exc.outcome.message) from None
-            raise RuntimeError(f"the plan worker could not start the episode: {exc}") from None
-        try:
-            plan = [(str(s["title"]), str(s["code"])) for s in plan]
-        except (TypeError, KeyError) as exc:
-            raise RuntimeError(f"the plan worker sent a malformed plan ({exc})") from None
-        steps: list[StepResult] = []
-        sim, events = 0.0, 0
-        try:
-            for i, (title, code) in enumerate(plan):
-                out = worker.run_step(code, timeout_s=req.step_timeout_s)
-                if out.worker_restarted or not worker.alive:
-                    steps.append(StepResult(i, title, False, _error(out), out.seconds))
-                    break
-                info = worker.call(PROGRESS, timeout_s=CONTROL_TIMEOUT_S)
-                now, log = float(info["sim_time"]), [str(e) for e in info["events"]]
-                steps.append(StepResult(i, title, out.ok, "" if out.ok else _error(out), out.seconds, now - sim,
-                                        log[events:]))
-                sim, events = now, len(log)
-                if not out.ok:
-                    break
-            if not worker.alive:  # killed by a timeout or died: nothing left to judge
-                return _lost(spec.name, req.seed, steps), None
-            ok = len(steps) == len(plan) and all(s.ok for s in steps)
-            return _finished(spec.name, req.seed, steps, len(plan),
-                             worker.call(FINISH, render=ok, timeout_s=CONTROL_TIMEOUT_S))
-        except (SandboxError, TypeError, KeyError, ValueError, AttributeError) as exc:
-            # The worker's own bookkeeping failed or answered nonsense (plan code can break it): a failed
-            # episode that says so, not a crash of the caller.
-            steps.append(StepResult(len(steps), "(episode bookkeeping)", False,
-                                    f"the plan worker could not report the episode: {type(exc).__name__}: {exc}"))
-            return _lost(spec.name, req.seed, steps), None
+        started = StartedEpisode(worker_for(req, spec, text, on_frame), _replay_for(req, spec))
+    replay = started.replay
+    started.worker.on_stream = _Streams(replay, req.video if on_frame is not None else None, on_frame)
+    try:
+        with started.worker as worker:
+            result = _steps(req, spec, worker, replay)
+    except BaseException:
+        replay.cancel()
+        raise
+    if isinstance(result, EpisodeResult):  # lost: nothing left to judge
+        replay.cancel()
+        return result, None
+    steps, n_plan, end = result
+    ok = bool(steps) and len(steps) == n_plan and all(s.ok for s in steps)
+    verdict = replay.finish(end.get("qpos"), end.get("fingerprint"), settle=ok)
+    return _finished(spec.name, req.seed, steps, ok, end, verdict), verdict
 
 
-def _finished(task: str, seed: int | None, steps: list[StepResult], n_plan: int, end: dict
-              ) -> tuple[EpisodeResult, dict | None]:
-    checks = [{"predicate": str(c["predicate"]), "ok": c["ok"] is True, "detail": str(c["detail"])}
-              for c in end["checks"]]
-    ok = bool(steps) and all(s.ok for s in steps) and len(steps) == n_plan and all(c["ok"] for c in checks)
-    objects = end["objects"] if isinstance(end["objects"], dict) else {}
-    result = EpisodeResult(task, seed, ok, checks, steps, float(end["wall_seconds"]), float(end["sim_seconds"]),
-                           float(end["plan_seconds"]), objects, [str(e) for e in end["events"]])
-    arrays = end.get("arrays")
-    if isinstance(arrays, dict) and arrays and all(isinstance(v, np.ndarray) for v in arrays.values()):
-        return result, arrays
-    return result, None
+def _steps(req: EpisodeRequest, spec, worker, replay: ReplayFeed):
+    """Run the plan's steps; (steps, number of plan steps, the worker's end report), or an EpisodeResult
+    when the worker was lost."""
+    from humanoidgen.sandbox import SandboxError
+
+    try:
+        plan = worker.call(PLAN, timeout_s=START_TIMEOUT_S)
+    except SandboxError as exc:
+        if exc.outcome.error_type == "PlanFormatError":
+            raise PlanFormatError(exc.outcome.message) from None
+        raise RuntimeError(f"the plan worker could not start the episode: {exc}") from None
+    try:
+        plan = [(str(s["title"]), str(s["code"])) for s in plan]
+    except (TypeError, KeyError) as exc:
+        raise RuntimeError(f"the plan worker sent a malformed plan ({exc})") from None
+    steps: list[StepResult] = []
+    events: list[str] = []
+    timeout = req.step_timeout_s
+    fed = 0
+    try:
+        for i, (title, code) in enumerate(plan):
+            try:
+                out = worker.run_step(code, timeout_s=timeout)
+            except OverTime:
+                steps.append(StepResult(i, title, False, replay_over_time(spec, req)))
+                return _lost(spec.name, req.seed, steps)
+            if out.worker_restarted or not worker.alive:
+                steps.append(StepResult(i, title, False, _error(out, timeout), out.seconds))
+                break
+            info = _control(worker, PROGRESS, timeout)
+            new = _events(info["events"], len(events))
+            events += new
+            sim = (replay.fed - fed) / req.control_hz
+            fed = replay.fed
+            steps.append(StepResult(i, title, out.ok, "" if out.ok else _error(out, timeout), out.seconds, sim, new))
+            if not out.ok:
+                break
+        if not worker.alive:  # killed by a timeout or died: nothing left to judge
+            return _lost(spec.name, req.seed, steps)
+        ok = len(steps) == len(plan) and all(s.ok for s in steps)
+        end = _control(worker, FINISH, timeout, settle=ok)
+        if not isinstance(end, dict):
+            raise TypeError("the end of the episode is not a record")
+        end["events"] = events + _events(end.get("events"), len(events))
+        return steps, len(plan), end
+    except OverTime:
+        steps.append(StepResult(len(steps), "(the scene coming to rest)", False, replay_over_time(spec, req)))
+        return _lost(spec.name, req.seed, steps)
+    except (SandboxError, TypeError, KeyError, ValueError, AttributeError) as exc:
+        # The worker's own bookkeeping failed or answered nonsense (plan code can break it): a failed
+        # episode that says so, not a crash of the caller.
+        steps.append(StepResult(len(steps), "(episode bookkeeping)", False,
+                                f"the plan worker could not report the episode: {type(exc).__name__}: {exc}"))
+        return _lost(spec.name, req.seed, steps)
 
 
-def _error(out) -> str:
+def replay_over_time(spec, req: EpisodeRequest) -> str:
+    limit = spec.max_steps / req.control_hz if spec.max_steps else spec.time_limit_s
+    return (f"the plan ran past the task's time limit ({limit:g} s of simulated time): the worker was stopped; "
+            "make the moves shorter or fewer")
+
+
+def _control(worker, name: str, timeout_s: float, **kwargs):
+    """A control call to the worker, within the step's time budget (the plan can slow these down too)."""
+    from humanoidgen.sandbox import SandboxError
+
+    try:
+        return worker.call(name, timeout_s=timeout_s, **kwargs)
+    except SandboxError as exc:
+        if exc.outcome.error_type == "Timeout":
+            raise SandboxError(replace(exc.outcome, message=f"no answer within the step time limit "
+                                                            f"(--step-timeout {timeout_s:g} s)")) from None
+        raise
+
+
+def _events(raw, have: int) -> list[str]:
+    """At most what is left of MAX_EVENTS planner events from the worker's list, each cut short."""
+    if not isinstance(raw, list):
+        return []
+    return [str(e)[:MAX_EVENT_CHARS] for e in raw[:max(MAX_EVENTS - have, 0)]]
+
+
+def _finished(task: str, seed: int | None, steps: list[StepResult], ran: bool, end: dict,
+              verdict: ReplayVerdict) -> EpisodeResult:
+    """The episode's result: the steps as the worker ran them, the verdict, final poses and simulated time as
+    the replay found them; the worker's wall and planning times are only its report."""
+    checks = verdict.all_checks()
+    ok = ran and verdict.ok
+
+    def number(x) -> float:
+        return float(x) if isinstance(x, (int, float)) and not isinstance(x, bool) and np.isfinite(x) else 0.0
+
+    return EpisodeResult(task, seed, ok, checks, steps, number(end.get("wall_seconds")), verdict.sim_seconds,
+                         number(end.get("plan_seconds")), verdict.objects, [*end["events"], *verdict.events])
+
+
+def _error(out, timeout_s: float) -> str:
     """The step's failure as one line: `call: reason`, or `Type: message (line n)`."""
     if out.error_type == "PlanningError":  # already `call: reason`
         return out.message
+    if out.error_type == "Timeout":
+        return f"Timeout: the step ran past its time limit (--step-timeout {timeout_s:g} s); the worker was stopped"
     if out.error_type == "CodeRejected":
         return f"rejected: {out.message}"
     line = f" (line {out.line})" if out.line else ""

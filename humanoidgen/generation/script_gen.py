@@ -13,6 +13,7 @@ from typing import Any
 from humanoidgen.generation import prompts
 from humanoidgen.generation.extract import extract_steps, plan_text
 from humanoidgen.generation.scene_gen import _tokens
+from humanoidgen.episodes.replay_judge import ReplayJudge
 from humanoidgen.generation.worker import JUDGE, RESET, setup
 from humanoidgen.llm import LLMClient
 from humanoidgen.sandbox import CodeRejected, SandboxWorker, check_code
@@ -114,7 +115,7 @@ def _describe_failure(step: StepLog) -> str:
 
 
 def _run_attempt(log: AttemptLog, steps: list[tuple[str, str]], names: list[str], worker: SandboxWorker,
-                 step_timeout_s: float) -> None:
+                 step_timeout_s: float, judge: ReplayJudge) -> None:
     t0 = time.perf_counter()
     rejected = precheck(steps, names)
     if rejected:
@@ -132,7 +133,7 @@ def _run_attempt(log: AttemptLog, steps: list[tuple[str, str]], names: list[str]
             worker_alive = out.error_type not in ("Timeout", "WorkerDied")  # killed: the scene is gone
             break
     if worker_alive:
-        verdict = worker.call(JUDGE, timeout_s=RESET_TIMEOUT_S)
+        verdict = judge.report(worker.call(JUDGE, timeout_s=RESET_TIMEOUT_S))  # the replay's verdict, not the worker's
         log.checks, log.events = verdict["checks"], verdict["events"]
         log.success = not log.failure and all(c["ok"] for c in log.checks)
         if not log.success:
@@ -160,6 +161,7 @@ def generate_script(task: TaskSpec | str | Path, client: LLMClient, attempts: in
     worker = worker or SandboxWorker(setup)
     result = ScriptResult(spec.name, seed, False, [])
     messages: list[dict[str, str]] = []
+    judge: ReplayJudge | None = None  # the task's scene built here, on the first attempt that runs
     try:
         for k in range(1, attempts + 1):
             # A fresh scene per attempt; a step that rebound a provided name (`np = 1`) poisons the
@@ -183,7 +185,9 @@ def generate_script(task: TaskSpec | str | Path, client: LLMClient, attempts: in
             if not steps:
                 log.failure = "The answer had no ```python blocks; write each step in its own ```python block."
                 continue
-            _run_attempt(log, steps, names, worker, step_timeout_s)
+            if judge is None:
+                judge = ReplayJudge(spec, seed)
+            _run_attempt(log, steps, names, worker, step_timeout_s, judge)
             if log.success:
                 result.success, result.plan = True, steps
                 break

@@ -4,6 +4,8 @@ namespace around a *handle* to the planner; `__hgen_reset__` builds a fresh scen
 
 The control functions have dunder names: the runner hides such names from step code and the checker rejects
 them, so LLM code cannot reset the scene or call the judge; only the parent can, through `SandboxWorker.call`.
+Nothing this process says decides a verdict: `__hgen_judge__` hands back the robot's commands since the
+reset (and, for comparison, what this process believes), and the parent replays them (`replay_judge`).
 """
 
 from __future__ import annotations
@@ -43,11 +45,17 @@ def _round(x: Any, nd: int = 3) -> list[float]:
     return [round(float(v), nd) for v in np.asarray(x).ravel()]
 
 
+def _log(actions: list[np.ndarray]) -> np.ndarray:
+    return np.stack(actions) if actions else np.zeros((0, 26))
+
+
 def setup() -> dict[str, Any]:
     os.environ.setdefault("MUJOCO_GL", "egl")
+    from humanoidgen.episodes.action_log import packed
+    from humanoidgen.episodes.replay import judge
     from humanoidgen.episodes.runner import step_namespace
-    from humanoidgen.episodes.task_episode import judge
     from humanoidgen.objects.describe import describe_scene
+    from humanoidgen.sim.fingerprint import fingerprint
     from humanoidgen.planning.planner import HumanoidMotionPlanner
     from humanoidgen.planning.settling import wait_until_still
     from humanoidgen.tasks.registry import parse_task
@@ -60,9 +68,10 @@ def setup() -> dict[str, Any]:
         """Build the task's scene for `seed` and a fresh planner; return the scene as the prompt shows it."""
         spec = parse_task(spec_data, "<generated>")
         _, env = build_scene(spec, seed)
-        planner = HumanoidMotionPlanner(env, seed=seed or 0)
+        actions: list[np.ndarray] = []  # the robot's commands since the reset, for the parent's replay
+        planner = HumanoidMotionPlanner(env, seed=seed or 0, on_step=lambda a: actions.append(np.array(a, float)))
         handle._bind(planner)
-        state.update(spec=spec, env=env, planner=planner)
+        state.update(spec=spec, env=env, planner=planner, actions=actions)
         hands = {s: {"p": _round(p.p), "q": _round(p.q)}
                  for s, p in (("left", planner.left_hand_init_pose), ("right", planner.right_hand_init_pose))}
         return {"scene": describe_scene(env, as_json=False), "hands": hands}
@@ -72,20 +81,23 @@ def setup() -> dict[str, Any]:
         if "env" not in state:
             raise RuntimeError("no scene is loaded")
         wait_until_still(state["planner"])  # as an episode is judged: what the last move set going lands first
-        checks = judge(state["spec"], state["env"])
-        return {"checks": checks, "events": list(state["planner"].events),
-                "status": describe_scene(state["env"], as_json=False)["status"]}
+        env = state["env"]
+        return {"checks": judge(state["spec"], env), "events": [str(e) for e in state["planner"].events[:2000]],
+                "actions": packed(_log(state["actions"])), "qpos": env.data.qpos.copy(),
+                "fingerprint": fingerprint(env.model, env.data)}
 
     def snapshot() -> dict:
         """The episode's full state (physics and planner bookkeeping), JSON-ready, for a tree search node."""
         from humanoidgen.planning.snapshot import take_snapshot
 
-        return take_snapshot(state["planner"]).to_dict()
+        return {**take_snapshot(state["planner"]).to_dict(), "actions": packed(_log(state["actions"]))}
 
     def restore(snap: dict) -> None:
+        from humanoidgen.episodes.action_log import unpack
         from humanoidgen.planning.snapshot import Snapshot, restore_snapshot
 
         restore_snapshot(state["planner"], Snapshot.from_dict(snap))
+        state["actions"][:] = list(unpack(snap.get("actions", packed(np.zeros((0, 26)))), 1 << 22))
 
     ns = step_namespace(handle)  # type: ignore[arg-type]
     ns[RESET], ns[JUDGE], ns[SNAPSHOT], ns[RESTORE] = reset, judge_now, snapshot, restore

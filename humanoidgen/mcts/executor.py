@@ -42,8 +42,14 @@ class SandboxExecutor:
         self._spec: tuple[dict, int | None] | None = None
         self._stale = False  # the scene is gone or the namespace is poisoned
         self._provided: set[str] | None = None
+        self._judge = None  # episodes.replay_judge.ReplayJudge for the scene of the last reset
 
     def reset(self, spec_data: dict, seed: int | None) -> dict:
+        if self._judge is None or self._spec != (spec_data, seed):
+            from humanoidgen.episodes.replay_judge import ReplayJudge
+            from humanoidgen.tasks.registry import parse_task
+
+            self._judge = ReplayJudge(parse_task(spec_data, "<search>"), seed)
         self._spec = (spec_data, seed)
         self._stale = False
         return self.worker.call(RESET, spec_data, seed, timeout_s=RESET_TIMEOUT_S)
@@ -66,7 +72,10 @@ class SandboxExecutor:
         self.worker.call(RESTORE, snap, timeout_s=RESET_TIMEOUT_S)
 
     def judge(self) -> dict:
-        return self.worker.call(JUDGE, timeout_s=RESET_TIMEOUT_S)
+        """The verdict of the replay here on the worker's commands since the reset (never the worker's own)."""
+        if self._judge is None:
+            raise RuntimeError("judge() before reset()")
+        return self._judge.report(self.worker.call(JUDGE, timeout_s=RESET_TIMEOUT_S))
 
     def close(self) -> None:
         if self.own:

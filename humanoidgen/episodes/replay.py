@@ -1,0 +1,281 @@
+"""The verdict the plan cannot forge: an episode re-simulated from the robot's commands, outside the plan's
+process, and judged there.
+
+Plan code shares its worker process with that worker's simulation, so anything the worker reports (the
+task's checks, poses, recorded arrays) is the plan's word: a plan can write object poses, edit gravity or
+masses, push with `xfrc_applied`, patch the predicates or forge its reply. What a plan cannot forge is the
+sequence of commands it gave the robot. `Replay` builds the task's scene afresh here (same task spec, seed,
+dressing and control rate: the same model, the same start), applies those commands one control step at a
+time, and judges the task's predicates on this simulation; a kept episode's state arrays, and the
+configurations its images are rendered from, are recorded here too.
+
+Same build, same scene, same actions: the replay is bit-identical to an honest worker's run (simulated trials
+that the planner runs from snapshots restore the full integration state and are not in the log). Where the
+worker's own configurations part from the replay's by more than DIVERGED (1 um / 1 urad), the plan changed
+its simulation outside the robot's commands; the episode is rejected, saying when, what moved and, where the
+worker's report tells it, which model fields or inputs it edited. The episode may also not run past its
+task's time limit (plus the time the scene is given to come to rest).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from humanoidgen.episodes.recorder import EpisodeRecorder, RecorderConfig
+from humanoidgen.episodes.runner import object_states
+from humanoidgen.planning.settling import MAX_REST_WAIT_S
+from humanoidgen.sim.action import ACTION_DIM
+from humanoidgen.sim.env import HumanoidEnv
+from humanoidgen.sim.fingerprint import changed_fields, fingerprint
+from humanoidgen.sim.rest import moving_objects, object_dofs
+
+DIVERGED = 1e-6  # m or rad: an honest worker matches the replay bit for bit
+CHANGED = "the plan changed the simulation outside the robot's commands"
+
+
+@dataclass
+class ReplayVerdict:
+    """What the trusted replay found. `problem`: why the episode is rejected whatever the checks say."""
+
+    checks: list[dict]
+    objects: dict[str, dict]
+    sim_seconds: float
+    steps: int
+    problem: str | None = None
+    arrays: dict[str, np.ndarray] | None = None  # the recorder's state arrays (when recording)
+    configurations: np.ndarray | None = None  # (T, nq) what recorded images are drawn from
+    model_stat: np.ndarray | None = None
+    events: list[str] = field(default_factory=list)  # what the replay itself did (the final rest)
+
+    @property
+    def ok(self) -> bool:
+        return self.problem is None and bool(self.checks) and all(c["ok"] for c in self.checks)
+
+    def all_checks(self) -> list[dict]:
+        """The task's checks plus, when rejected, a failed "replay" check that says why."""
+        extra = [{"predicate": "replay", "ok": False, "detail": self.problem}] if self.problem else []
+        return [*self.checks, *extra]
+
+
+class Replay:
+    """The task's scene, built here, driven only by the actions fed to it."""
+
+    def __init__(self, spec, seed: int | None, dressing: dict | None = None, control_hz: float = 50.0,
+                 recorder: RecorderConfig | None = None) -> None:
+        from humanoidgen.scenes.dressing import SceneDressing
+        from humanoidgen.tasks.scene import build_scene
+
+        self.spec = spec
+        _, env = build_scene(spec, seed, dressing=SceneDressing.from_dict(dressing) if dressing else None)
+        if control_hz != env.control_hz:  # as the worker does: the same scene at another rate, unsettled
+            env = HumanoidEnv(env.scene, control_hz=control_hz)
+        self.env = env
+        self.start_time = env.time
+        self.reference = fingerprint(env.model, env.data)  # before anything ran: the model as the task built it
+        self.recorder = EpisodeRecorder(env, recorder) if recorder is not None else None
+        rest = int(round(MAX_REST_WAIT_S * env.control_hz))
+        self.rest_steps = rest
+        self.max_steps = (spec.max_steps or int(round(spec.time_limit_s * env.control_hz))) + rest
+        self.steps = 0
+        self.problem: str | None = None
+        self._last: np.ndarray | None = None  # the last action applied
+        self._held = 0  # how many of the last steps repeated the last action
+
+    # -- feeding ----------------------------------------------------------------------------------------
+    def feed(self, actions: object, qpos: object = None) -> None:
+        """Apply `actions` ((k, 26) float64) one control step each; `qpos` ((k, nq)): the configurations the
+        worker claims its simulation reached after each, compared with this one's."""
+        if self.problem is not None:
+            return
+        a = _rows(actions, ACTION_DIM)
+        q = _rows(qpos, self.env.model.nq) if qpos is not None else None
+        if a is None or (qpos is not None and (q is None or len(q) != len(a))):
+            self.problem = "the plan worker sent malformed actions; nothing it did is kept"
+            return
+        if not np.isfinite(a).all():
+            self.problem = "the plan worker sent actions that are not finite numbers"
+            return
+        for k in range(len(a)):
+            if self.steps >= self.max_steps:
+                self.problem = self._over_time()
+                return
+            self._apply(a[k])
+            if q is not None and self.problem is None:
+                self._compare(q[k])
+            if self.problem is not None:
+                return
+
+    def _apply(self, action: np.ndarray) -> None:
+        env = self.env
+        env.step(action)
+        self.steps += 1
+        if self._last is not None and np.array_equal(action, self._last):
+            self._held += 1
+        else:
+            self._last, self._held = action.copy(), 1
+        if self.recorder is not None:
+            self.recorder(action)
+
+    def _compare(self, claimed: np.ndarray) -> None:
+        diff = np.abs(claimed - self.env.data.qpos)
+        if not np.all(diff <= DIVERGED):  # NaN in the claim counts as parting too
+            self.problem = f"{CHANGED}: at t={self.env.time - self.start_time:.2f} s {_what_moved(self.env, diff)}"
+
+    def _over_time(self) -> str:
+        limit = self.max_steps - self.rest_steps
+        return (f"the plan ran past the task's time limit ({limit / self.env.control_hz:g} s of simulated time, "
+                f"{limit} control steps, plus {MAX_REST_WAIT_S:g} s for the scene to come to rest)")
+
+    # -- the verdict ------------------------------------------------------------------------------------
+    def finish(self, claimed_qpos: object = None, claimed_fingerprint: object = None,
+               settle: bool = True) -> ReplayVerdict:
+        """Judge the replayed scene. With `settle`, the robot first holds its last command until every object
+        is still (the rule the planner follows before a task is judged), counting the steps it already held
+        it for, at most MAX_REST_WAIT_S in all: a plan that stopped early is judged on where things land.
+        `claimed_qpos` / `claimed_fingerprint`: the worker's final configuration and `sim.fingerprint`, to
+        catch a change after its last step and to name what it edited."""
+        env, events = self.env, []
+        if settle and self.problem is None and self._last is not None:
+            dofs = object_dofs(env.scene)
+            extra = 0
+            while self._held < self.rest_steps and moving_objects(env.data.qvel, env.data.qacc, dofs):
+                self._apply(self._last)
+                extra += 1
+            if extra:
+                events.append(f"replay: held the last command {extra / env.control_hz:.2f} s until the scene was still")
+        if self.problem is None and claimed_qpos is not None:
+            q = _rows(claimed_qpos, env.model.nq, single=True)
+            if q is None:
+                self.problem = "the plan worker sent a malformed final state"
+            elif not events:  # after a settle the worker's state is rightly behind
+                self._compare(q[0])
+        if self.problem is not None and self.problem.startswith(CHANGED) and claimed_fingerprint is not None:
+            edited = changed_fields(self.reference, claimed_fingerprint)
+            if edited:
+                shown = ", ".join(edited[:6]) + (" ..." if len(edited) > 6 else "")
+                self.problem += f" (it edited {shown})"
+        verdict = ReplayVerdict(judge(self.spec, env), object_states(env), env.time - self.start_time, self.steps,
+                                self.problem, events=events)
+        if self.recorder is not None and self.recorder.frames:
+            from humanoidgen.episodes.image_job import model_stat
+
+            verdict.arrays = self.recorder.arrays(images=False)
+            if self.recorder.config.renders:
+                verdict.configurations = np.stack(self.recorder.configurations)
+                verdict.model_stat = model_stat(env.model)
+        return verdict
+
+
+def judge(spec, env: HumanoidEnv) -> list[dict]:
+    """The task's success predicates on `env`, each as {"predicate", "ok", "detail"}."""
+    out = []
+    for pred in spec.success:
+        r = pred.evaluate(env)
+        out.append({"predicate": pred.type, "ok": bool(r.ok), "detail": r.detail})
+    return out
+
+
+def _rows(x: object, width: int, single: bool = False) -> np.ndarray | None:
+    """`x` as a float64 (k, width) array ((1, width) from a (width,) one with `single`), else None."""
+    if not isinstance(x, np.ndarray) or x.dtype != np.float64:
+        return None
+    if single and x.shape == (width,):
+        return x[None]
+    return x if x.ndim == 2 and x.shape[1] == width else None
+
+
+def _what_moved(env: HumanoidEnv, diff: np.ndarray) -> str:
+    """Which object (or the robot) is furthest from where the commands put it."""
+    model = env.model
+    worst, name = -1.0, "the robot's joints"
+    for obj in env.scene.objects:
+        root = model.body(obj.body).id
+        for j in range(model.njnt):
+            if model.body_rootid[model.jnt_bodyid[j]] != root:
+                continue
+            adr = int(model.jnt_qposadr[j])
+            width = {0: 7, 1: 4}.get(int(model.jnt_type[j]), 1)
+            d = float(np.nan_to_num(diff[adr:adr + width], nan=np.inf).max())
+            if d > worst:
+                worst, name = d, f"{obj.type_name}[{obj.obj_id}]"
+    robot = float(np.nan_to_num(diff, nan=np.inf).max())
+    if robot > worst + 1e-12 and worst < DIVERGED:
+        return f"the robot's joints are {robot:.3g} from where its commands put them"
+    return f"{name} is {worst:.3g} (m or rad) from where the robot's commands put it"
+
+
+class OverTime(Exception):
+    """Raised from the plan worker's stream callback once it has sent more steps than the task's time limit
+    allows: the worker is killed at once (see `SandboxWorker`), whatever the step was doing."""
+
+
+class ReplayFeed:
+    """A `Replay` built and run on a thread of its own, fed while the plan worker works (MuJoCo's stepping
+    releases the GIL): on a second core the replay keeps pace with the plan, and its verdict is ready soon
+    after the worker's last step. The scene is built on that thread too, while the worker builds its own."""
+
+    def __init__(self, spec, seed: int | None, dressing: dict | None = None, control_hz: float = 50.0,
+                 recorder: RecorderConfig | None = None) -> None:
+        import queue
+        import threading
+
+        self.max_steps = (spec.max_steps or int(round(spec.time_limit_s * control_hz))) + \
+            int(round(MAX_REST_WAIT_S * control_hz))
+        self.fed = 0
+        self._queue: queue.SimpleQueue = queue.SimpleQueue()
+        self._result: ReplayVerdict | None = None
+        self._thread = threading.Thread(target=self._run, args=(spec, seed, dressing, control_hz, recorder),
+                                        daemon=True, name="hgen-replay")
+        self._thread.start()
+
+    def feed(self, payload: object) -> None:
+        """A chunk the worker streamed ({"actions", "qpos"}); raises OverTime past the task's time limit."""
+        actions = payload.get("actions") if isinstance(payload, dict) else None
+        rows = len(actions) if isinstance(actions, np.ndarray) and actions.ndim == 2 else 1
+        self.fed += rows
+        self._queue.put(("feed", payload))
+        if self.fed > self.max_steps:
+            raise OverTime()
+
+    def finish(self, claimed_qpos: object = None, claimed_fingerprint: object = None,
+               settle: bool = True) -> ReplayVerdict:
+        self._queue.put(("finish", (claimed_qpos, claimed_fingerprint, settle)))
+        self._thread.join()
+        assert self._result is not None
+        return self._result
+
+    def cancel(self) -> None:
+        """No verdict is wanted (the worker was lost): the thread ends as soon as it can."""
+        self._queue.put(("cancel", None))
+
+    def close(self) -> None:
+        self.cancel()
+
+    def _run(self, spec, seed, dressing, control_hz, recorder) -> None:
+        try:
+            replay = Replay(spec, seed, dressing, control_hz, recorder)
+        except Exception as exc:  # noqa: BLE001 - reported as the verdict
+            replay, error = None, f"the replay could not build the task's scene: {type(exc).__name__}: {exc}"
+        while True:
+            kind, payload = self._queue.get()
+            if kind == "cancel":
+                return
+            if kind == "feed":
+                if replay is not None:
+                    p = payload if isinstance(payload, dict) else {}
+                    try:
+                        replay.feed(p.get("actions"), p.get("qpos"))
+                    except Exception as exc:  # noqa: BLE001 - the worker's numbers broke the replay
+                        replay.problem = replay.problem or f"the replay failed: {type(exc).__name__}: {exc}"
+                continue
+            if replay is None:
+                self._result = ReplayVerdict([], {}, 0.0, 0, error)
+            else:
+                try:
+                    self._result = replay.finish(*payload)
+                except Exception as exc:  # noqa: BLE001 - a failed replay is a rejected episode, said so
+                    self._result = ReplayVerdict([], {}, 0.0, replay.steps,
+                                                 f"the replay failed: {type(exc).__name__}: {exc}")
+            return
