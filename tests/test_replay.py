@@ -246,3 +246,26 @@ def test_generated_script_that_teleports_is_not_a_success(tmp_path: Path):
         result = generate_script(TASK, client, attempts=1, seed=0, out=tmp_path / "plan.py")
     assert not result.success and not (tmp_path / "plan.py").exists()
     assert CHANGED in result.attempts[0].failure
+
+
+def test_the_tree_search_judges_a_teleport_by_its_replay():
+    """The tree search's executor (one worker per scene, many judgements) asks the replay, not the worker."""
+    from humanoidgen.mcts.executor import SandboxExecutor
+
+    spec = load_task(TASK)
+    ex = SandboxExecutor(step_timeout_s=60)
+    try:
+        ex.reset(spec.model_dump(mode="json"), 0)
+        root = ex.judge()
+        assert not any(c["predicate"] == "replay" for c in root["checks"])
+        snap = ex.snapshot()
+        assert ex.run_step(TELEPORT.split("\n", 1)[1]).ok
+        verdict = ex.judge()
+        assert verdict["checks"][-1]["predicate"] == "replay" and CHANGED in verdict["checks"][-1]["detail"]
+        assert not all(c["ok"] for c in verdict["checks"])
+        ex.restore(snap)  # a branch from the root: the log is the root's again, and honest
+        assert ex.run_step('planner.hand_pre_pinch("right")').ok
+        again = ex.judge()
+        assert not any(c["predicate"] == "replay" for c in again["checks"])
+    finally:
+        ex.close()

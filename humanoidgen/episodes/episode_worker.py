@@ -62,7 +62,10 @@ class EpisodeSetup:
         _, env = build_scene(spec, self.seed, dressing=dressing)
         if self.control_hz != env.control_hz:
             env = HumanoidEnv(env.scene, control_hz=self.control_hz)
-        log = ActionLog(env.data, send=stream)
+        from humanoidgen.sandbox import runner
+
+        # Outside a worker (bench/sandbox.py runs this in-process to time it) there is nobody to stream to.
+        log = ActionLog(env.data, send=stream if runner._channel is not None else None)
         frames = _FrameStream(env, self.video) if self.video is not None else None
         hooks = [h for h in (log, frames) if h is not None]
         planner = HumanoidMotionPlanner(env, seed=self.seed or 0, on_step=lambda a: [h(a) for h in hooks])
