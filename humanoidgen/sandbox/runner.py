@@ -34,6 +34,7 @@ from typing import Any, Self
 from humanoidgen.sandbox import frames, wire
 from humanoidgen.sandbox.checker import STEP_FUNCTION, CodeRejected, check_code, safe_builtins
 from humanoidgen.sandbox.lockdown import Limits, lock_down
+from humanoidgen.sandbox.twin import TWIN, TwinChannel, fork_twin
 
 # Measured (2 CPUs): numpy+mujoco+drake ~0.33 GiB of address space, HumanoidEnv + planner ~1.35 GiB peak.
 # Recording cameras needs more: the renderer maps large buffers and frames pile up (see task_episode).
@@ -72,8 +73,10 @@ class SandboxWorker:
     def __init__(self, setup: Callable[[], dict[str, Any]], *, memory_limit: int | None = DEFAULT_MEMORY_LIMIT,
                  cpu_limit_s: int | None = DEFAULT_CPU_LIMIT_S, start_timeout_s: float = 300.0,
                  on_stream: Callable[[Any], None] | None = None,
-                 max_message_bytes: int = DEFAULT_MAX_MESSAGE_BYTES) -> None:
+                 max_message_bytes: int = DEFAULT_MAX_MESSAGE_BYTES, twin: bool = False) -> None:
         self.setup = setup
+        self.wants_twin = twin  # fork a trusted twin after setup, before the lockdown (`sandbox.twin`)
+        self.twin: TwinChannel | None = None
         self.limits = Limits(memory_bytes=memory_limit, cpu_seconds=cpu_limit_s)
         self.start_timeout_s = start_timeout_s
         self.on_stream = on_stream
@@ -111,12 +114,18 @@ class SandboxWorker:
         ctx = context()
         down_r, down_w = ctx.Pipe(duplex=False)
         up_r, up_w = ctx.Pipe(duplex=False)
-        self._proc = ctx.Process(target=_worker_main, args=(down_r, up_w, self.setup, self.limits),
+        twin_pipes = (ctx.Pipe(duplex=False), ctx.Pipe(duplex=False)) if self.wants_twin else None
+        twin_ends = (twin_pipes[0][0], twin_pipes[1][1]) if twin_pipes else None
+        self._proc = ctx.Process(target=_worker_main, args=(down_r, up_w, self.setup, self.limits, twin_ends),
                                  daemon=True, name=worker_name(self.setup))
         self._proc.start()
         _live.add(self)
         down_r.close()
         up_w.close()  # so a dead worker shows up as EOF on our end
+        if twin_pipes:
+            for end in twin_ends:
+                end.close()
+            self.twin = TwinChannel(twin_pipes[0][1], twin_pipes[1][0])
         self._send, self._recv = down_w, up_r
         os.set_blocking(down_w.fileno(), False)  # both ends are read/written against deadlines
         os.set_blocking(up_r.fileno(), False)
@@ -221,7 +230,9 @@ class SandboxWorker:
             if conn is not None:
                 with contextlib.suppress(OSError):
                     conn.close()
-        self._proc = self._send = self._recv = None
+        if self.twin is not None:
+            self.twin.close()
+        self._proc = self._send = self._recv = self.twin = None
 
 
 class _NoReply(Exception):
@@ -315,14 +326,27 @@ def _isolate_fds(keep: tuple[int, ...]) -> None:
                 os.close(fd)
 
 
-def _worker_main(down: Any, up: Any, setup: Callable[[], dict[str, Any]], limits: Limits) -> None:
+def _worker_main(down: Any, up: Any, setup: Callable[[], dict[str, Any]], limits: Limits,
+                 twin: tuple[Any, Any] | None = None) -> None:
     global _channel
-    _isolate_fds((down.fileno(), up.fileno()))
+    twin_fds = tuple(end.fileno() for end in twin) if twin else ()
+    _isolate_fds((down.fileno(), up.fileno(), *twin_fds))
     _channel = up.fileno()
     down_fd = down.fileno()
     try:
-        report = lock_down(limits)
-        provided = dict(setup())
+        if not twin_fds:
+            report = lock_down(limits)
+            provided = dict(setup())
+            provided.pop(TWIN, None)
+        else:  # setup is trusted code: it builds the world, the twin is forked with it, then the lockdown
+            provided = dict(setup())
+            main = provided.pop(TWIN, None)
+            if not callable(main):
+                raise RuntimeError("a twin was asked for, but setup() returned none")
+            fork_twin(main, *twin_fds, limits, _isolate_fds)
+            for fd in twin_fds:
+                os.close(fd)
+            report = lock_down(limits)
     except BaseException as e:  # noqa: BLE001 - report any setup failure to the parent
         _send({"kind": "error", "message": f"{type(e).__name__}: {e}\n{traceback.format_exc(limit=5)}"})
         return
