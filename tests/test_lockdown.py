@@ -5,6 +5,7 @@ processes, open sockets, signal its parent, read secrets or reach the parent's m
 from __future__ import annotations
 
 import builtins
+import contextlib
 import os
 import socket
 import threading
@@ -114,6 +115,165 @@ def test_kernel_blocks(worker: SandboxWorker, listener, tmp_path: Path, name: st
     assert out.startswith("blocked"), (name, out)
     assert list(markers.iterdir()) == [] and canary.read_text() == "untouched" and oct(canary.stat().st_mode)[-3:] != "777"
     assert accepted == []
+
+
+# SysV and POSIX IPC: a segment, queue or semaphore set outlives the worker (and SysV shm lies outside
+# RLIMIT_AS); another process's segment could be read. `L` is libc, errors come back through ctypes' errno.
+_LIBC = "import ctypes, errno, resource\nL = ctypes.CDLL(None, use_errno=True)\n"
+_FAILS = "\nif r < 0:\n    raise OSError(ctypes.get_errno(), 'refused')\nresult = r"
+
+
+def _syscall(name: str, args: str) -> str:
+    """A raw system call by name; only a refusal by the filter (EPERM) counts as blocked: reaching the kernel
+    (EINVAL, EFAULT for the null arguments) means the filter let it through."""
+    return (_LIBC + "import pyseccomp as sc\n"
+            f"r = L.syscall(sc.resolve_syscall(sc.system_arch(), '{name}'), {args})\n"
+            "if r < 0 and ctypes.get_errno() in (errno.EPERM, errno.EACCES):\n    raise OSError(ctypes.get_errno(), 'refused')\n"
+            "result = (r, ctypes.get_errno())")
+
+
+_IPC = [
+    ("shmget", _LIBC + "r = L.shmget(0, 64 << 20, 0o1600)" + _FAILS),
+    ("shmat_other", _LIBC + "L.shmat.restype = ctypes.c_void_p\np = L.shmat({shmid}, None, 0)\n"
+                    "r = -1 if p in (None, 2**64 - 1) else 0" + _FAILS + " = ctypes.string_at(p, 32)"),
+    ("shmctl_other", _LIBC + "buf = ctypes.create_string_buffer(256)\nr = L.shmctl({shmid}, 2, buf)" + _FAILS),
+    ("msgget", _LIBC + "r = L.msgget(0, 0o1600)" + _FAILS),
+    ("semget", _LIBC + "r = L.semget(0, 4, 0o1600)" + _FAILS),
+    ("semop", _syscall("semop", "0, None, 0")),
+    ("semtimedop", _syscall("semtimedop", "0, None, 0, None")),
+    ("semctl", _syscall("semctl", "0, 0, 2, 0")),
+    ("msgsnd", _syscall("msgsnd", "0, None, 0, 0")),
+    ("msgrcv", _syscall("msgrcv", "0, None, 0, 0, 0")),
+    ("msgctl", _syscall("msgctl", "0, 2, None")),
+    ("mq_open", _LIBC + "r = L.mq_open(b'/{mq}', os.O_CREAT | os.O_RDWR, 0o600, None)" + _FAILS),
+    ("mq_unlink", _syscall("mq_unlink", "b'{mq}'")),
+    ("mq_timedsend", _syscall("mq_timedsend", "-1, None, 0, 0, None")),
+    ("mq_timedreceive", _syscall("mq_timedreceive", "-1, None, 0, None, None")),
+    ("mq_notify", _syscall("mq_notify", "-1, None")),
+    ("mq_getsetattr", _syscall("mq_getsetattr", "-1, None, None")),
+]
+
+
+@pytest.mark.parametrize("name, code", _IPC, ids=[n for n, _ in _IPC])
+def test_ipc_is_out_of_reach(worker: SandboxWorker, name: str, code: str) -> None:
+    """No SysV shared memory, message queue or semaphore set, no POSIX message queue: nothing is made that
+    outlives the worker, and another process's segment (made here, holding a canary) cannot be read."""
+    import ctypes
+    import secrets
+
+    libc = ctypes.CDLL(None, use_errno=True)
+    libc.shmat.restype = ctypes.c_void_p
+    before = _sysv_ids()
+    shmid = libc.shmget(0, 4096, 0o1600)
+    assert shmid >= 0
+    mq = f"hgen-lockdown-{secrets.token_hex(4)}"
+    try:
+        addr = libc.shmat(shmid, None, 0)
+        ctypes.memmove(addr, CANARY.encode(), len(CANARY))
+        libc.shmdt(ctypes.c_void_p(addr))
+        out = worker.call("run", code.format(shmid=shmid, mq=mq))
+        assert out.startswith("blocked"), (name, out)
+    finally:
+        libc.shmctl(shmid, 0, None)  # IPC_RMID
+        made = _sysv_ids() - before - {("shm", shmid)}
+        for kind, ident in made:  # whatever got through: removed, and reported below
+            libc[{"shm": "shmctl", "msg": "msgctl", "sem": "semctl"}[kind]](ident, 0, 0)
+        leaked_mq = libc.mq_unlink(f"/{mq}".encode()) == 0
+    assert not made and not leaked_mq, (made, leaked_mq)
+
+
+def _sysv_ids() -> set[tuple[str, int]]:
+    out = set()
+    for kind, column in (("shm", 1), ("msg", 1), ("sem", 1)):
+        with contextlib.suppress(OSError):
+            for line in Path(f"/proc/sysvipc/{kind}").read_text().splitlines()[1:]:
+                out.add((kind, int(line.split()[column])))
+    return out
+
+
+_SCHEDULING = [
+    ("nice_self", "os.setpriority(os.PRIO_PROCESS, 0, -20)"),
+    ("nice_group", "os.setpriority(os.PRIO_PGRP, 0, os.getpriority(os.PRIO_PGRP, 0))"),
+    ("nice_parent", "os.setpriority(os.PRIO_PROCESS, os.getppid(), os.getpriority(os.PRIO_PROCESS, os.getppid()))"),
+    # if it got through, put it back at once (a spinning real-time worker would starve the machine)
+    ("fifo_self", "try:\n    os.sched_setscheduler(0, os.SCHED_FIFO, os.sched_param(1))\n"
+                  "finally:\n    os.sched_setscheduler(0, os.SCHED_OTHER, os.sched_param(0))"),
+    ("fifo_parent", "os.sched_setscheduler(os.getppid(), os.SCHED_OTHER, os.sched_param(0))"),
+    ("setparam_self", "os.sched_setparam(0, os.sched_param(0))"),
+    ("affinity_parent", "os.sched_setaffinity(os.getppid(), os.sched_getaffinity(os.getppid()))"),
+    ("affinity_group_leader", "os.sched_setaffinity(os.getpgrp(), os.sched_getaffinity(os.getpgrp()))"),
+    ("sched_setattr", _syscall("sched_setattr", "0, None, 0")),
+    ("ioprio_set", _syscall("ioprio_set", "1, 0, 2 << 13")),
+    ("prlimit_parent", "import resource\nresource.prlimit(os.getppid(), resource.RLIMIT_NOFILE)"),
+]
+
+
+@pytest.mark.parametrize("name, code", _SCHEDULING, ids=[n for n, _ in _SCHEDULING])
+def test_scheduling_is_out_of_reach(worker: SandboxWorker, name: str, code: str) -> None:
+    """A plan cannot renice, re-schedule or re-pin itself, its fork server or their process group."""
+    out = worker.call("run", code)
+    assert out.startswith("blocked"), (name, out)
+
+
+def test_priority_limits_are_zero() -> None:
+    """Nor can it raise its priority within its limits: RLIMIT_NICE and RLIMIT_RTPRIO are 0 after lockdown even
+    when the process started with room (a parent's limits are inherited)."""
+    import json
+    import resource
+
+    from humanoidgen.sandbox import lockdown
+
+    r, w = os.pipe()
+    pid = os.fork()
+    if pid == 0:  # pragma: no cover - the child
+        try:
+            os.close(r)
+            for which in (resource.RLIMIT_NICE, resource.RLIMIT_RTPRIO):
+                with contextlib.suppress(ValueError, OSError):  # raising them needs CAP_SYS_RESOURCE
+                    resource.setrlimit(which, (10, 10))
+            lockdown.lock_down(lockdown.Limits(memory_bytes=None))
+            with open(f"/proc/{os.getpid()}/limits") as f:
+                out = [line.split()[-2:] for line in f if line.startswith(("Max nice", "Max realtime priority"))]
+        except BaseException as e:  # noqa: BLE001 - never back into pytest in the child
+            out = f"{type(e).__name__}: {e}"
+        os.write(w, json.dumps(out).encode())
+        os._exit(0)
+    os.close(w)
+    os.waitpid(pid, 0)
+    with os.fdopen(r) as f:
+        assert json.loads(f.read()) == [["0", "0"], ["0", "0"]]
+
+
+def render_setup() -> dict:
+    """A scene and a camera in a locked-down worker: what recording video does."""
+    from humanoidgen.sim.cameras import CameraRig
+    from humanoidgen.sim.scene import SceneBuilder
+
+    import mujoco
+
+    scene = SceneBuilder().build()
+    data = mujoco.MjData(scene.model)
+    mujoco.mj_forward(scene.model, data)
+
+    def render() -> dict:
+        rig = CameraRig(scene.model, 64, 48)
+        try:
+            rgb = rig.render(data, mujoco.mj_id2name(scene.model, mujoco.mjtObj.mjOBJ_CAMERA, 0),
+                             depth=False, segmentation=False).rgb
+        finally:
+            rig.close()
+        return {"shape": list(rgb.shape), "spread": int(rgb.max()) - int(rgb.min())}
+
+    return {"render": render}
+
+
+def test_rendering_works_in_a_locked_down_worker() -> None:
+    """EGL/Mesa rendering (video frames) needs none of what the filter refuses."""
+    with SandboxWorker(render_setup, memory_limit=4 << 30) as w:
+        w.start()
+        assert w.lockdown["seccomp"] and not w.lockdown["warnings"], w.lockdown
+        out = w.call("render", timeout_s=120.0)
+    assert out["shape"] == [48, 64, 3] and out["spread"] > 0, out
 
 
 def test_no_secret_in_the_worker(worker: SandboxWorker) -> None:
