@@ -319,6 +319,27 @@ def test_a_stalling_or_flooding_worker_cannot_hang_the_parent(worker: SandboxWor
     assert worker.call("run", "result = 2") == "ALLOWED 2"
 
 
+def test_a_stream_flood_is_a_protocol_error(worker: SandboxWorker) -> None:
+    """Stream messages (video frames) are capped per request in count and bytes: a worker streaming without
+    end is killed long before the request's deadline, and `on_stream` sees no more than the cap."""
+    from humanoidgen.sandbox import runner
+
+    seen = [0]
+    worker.on_stream = lambda _payload: seen.__setitem__(0, seen[0] + 1)
+    flood = "from humanoidgen.sandbox import runner\nwhile True:\n    runner.stream({p})"
+    try:
+        t0 = time.perf_counter()
+        reply = worker._request(("call", ("run", (flood.format(p=1),), {})), 40.0)
+        assert not reply.ok and reply.error_type == "ProtocolError", reply
+        assert time.perf_counter() - t0 < 30 and seen[0] <= runner.MAX_STREAM_MESSAGES
+        worker.max_stream_bytes, seen[0] = 10 << 20, 0  # a few big frames over a byte cap
+        reply = worker._request(("call", ("run", (flood.format(p="'x' * (1 << 20)"),), {})), 120.0)
+        assert not reply.ok and reply.error_type == "ProtocolError" and seen[0] <= 10, (reply, seen)
+    finally:
+        worker.on_stream, worker.max_stream_bytes = None, runner.MAX_STREAM_BYTES
+    assert worker.call("run", "result = 3") == "ALLOWED 3"
+
+
 def test_wire_rejects_what_it_cannot_trust() -> None:
     import numpy as np
 
