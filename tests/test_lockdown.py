@@ -103,6 +103,8 @@ def test_every_layer_is_applied(worker: SandboxWorker) -> None:
     ("home", "result = os.listdir(os.path.expanduser('~'))"),
     ("markers_readable", "result = os.listdir('{m}')"),
     ("setrlimit", "import resource\nresource.setrlimit(resource.RLIMIT_AS, (-1, -1))"),
+    ("clear_pdeathsig", "import ctypes\nif ctypes.CDLL(None, use_errno=True).prctl(1, 0, 0, 0, 0):\n"
+                        "    raise OSError(ctypes.get_errno(), 'refused')"),
 ])
 def test_kernel_blocks(worker: SandboxWorker, listener, tmp_path: Path, name: str, code: str) -> None:
     port, accepted = listener
@@ -274,6 +276,28 @@ def test_rendering_works_in_a_locked_down_worker() -> None:
         assert w.lockdown["seccomp"] and not w.lockdown["warnings"], w.lockdown
         out = w.call("render", timeout_s=120.0)
     assert out["shape"] == [48, 64, 3] and out["spread"] > 0, out
+
+
+def test_the_worker_dies_with_its_parent(worker: SandboxWorker) -> None:
+    """Its parent-death signal is SIGKILL (the fork server's too: tests/test_sandbox.py kills their parent)."""
+    code = "import ctypes\nv = ctypes.c_int()\nctypes.CDLL(None).prctl(2, ctypes.byref(v))\nresult = v.value"
+    assert worker.call("run", code) == "ALLOWED 9"
+
+
+@pytest.mark.parametrize("parent_gone", [False, True])
+def test_a_parent_gone_before_the_signal_is_set_ends_the_child(parent_gone: bool) -> None:
+    """The race: the parent died between fork and prctl (the child was handed to another reaper)."""
+    from humanoidgen.sandbox import lifeline
+
+    pid = os.fork()
+    if pid == 0:  # pragma: no cover - the child
+        try:
+            lifeline.die_with_parent(os.getppid() + (1 if parent_gone else 0))
+            os._exit(0)
+        finally:
+            os._exit(3)
+    _, status = os.waitpid(pid, 0)
+    assert os.waitstatus_to_exitcode(status) == (1 if parent_gone else 0)
 
 
 def test_no_secret_in_the_worker(worker: SandboxWorker) -> None:

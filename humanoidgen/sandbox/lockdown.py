@@ -252,6 +252,7 @@ _O_WRITE_FLAGS = tuple(f for f in (os.O_WRONLY, os.O_RDWR, os.O_CREAT, os.O_TRUN
                                    getattr(os, "O_TMPFILE", 0)) if f)
 _CLONE_THREAD = 0x00010000
 _TIOCSTI, _TIOCLINUX = 0x5412, 0x541C
+_PR_SET_PDEATHSIG = 1
 
 
 def _apply_seccomp() -> None:
@@ -276,6 +277,8 @@ def _apply_seccomp() -> None:
     # Pinning or moving the memory of other processes (the fork server, the parent): only this process (0).
     for name in ("sched_setaffinity", "migrate_pages", "move_pages"):
         _rule(f, eperm, name, sc.Arg(0, sc.NE, 0))
+    # Clearing or changing the parent-death signal the worker set (it would outlive `hgen`, see `lifeline`).
+    _rule(f, eperm, "prctl", sc.Arg(0, sc.EQ, _PR_SET_PDEATHSIG))
     # Typing into the controlling terminal.
     _rule(f, eperm, "ioctl", sc.Arg(1, sc.EQ, _TIOCSTI))
     _rule(f, eperm, "ioctl", sc.Arg(1, sc.EQ, _TIOCLINUX))

@@ -5,6 +5,7 @@ search) goes through `SandboxWorker`. A worker is forked from a pre-imported ser
 (`sandbox.forkserver`, started with a scrubbed environment), so it costs milliseconds, not seconds. In the
 new process, before anything else:
 
+- a parent-death signal: it dies with the fork server, which dies with its parent (`lifeline`);
 - file descriptors: everything but its two pipes is closed; stdin, stdout and stderr point at /dev/null
   (what a step prints is captured in Python and capped; C-level writes go nowhere);
 - `lockdown.lock_down`: rlimits, Landlock, seccomp (see there). This happens before `setup` runs and
@@ -32,7 +33,7 @@ from collections.abc import Callable
 from dataclasses import asdict, dataclass
 from typing import Any, Self
 
-from humanoidgen.sandbox import frames, wire
+from humanoidgen.sandbox import frames, lifeline, wire
 from humanoidgen.sandbox.checker import STEP_FUNCTION, CodeRejected, check_code, safe_builtins
 from humanoidgen.sandbox.lockdown import Limits, lock_down
 
@@ -335,6 +336,7 @@ def _worker_main(down: Any, up: Any, setup: Callable[[], dict[str, Any]], limits
     _channel = up.fileno()
     down_fd = down.fileno()
     try:
+        lifeline.die_with_parent(lifeline.server_pid())  # a step in progress must not outlive hgen
         report = lock_down(limits)
         provided = dict(setup())
     except BaseException as e:  # noqa: BLE001 - report any setup failure to the parent
