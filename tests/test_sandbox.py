@@ -290,3 +290,67 @@ def test_close_survives_a_worker_whose_pipe_is_gone() -> None:
         assert not w.alive
     finally:
         w._kill()
+
+
+# -- a worker dies with the process that asked for it ------------------------------------------------------
+# Starts a worker and keeps it busy in a long call (an idle worker already ends when its pipe closes). A
+# forked child holds a copy of the fork server's "alive" pipe, as any fork of `hgen` would: the server then
+# sees no end of file when `hgen` dies.
+_PARENT = """
+import multiprocessing.forkserver as fs, os, sys, time
+from humanoidgen.sandbox import SandboxWorker
+from humanoidgen.sandbox.probe import probe_setup
+
+w = SandboxWorker(probe_setup, memory_limit=2 << 30)
+w.start()
+child = os.fork()
+if child == 0:
+    time.sleep(60)
+    os._exit(0)
+print(w._proc.pid, fs._forkserver._forkserver_pid, child, flush=True)
+w.call("attempt", "import time\\ntime.sleep(120)", timeout_s=300)
+"""
+
+
+def _running(pid: int) -> bool:
+    """Alive and not a zombie (an orphan's reaper may be slow)."""
+    try:
+        with open(f"/proc/{pid}/stat") as f:
+            return f.read().rsplit(")", 1)[1].split()[0] not in ("Z", "X")
+    except OSError:
+        return False
+
+
+@pytest.mark.parametrize("sig", ["SIGTERM", "SIGKILL"])
+def test_worker_and_fork_server_die_with_their_parent(sig: str) -> None:
+    """An `hgen` killed while a worker holds an episode takes the worker (child of the fork server, not of
+    `hgen`) and the fork server with it, within seconds: neither lives on holding gigabytes."""
+    import signal
+    import subprocess
+    import sys
+
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(p for p in (os.getcwd(), os.environ.get("PYTHONPATH")) if p)}
+    parent = subprocess.Popen([sys.executable, "-c", _PARENT], stdout=subprocess.PIPE, text=True, env=env)
+    pids: list[int] = []
+    child = 0
+    try:
+        line = parent.stdout.readline()  # the parent starts a fork server and a worker: seconds
+        *pids, child = [int(p) for p in line.split()]
+        assert len(pids) == 2 and all(_running(p) for p in pids), line
+        time.sleep(1.0)  # the worker is in its call
+        parent.send_signal(getattr(signal, sig))
+        parent.wait(10)
+        deadline = time.monotonic() + 5.0
+        while any(_running(p) for p in pids) and time.monotonic() < deadline:
+            time.sleep(0.1)
+        assert not [p for p in pids if _running(p)], f"still running after the parent's {sig}: {pids}"
+    finally:
+        parent.kill()
+        parent.wait(10)
+        if child:  # it exists only to hold the pipe
+            with contextlib.suppress(OSError):
+                os.kill(child, 9)
+        for pid in pids:  # only what this test started (checked by name before the kill)
+            with contextlib.suppress(OSError):
+                if _running(pid) and b"python" in open(f"/proc/{pid}/cmdline", "rb").read():
+                    os.kill(pid, 9)

@@ -4,6 +4,7 @@ starts in milliseconds with warm imports and no secret in its memory or in `/pro
 
 This is the standard library's multiprocessing "forkserver" start method. Its server is a process of its
 own, spawned (fork + exec) from the parent; it runs no plan code itself and forks one worker per request.
+Server and workers die with the process that started them (`lifeline`).
 
 A forked worker would also re-run the parent's `__main__` script before anything else (multiprocessing's
 "main fixup"): the `hgen` console script, or in a Ray worker Ray's `default_worker.py`, which imports all of
@@ -22,9 +23,11 @@ import os
 import threading
 from collections.abc import Iterator
 
+from humanoidgen.sandbox.lifeline import ENV_PARENT
 from humanoidgen.sandbox.lockdown import scrubbed_environ
 
-PRELOAD = ["humanoidgen.sandbox.preload"]
+# lifeline first: the server dies with its parent from the start, not after seconds of imports
+PRELOAD = ["humanoidgen.sandbox.lifeline", "humanoidgen.sandbox.preload"]
 WORKER_NAME = "humanoidgen-plan-worker"
 WORKER_NAME_MAIN = "humanoidgen-plan-worker-main"
 _lock = threading.Lock()
@@ -58,6 +61,8 @@ def context() -> mp.context.BaseContext:
         if _started_env is None or not _server_alive():
             ctx.set_forkserver_preload(PRELOAD)
             env = scrubbed_environ()
+            if threading.current_thread() is threading.main_thread():  # lives as long as this process
+                env[ENV_PARENT] = str(os.getpid())  # the server dies with us (lifeline)
             with _environ(env):
                 mp_forkserver.ensure_running()
             _started_env = env

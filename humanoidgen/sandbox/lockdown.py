@@ -5,14 +5,15 @@ code runs. It cannot be undone (no-new-privileges is set, seccomp filters and La
 narrow). What it does, in order:
 
 1. resource limits: address space, CPU seconds, no core files, no file may grow past 0 bytes
-   (RLIMIT_FSIZE), and the hard limits equal the soft ones;
+   (RLIMIT_FSIZE), no nice or real-time priority to raise to, and the hard limits equal the soft ones;
 2. Landlock (kernel >= 5.13): the file system becomes read-only and only the paths the simulator needs can
    be read (the Python installation, the package, the robot files, the renderer's libraries and devices,
    this process's own /proc entry); `/proc/<parent>/environ` and the user's files are out of reach;
 3. seccomp-bpf (through `pyseccomp` over Debian's libseccomp): no new processes (threads are fine), no
    `execve`, no sockets, no opening files for writing or creating them, no renaming, deleting, linking or
    changing files, no signals to other processes, no ptrace, no io_uring (it would bypass the filter), no
-   raising of the limits from step 1.
+   SysV or POSIX IPC objects (they outlive the process), no changes of priority, scheduling class or CPU
+   affinity (but its own affinity), no raising of the limits from step 1.
 
 seccomp also blocks writes where Landlock is missing; Landlock also blocks reads of secrets where seccomp
 cannot look at paths. A layer the kernel lacks is reported in `LockdownReport.warnings` and logged loudly;
@@ -138,6 +139,8 @@ def _set_limits(limits: Limits) -> None:
     if limits.cpu_seconds is not None:
         both(resource.RLIMIT_CPU, int(limits.cpu_seconds))
     both(resource.RLIMIT_CORE, 0)
+    both(resource.RLIMIT_NICE, 0)  # no raising its own priority (the calls are refused too, see _DENY)
+    both(resource.RLIMIT_RTPRIO, 0)
     both(resource.RLIMIT_FSIZE, 0)  # a file opened for writing despite everything still cannot grow
     soft, hard = resource.getrlimit(resource.RLIMIT_NOFILE)
     cap = min(limits.max_open_files, hard if hard != resource.RLIM_INFINITY else limits.max_open_files)
@@ -233,6 +236,13 @@ _DENY = (
     "clock_settime", "clock_adjtime", "adjtimex", "syslog", "vhangup", "iopl", "ioperm",
     "fsopen", "fsmount", "fsconfig", "fspick", "move_mount", "open_tree", "mount_setattr",
     "memfd_secret", "landlock_create_ruleset", "landlock_add_rule",
+    # SysV and POSIX IPC: segments, queues and semaphore sets outlive the worker (SysV shm also lies outside
+    # RLIMIT_AS), and another process's objects could be read. Rendering (EGL, surfaceless) uses none of it.
+    "shmget", "shmat", "shmctl", "msgget", "msgsnd", "msgrcv", "msgctl", "semget", "semop", "semtimedop",
+    "semctl", "ipc", "mq_open", "mq_unlink", "mq_timedsend", "mq_timedreceive", "mq_notify", "mq_getsetattr",
+    # Scheduling: `who`/pid 0 names the process group for PRIO_PGRP, and as root a worker could give itself
+    # SCHED_FIFO or nice -20 and starve the machine. Nothing the worker runs needs to change its priority.
+    "setpriority", "sched_setscheduler", "sched_setparam", "sched_setattr", "ioprio_set",
 )
 # Answered "not implemented" so that libc falls back to a call the filter can inspect: clone3 passes its
 # flags in memory (seccomp cannot read them; glibc then uses clone), openat2 passes open flags in memory.
@@ -242,6 +252,7 @@ _O_WRITE_FLAGS = tuple(f for f in (os.O_WRONLY, os.O_RDWR, os.O_CREAT, os.O_TRUN
                                    getattr(os, "O_TMPFILE", 0)) if f)
 _CLONE_THREAD = 0x00010000
 _TIOCSTI, _TIOCLINUX = 0x5412, 0x541C
+_PR_SET_PDEATHSIG = 1
 
 
 def _apply_seccomp() -> None:
@@ -263,10 +274,11 @@ def _apply_seccomp() -> None:
     pid = os.getpid()
     _rule(f, eperm, "kill", sc.Arg(0, sc.NE, pid))
     _rule(f, eperm, "tgkill", sc.Arg(0, sc.NE, pid))
-    # Scheduling of other processes (root could renice or starve its parent): only this process (0).
-    _rule(f, eperm, "setpriority", sc.Arg(1, sc.NE, 0))
-    for name in ("sched_setscheduler", "sched_setparam", "migrate_pages", "move_pages"):
+    # Pinning or moving the memory of other processes (the fork server, the parent): only this process (0).
+    for name in ("sched_setaffinity", "migrate_pages", "move_pages"):
         _rule(f, eperm, name, sc.Arg(0, sc.NE, 0))
+    # Clearing or changing the parent-death signal the worker set (it would outlive `hgen`, see `lifeline`).
+    _rule(f, eperm, "prctl", sc.Arg(0, sc.EQ, _PR_SET_PDEATHSIG))
     # Typing into the controlling terminal.
     _rule(f, eperm, "ioctl", sc.Arg(1, sc.EQ, _TIOCSTI))
     _rule(f, eperm, "ioctl", sc.Arg(1, sc.EQ, _TIOCLINUX))

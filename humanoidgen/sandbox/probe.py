@@ -22,6 +22,12 @@ PROBES: tuple[tuple[str, str, str], ...] = (
     ("read the parent's environment", "/proc/<ppid>/environ", "open(f'/proc/{{os.getppid()}}/environ').read()"),
     ("read the user's home", "os.listdir('~')", "os.listdir(os.path.expanduser('~'))"),
     ("raise its limits", "setrlimit(RLIMIT_AS)", "import resource\nresource.setrlimit(resource.RLIMIT_AS, (-1, -1))"),
+    # a segment that got through is removed at once: the probe leaves nothing behind
+    ("share memory with others", "shmget (SysV IPC)", "import ctypes\nL = ctypes.CDLL(None, use_errno=True)\n"
+     "r = L.shmget(0, 1 << 20, 0o1600)\nif r < 0:\n    raise OSError(ctypes.get_errno(), 'shmget refused')\n"
+     "L.shmctl(r, 0, None)"),
+    ("renice its process group", "setpriority(PRIO_PGRP, 0)",
+     "os.setpriority(os.PRIO_PGRP, 0, os.getpriority(os.PRIO_PGRP, 0))"),
 )
 
 

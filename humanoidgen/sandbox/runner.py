@@ -5,6 +5,7 @@ search) goes through `SandboxWorker`. A worker is forked from a pre-imported ser
 (`sandbox.forkserver`, started with a scrubbed environment), so it costs milliseconds, not seconds. In the
 new process, before anything else:
 
+- a parent-death signal: it dies with the fork server, which dies with its parent (`lifeline`);
 - file descriptors: everything but its two pipes is closed; stdin, stdout and stderr point at /dev/null
   (what a step prints is captured in Python and capped; C-level writes go nowhere);
 - `lockdown.lock_down`: rlimits, Landlock, seccomp (see there). This happens before `setup` runs and
@@ -14,7 +15,8 @@ new process, before anything else:
 Requests go down a pipe as pickles (the parent is trusted); everything coming back is `wire`-encoded
 (JSON + raw arrays), never unpickled, with a size cap and a deadline (`frames`). A step over its wall-time budget, a worker that
 dies, or one that sends a malformed message is killed; the next request starts a fresh worker and says so
-(`worker_restarted=True`). `on_stream` receives what the worker streams while it works (video frames).
+(`worker_restarted=True`). `on_stream` receives what the worker streams while it works (video frames), up to
+a cap per request in messages and bytes (a worker past it is killed, as for a malformed message).
 """
 
 from __future__ import annotations
@@ -31,7 +33,7 @@ from collections.abc import Callable
 from dataclasses import asdict, dataclass
 from typing import Any, Self
 
-from humanoidgen.sandbox import frames, wire
+from humanoidgen.sandbox import frames, lifeline, wire
 from humanoidgen.sandbox.checker import STEP_FUNCTION, CodeRejected, check_code, safe_builtins
 from humanoidgen.sandbox.lockdown import Limits, lock_down
 from humanoidgen.sandbox.twin import TWIN, TwinChannel, fork_twin
@@ -42,6 +44,11 @@ DEFAULT_MEMORY_LIMIT = 4 << 30
 DEFAULT_CPU_LIMIT_S = 3600
 DEFAULT_TIMEOUT_S = 120.0
 DEFAULT_MAX_MESSAGE_BYTES = 8 << 30
+# Stream messages one request may send: a worker streaming without end would keep the parent decoding and
+# calling `on_stream` until the request's deadline (minutes in an episode). 10 min of video at 25 fps is 15,000
+# frames; at 1280x720 RGB, 41 GB.
+MAX_STREAM_MESSAGES = 100_000
+MAX_STREAM_BYTES = 64 << 30
 STDOUT_LIMIT = 64_000
 MESSAGE_LIMIT = 4_000  # characters of an error message
 STEP_FILENAME = "<step>"
@@ -73,7 +80,8 @@ class SandboxWorker:
     def __init__(self, setup: Callable[[], dict[str, Any]], *, memory_limit: int | None = DEFAULT_MEMORY_LIMIT,
                  cpu_limit_s: int | None = DEFAULT_CPU_LIMIT_S, start_timeout_s: float = 300.0,
                  on_stream: Callable[[Any], None] | None = None,
-                 max_message_bytes: int = DEFAULT_MAX_MESSAGE_BYTES, twin: bool = False) -> None:
+                 max_message_bytes: int = DEFAULT_MAX_MESSAGE_BYTES, max_stream_messages: int = MAX_STREAM_MESSAGES,
+                 max_stream_bytes: int = MAX_STREAM_BYTES, twin: bool = False) -> None:
         self.setup = setup
         self.wants_twin = twin  # fork a trusted twin after setup, before the lockdown (`sandbox.twin`)
         self.twin: TwinChannel | None = None
@@ -81,6 +89,8 @@ class SandboxWorker:
         self.start_timeout_s = start_timeout_s
         self.on_stream = on_stream
         self.max_message_bytes = max_message_bytes
+        self.max_stream_messages = max_stream_messages  # per request; past either cap: ProtocolError
+        self.max_stream_bytes = max_stream_bytes
         self.lockdown: dict | None = None  # what the kernel applied in the current worker
         self._proc: Any = None
         self._send: Any = None  # parent -> worker (pickles)
@@ -183,8 +193,9 @@ class SandboxWorker:
             raise _NoReply("died") from None
 
     def _receive(self, timeout_s: float) -> Any:
-        """The next reply, handing stream messages to `on_stream` on the way."""
+        """The next reply, handing stream messages to `on_stream` on the way (at most the stream caps)."""
         deadline = time.monotonic() + timeout_s
+        messages = nbytes = 0
         while True:
             try:
                 data = frames.read_frame(self._recv.fileno(), self.max_message_bytes, deadline)
@@ -199,6 +210,10 @@ class SandboxWorker:
             except wire.WireError as e:
                 raise _NoReply(f"protocol: {e}") from None
             if isinstance(msg, dict) and msg.get("kind") == "stream":
+                messages, nbytes = messages + 1, nbytes + len(data)
+                if messages > self.max_stream_messages or nbytes > self.max_stream_bytes:
+                    raise _NoReply(f"protocol: streamed more than {self.max_stream_messages} messages or "
+                                   f"{self.max_stream_bytes} bytes in one request")
                 if self.on_stream is not None:
                     self.on_stream(msg.get("payload"))
                 continue
@@ -334,6 +349,7 @@ def _worker_main(down: Any, up: Any, setup: Callable[[], dict[str, Any]], limits
     _channel = up.fileno()
     down_fd = down.fileno()
     try:
+        lifeline.die_with_parent(lifeline.server_pid())  # a step in progress must not outlive hgen
         if not twin_fds:
             report = lock_down(limits)
             provided = dict(setup())
