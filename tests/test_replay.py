@@ -18,7 +18,8 @@ import pytest  # noqa: E402
 
 from humanoidgen.episodes.action_log import ActionLog, packed, unpack  # noqa: E402
 from humanoidgen.episodes.recorder import RecorderConfig  # noqa: E402
-from humanoidgen.episodes.replay import CHANGED, OverTime, Replay, ReplayFeed  # noqa: E402
+from humanoidgen.episodes.replay import CHANGED, OverTime, Replay  # noqa: E402
+from humanoidgen.episodes.replay_twin import TwinReplay  # noqa: E402
 from humanoidgen.episodes.replay_judge import ReplayJudge  # noqa: E402
 from humanoidgen.episodes.task_episode import EpisodeRequest, run_task_episode  # noqa: E402
 from humanoidgen.planning.planner import HumanoidMotionPlanner  # noqa: E402
@@ -39,7 +40,7 @@ def _run(seed: int = 0):
 
 
 def _replayed(spec, log: ActionLog, seed: int = 0, **kw) -> Replay:
-    replay = Replay(spec, seed, **kw)
+    replay = Replay.build(spec, seed, **kw)
     replay.feed(log.array(), np.stack(log.qpos))
     return replay
 
@@ -117,23 +118,36 @@ def test_the_replay_records_the_episode_arrays():
     assert verdict.configurations is not None and verdict.configurations.shape == (len(arrays["action"]), env.model.nq)
 
 
+class _Channel:
+    def __init__(self) -> None:
+        self.posted: list = []
+
+    def post(self, message, timeout_s: float) -> None:
+        self.posted.append(message)
+
+
 def test_the_time_limit_stops_the_feed():
+    """The parent counts the commands as they arrive: one chunk past the task's time limit (plus the second
+    for the scene to come to rest) is never passed on, and OverTime stops the worker."""
     spec = load_task(TASK)
-    feed = ReplayFeed(spec, 0)
-    hold = np.tile(build_scene(spec, 0)[1].init_action(), (50, 1))
+    channel = _Channel()
+    feed = TwinReplay(channel, spec, 50.0)
+    hold = np.zeros((50, 26))
     with pytest.raises(OverTime):
         for _ in range(int(spec.time_limit_s) + 2):
-            feed.feed({"actions": hold})
-    verdict = feed.finish()
-    assert not verdict.ok and "time limit" in verdict.problem
+            feed.feed({"actions": hold, "qpos": None})
+    assert len(channel.posted) == int(spec.time_limit_s) + 1
+    replay = Replay.build(spec, 0)
+    replay.feed(np.tile(replay.env.init_action(), (replay.max_steps + 1, 1)))
+    assert "time limit" in replay.problem and not replay.finish().ok
 
 
 def test_malformed_logs_are_rejected_not_crashed():
     spec = load_task(TASK)
-    replay = Replay(spec, 0)
+    replay = Replay.build(spec, 0)
     replay.feed(np.full((3, 26), np.nan))
     assert "not finite" in replay.problem
-    replay = Replay(spec, 0)
+    replay = Replay.build(spec, 0)
     replay.feed([[0.0] * 26])
     assert "malformed" in replay.problem
     with pytest.raises(ValueError):

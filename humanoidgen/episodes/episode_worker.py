@@ -42,15 +42,18 @@ class EpisodeSetup:
     video: VideoSpec | None = None
     control_hz: float = 50.0
     dressing: dict | None = None  # scenes.dressing.SceneDressing.to_dict(): a room and/or a look
+    recorder: Any = None  # RecorderConfig or None: what the replay in the twin records
 
     def __call__(self) -> dict[str, Any]:
         os.environ.setdefault("MUJOCO_GL", "egl")
         from humanoidgen.episodes.action_log import ActionLog
         from humanoidgen.episodes.plans import parse_plan
+        from humanoidgen.episodes.replay_twin import twin_main
         from humanoidgen.episodes.runner import step_namespace
         from humanoidgen.planning.planner import HumanoidMotionPlanner
         from humanoidgen.planning.settling import wait_until_still
         from humanoidgen.sandbox.runner import stream
+        from humanoidgen.sandbox.twin import TWIN
         from humanoidgen.scenes.dressing import SceneDressing
         from humanoidgen.sim.env import HumanoidEnv
         from humanoidgen.sim.fingerprint import fingerprint
@@ -62,6 +65,7 @@ class EpisodeSetup:
         _, env = build_scene(spec, self.seed, dressing=dressing)
         if self.control_hz != env.control_hz:
             env = HumanoidEnv(env.scene, control_hz=self.control_hz)
+        twin = twin_main(spec, env, self.recorder)  # the replay, forked with this scene before the lockdown
         from humanoidgen.sandbox import runner
 
         # Outside a worker (bench/sandbox.py runs this in-process to time it) there is nobody to stream to.
@@ -100,7 +104,7 @@ class EpisodeSetup:
                     "qpos": env.data.qpos.copy(), "fingerprint": fingerprint(env.model, env.data)}
 
         ns = step_namespace(planner)
-        ns[PLAN], ns[PROGRESS], ns[FINISH] = plan, progress, finish
+        ns[PLAN], ns[PROGRESS], ns[FINISH], ns[TWIN] = plan, progress, finish, twin
         return ns
 
 
@@ -109,22 +113,25 @@ class _FrameStream:
     file (the worker cannot write files)."""
 
     def __init__(self, env, video: VideoSpec) -> None:
-        from humanoidgen.sim.cameras import CameraRig
-
         self.env, self.video = env, video
         self.every = max(1, int(round(env.control_hz / video.fps)))
-        self.rig = CameraRig(env.model, video.width, video.height, shadows=True)
+        self.rig = None  # made at the first frame: after the twin is forked, no GL context is shared with it
         self.count = 0
+        self.closed = False
 
     def __call__(self, _action: np.ndarray) -> None:
         self.count += 1
-        if (self.count - 1) % self.every == 0 and self.rig is not None:
+        if (self.count - 1) % self.every == 0 and not self.closed:
             from humanoidgen.sandbox.runner import stream
+            from humanoidgen.sim.cameras import CameraRig
 
+            if self.rig is None:
+                self.rig = CameraRig(self.env.model, self.video.width, self.video.height, shadows=True)
             frame = self.rig.render(self.env.data, self.video.camera, depth=False, segmentation=False).rgb
             stream({"frame": frame})
 
     def close(self) -> None:
+        self.closed = True
         if self.rig is not None:
             self.rig.close()
             self.rig = None

@@ -60,28 +60,40 @@ class ReplayVerdict:
 
 
 class Replay:
-    """The task's scene, built here, driven only by the actions fed to it."""
+    """The task's scene, driven only by the actions fed to it. `Replay.build` builds the scene here; an
+    episode's twin (`replay_twin`) holds the one its worker built, forked before any plan code ran."""
 
-    def __init__(self, spec, seed: int | None, dressing: dict | None = None, control_hz: float = 50.0,
-                 recorder: RecorderConfig | None = None) -> None:
+    def __init__(self, spec, env: HumanoidEnv, recorder: RecorderConfig | None = None) -> None:
+        self.spec, self.env = spec, env
+        self.start_time = env.time
+        self.recorder = EpisodeRecorder(env, recorder) if recorder is not None else None
+        self.rest_steps = int(round(MAX_REST_WAIT_S * env.control_hz))
+        self.max_steps = step_budget(spec, env.control_hz)
+        self.steps = 0
+        self.problem: str | None = None
+        self._reference: dict[str, str] | None = None
+        self._last: np.ndarray | None = None  # the last action applied
+        self._held = 0  # how many of the last steps repeated the last action
+
+    @classmethod
+    def build(cls, spec, seed: int | None, dressing: dict | None = None, control_hz: float = 50.0,
+              recorder: RecorderConfig | None = None) -> Replay:
+        """The task's scene for `seed` built here, as the plan worker builds its own."""
         from humanoidgen.scenes.dressing import SceneDressing
         from humanoidgen.tasks.scene import build_scene
 
-        self.spec = spec
         _, env = build_scene(spec, seed, dressing=SceneDressing.from_dict(dressing) if dressing else None)
         if control_hz != env.control_hz:  # as the worker does: the same scene at another rate, unsettled
             env = HumanoidEnv(env.scene, control_hz=control_hz)
-        self.env = env
-        self.start_time = env.time
-        self.reference = fingerprint(env.model, env.data)  # before anything ran: the model as the task built it
-        self.recorder = EpisodeRecorder(env, recorder) if recorder is not None else None
-        rest = int(round(MAX_REST_WAIT_S * env.control_hz))
-        self.rest_steps = rest
-        self.max_steps = (spec.max_steps or int(round(spec.time_limit_s * env.control_hz))) + rest
-        self.steps = 0
-        self.problem: str | None = None
-        self._last: np.ndarray | None = None  # the last action applied
-        self._held = 0  # how many of the last steps repeated the last action
+        replay = cls(spec, env, recorder)
+        replay.reference()  # before anything ran
+        return replay
+
+    def reference(self) -> dict[str, str]:
+        """The fingerprint of the model as the task built it (never edited here: taken when first needed)."""
+        if self._reference is None:
+            self._reference = fingerprint(self.env.model, self.env.data)
+        return self._reference
 
     # -- feeding ----------------------------------------------------------------------------------------
     def feed(self, actions: object, qpos: object = None) -> None:
@@ -152,7 +164,7 @@ class Replay:
             elif not events:  # after a settle the worker's state is rightly behind
                 self._compare(q[0])
         if self.problem is not None and self.problem.startswith(CHANGED) and claimed_fingerprint is not None:
-            edited = changed_fields(self.reference, claimed_fingerprint)
+            edited = changed_fields(self.reference(), claimed_fingerprint)
             if edited:
                 shown = ", ".join(edited[:6]) + (" ..." if len(edited) > 6 else "")
                 self.problem += f" (it edited {shown})"
@@ -206,76 +218,13 @@ def _what_moved(env: HumanoidEnv, diff: np.ndarray) -> str:
     return f"{name} is {worst:.3g} (m or rad) from where the robot's commands put it"
 
 
+def step_budget(spec, control_hz: float) -> int:
+    """Control steps an episode of `spec` may take: its time limit (or `max_steps`) plus the time the scene
+    is given to come to rest."""
+    limit = spec.max_steps or int(round(spec.time_limit_s * control_hz))
+    return limit + int(round(MAX_REST_WAIT_S * control_hz))
+
+
 class OverTime(Exception):
     """Raised from the plan worker's stream callback once it has sent more steps than the task's time limit
     allows: the worker is killed at once (see `SandboxWorker`), whatever the step was doing."""
-
-
-class ReplayFeed:
-    """A `Replay` built and run on a thread of its own, fed while the plan worker works (MuJoCo's stepping
-    releases the GIL): on a second core the replay keeps pace with the plan, and its verdict is ready soon
-    after the worker's last step. The scene is built on that thread too, while the worker builds its own."""
-
-    def __init__(self, spec, seed: int | None, dressing: dict | None = None, control_hz: float = 50.0,
-                 recorder: RecorderConfig | None = None) -> None:
-        import queue
-        import threading
-
-        self.max_steps = (spec.max_steps or int(round(spec.time_limit_s * control_hz))) + \
-            int(round(MAX_REST_WAIT_S * control_hz))
-        self.fed = 0
-        self._queue: queue.SimpleQueue = queue.SimpleQueue()
-        self._result: ReplayVerdict | None = None
-        self._thread = threading.Thread(target=self._run, args=(spec, seed, dressing, control_hz, recorder),
-                                        daemon=True, name="hgen-replay")
-        self._thread.start()
-
-    def feed(self, payload: object) -> None:
-        """A chunk the worker streamed ({"actions", "qpos"}); raises OverTime past the task's time limit."""
-        actions = payload.get("actions") if isinstance(payload, dict) else None
-        rows = len(actions) if isinstance(actions, np.ndarray) and actions.ndim == 2 else 1
-        self.fed += rows
-        self._queue.put(("feed", payload))
-        if self.fed > self.max_steps:
-            raise OverTime()
-
-    def finish(self, claimed_qpos: object = None, claimed_fingerprint: object = None,
-               settle: bool = True) -> ReplayVerdict:
-        self._queue.put(("finish", (claimed_qpos, claimed_fingerprint, settle)))
-        self._thread.join()
-        assert self._result is not None
-        return self._result
-
-    def cancel(self) -> None:
-        """No verdict is wanted (the worker was lost): the thread ends as soon as it can."""
-        self._queue.put(("cancel", None))
-
-    def close(self) -> None:
-        self.cancel()
-
-    def _run(self, spec, seed, dressing, control_hz, recorder) -> None:
-        try:
-            replay = Replay(spec, seed, dressing, control_hz, recorder)
-        except Exception as exc:  # noqa: BLE001 - reported as the verdict
-            replay, error = None, f"the replay could not build the task's scene: {type(exc).__name__}: {exc}"
-        while True:
-            kind, payload = self._queue.get()
-            if kind == "cancel":
-                return
-            if kind == "feed":
-                if replay is not None:
-                    p = payload if isinstance(payload, dict) else {}
-                    try:
-                        replay.feed(p.get("actions"), p.get("qpos"))
-                    except Exception as exc:  # noqa: BLE001 - the worker's numbers broke the replay
-                        replay.problem = replay.problem or f"the replay failed: {type(exc).__name__}: {exc}"
-                continue
-            if replay is None:
-                self._result = ReplayVerdict([], {}, 0.0, 0, error)
-            else:
-                try:
-                    self._result = replay.finish(*payload)
-                except Exception as exc:  # noqa: BLE001 - a failed replay is a rejected episode, said so
-                    self._result = ReplayVerdict([], {}, 0.0, replay.steps,
-                                                 f"the replay failed: {type(exc).__name__}: {exc}")
-            return

@@ -39,7 +39,7 @@ class ReplayJudge:
     """The task's scene for one seed, built once here; `judge(reply)` replays a worker's log on it."""
 
     def __init__(self, spec, seed: int | None) -> None:
-        self.replay = Replay(spec, seed)
+        self.replay = Replay.build(spec, seed)
         self._states: OrderedDict[tuple[int, bytes], _Resume] = OrderedDict()
         self._keep(np.zeros((0, 26)))
 

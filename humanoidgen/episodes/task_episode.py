@@ -2,9 +2,9 @@
 
 The parent (this module) reads the task and the plan file, starts a locked-down plan worker
 (`sandbox.runner.SandboxWorker` with `episode_worker.EpisodeSetup`) and sends it the plan's steps one by one
-with a wall-time budget each. The worker streams back the robot's commands as it runs; a replay here
-(`episodes.replay`) re-simulates them from the task's scene on a thread of its own and gives the verdict and
-the recorded arrays, so nothing kept rests on the plan's process. The worker cannot write files, so video
+with a wall-time budget each. The worker streams back the robot's commands as it runs; its twin (forked with
+the task's scene before any plan code ran: `episodes.replay_twin`) re-simulates them and gives the verdict
+and the recorded arrays, so nothing kept rests on the plan's process. The worker cannot write files, so video
 frames are streamed back and written here; datasets are written by the caller (`collect`).
 """
 
@@ -20,7 +20,8 @@ from humanoidgen.episodes.episode_worker import FINISH, PLAN, PROGRESS, EpisodeS
 from humanoidgen.episodes.image_job import PENDING_IMAGES, ImageJob
 from humanoidgen.episodes.plans import PlanFormatError
 from humanoidgen.episodes.recorder import RecorderConfig
-from humanoidgen.episodes.replay import OverTime, ReplayFeed, ReplayVerdict
+from humanoidgen.episodes.replay import OverTime, ReplayVerdict
+from humanoidgen.episodes.replay_twin import TwinReplay
 from humanoidgen.episodes.runner import EpisodeResult, StepResult
 
 DEFAULT_STEP_TIMEOUT_S = 300.0
@@ -85,55 +86,30 @@ def read_plan_text(path: Path) -> str:
 
 
 def worker_for(req: EpisodeRequest, spec, plan_text: str, on_frame: Callable[[np.ndarray], None] | None = None):
-    """A (not yet started) locked-down worker that will hold this episode. What it streams goes to its
-    `on_stream`, which `_run_in_worker` sets (`_Streams`): video frames and chunks of commands."""
+    """A (not yet started) locked-down worker that will hold this episode, with its twin for the replay. What
+    it streams goes to its `on_stream`, which `_run_in_worker` sets (`_Streams`): video frames and chunks of
+    commands."""
     from humanoidgen.sandbox import SandboxWorker
 
     setup = EpisodeSetup(spec.model_dump(mode="json"), plan_text, req.seed,
-                         req.video if on_frame is not None else None, req.control_hz, req.dressing)
+                         req.video if on_frame is not None else None, req.control_hz, req.dressing, req.recorder)
     limit = MEMORY_LIMIT_VIDEO if on_frame is not None else MEMORY_LIMIT
-    return SandboxWorker(setup, memory_limit=limit, max_message_bytes=MESSAGE_LIMIT)
+    return SandboxWorker(setup, memory_limit=limit, max_message_bytes=MESSAGE_LIMIT, twin=True)
 
 
-@dataclass
-class StartedEpisode:
-    """A request's worker, started (forked, locked down, its scene built), and its replay, building its own
-    scene meanwhile: what `start_worker` hands `run_task_episode(req, worker=...)`."""
-
-    worker: object  # SandboxWorker
-    replay: ReplayFeed
-
-    @property
-    def alive(self) -> bool:
-        return self.worker.alive
-
-    def close(self) -> None:
-        self.worker.close()
-        self.replay.cancel()
-
-
-def start_worker(req: EpisodeRequest) -> StartedEpisode:
-    """`req`'s worker and replay, started now for a later `run_task_episode(req, worker=...)`: collecting
-    starts the next attempt's while one runs."""
+def start_worker(req: EpisodeRequest):
+    """`req`'s worker, started now (forked, its scene built, its twin forked, locked down) for a later
+    `run_task_episode(req, worker=...)`: collecting starts the next attempt's worker while one runs."""
     spec = load_spec(req.task)
     worker = worker_for(req, spec, read_plan_text(plan_file(req.task, spec, req.plan_path)))
-    replay = _replay_for(req, spec)
-    try:
-        worker.start()
-    except BaseException:
-        replay.cancel()
-        raise
-    return StartedEpisode(worker, replay)
-
-
-def _replay_for(req: EpisodeRequest, spec) -> ReplayFeed:
-    return ReplayFeed(spec, req.seed, req.dressing, req.control_hz, req.recorder)
+    worker.start()
+    return worker
 
 
 def run_task_episode(req: EpisodeRequest, on_frame: Callable[[np.ndarray], None] | None = None,
-                     render: bool = True, worker: StartedEpisode | None = None) -> tuple[EpisodeResult, dict | None]:
-    """Run one attempt in a locked-down worker, judged and recorded by its replay here; returns the result
-    and, when recording, the arrays (from the replay).
+                     render: bool = True, worker=None) -> tuple[EpisodeResult, dict | None]:
+    """Run one attempt in a locked-down worker, judged and recorded by its replay in the worker's twin;
+    returns the result and, when recording, the arrays (from the replay).
 
     A successful attempt recorded with cameras is rendered here from the replay's configurations
     (`image_job`): with `render`, into the arrays; without, the arrays carry the `ImageJob` under
@@ -160,7 +136,7 @@ class _Streams:
     """The worker's stream messages: video frames of the size asked for (at most MAX_VIDEO_S of them) to
     `on_frame`, chunks of commands to the replay; anything else is dropped."""
 
-    def __init__(self, replay: ReplayFeed, video: VideoSpec | None, on_frame) -> None:
+    def __init__(self, replay: TwinReplay, video: VideoSpec | None, on_frame) -> None:
         from humanoidgen.episodes.action_log import STREAM_KEY
 
         self.key, self.replay, self.video, self.on_frame = STREAM_KEY, replay, video, on_frame
@@ -180,8 +156,10 @@ class _Streams:
         self.on_frame(frame)
 
 
-def _run_in_worker(req: EpisodeRequest, on_frame: Callable[[np.ndarray], None] | None,
-                   started: StartedEpisode | None = None) -> tuple[EpisodeResult, ReplayVerdict | None]:
+def _run_in_worker(req: EpisodeRequest, on_frame: Callable[[np.ndarray], None] | None, started=None
+                   ) -> tuple[EpisodeResult, ReplayVerdict | None]:
+    from humanoidgen.sandbox.twin import TwinLost
+
     spec = load_spec(req.task)
     if started is not None and on_frame is not None:
         started.close()  # started without a video stream: this episode needs one
@@ -190,25 +168,26 @@ def _run_in_worker(req: EpisodeRequest, on_frame: Callable[[np.ndarray], None] |
         text = read_plan_text(plan_file(req.task, spec, req.plan_path))
         if on_frame is not None and req.video is None:
             req = replace(req, video=VideoSpec())
-        started = StartedEpisode(worker_for(req, spec, text, on_frame), _replay_for(req, spec))
-    replay = started.replay
-    started.worker.on_stream = _Streams(replay, req.video if on_frame is not None else None, on_frame)
-    try:
-        with started.worker as worker:
+        started = worker_for(req, spec, text, on_frame)
+    with started as worker:
+        worker.start()  # (at once, if started ahead) its twin is forked with it
+        replay = TwinReplay(worker.twin, spec, req.control_hz)
+        worker.on_stream = _Streams(replay, req.video if on_frame is not None else None, on_frame)
+        result = None
+        try:
             result = _steps(req, spec, worker, replay)
-    except BaseException:
-        replay.cancel()
-        raise
-    if isinstance(result, EpisodeResult):  # lost: nothing left to judge
-        replay.cancel()
-        return result, None
-    steps, n_plan, end = result
-    ok = bool(steps) and len(steps) == n_plan and all(s.ok for s in steps)
-    verdict = replay.finish(end.get("qpos"), end.get("fingerprint"), settle=ok)
+            if isinstance(result, EpisodeResult):  # lost: nothing left to judge
+                return result, None
+            steps, n_plan, end = result
+            ok = bool(steps) and len(steps) == n_plan and all(s.ok for s in steps)
+            verdict = replay.finish(end.get("qpos"), end.get("fingerprint"), settle=ok)
+        except TwinLost as exc:  # the worker took its twin with it (it died), or the twin broke
+            steps = result[0] if isinstance(result, tuple) else []
+            return _lost(spec.name, req.seed, [*steps, StepResult(len(steps), "(the replay)", False, str(exc))]), None
     return _finished(spec.name, req.seed, steps, ok, end, verdict), verdict
 
 
-def _steps(req: EpisodeRequest, spec, worker, replay: ReplayFeed):
+def _steps(req: EpisodeRequest, spec, worker, replay: TwinReplay):
     """Run the plan's steps; (steps, number of plan steps, the worker's end report), or an EpisodeResult
     when the worker was lost."""
     from humanoidgen.sandbox import SandboxError
