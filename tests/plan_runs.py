@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from humanoidgen.episodes.runner import EpisodeResult
+from humanoidgen.episodes.result import EpisodeResult
 from humanoidgen.episodes.task_episode import EpisodeRequest, run_task_episode
 
 

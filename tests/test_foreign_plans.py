@@ -77,7 +77,7 @@ SAMPLE = ["block_stack_single/paper", "open_drawer/alt_folder", "close_box_hard/
 @pytest.mark.slow
 @pytest.mark.parametrize("key", SAMPLE)
 def test_sample_plans_run_end_to_end(key):
-    from humanoidgen.episodes.runner import EpisodeResult
+    from humanoidgen.episodes.result import EpisodeResult
     from humanoidgen.episodes.task_episode import EpisodeRequest, run_task_episode
 
     plan = next(p for p in CORPUS if p.key == key)

@@ -237,7 +237,7 @@ def test_collect_keeps_no_episode_of_a_cheating_plan(tmp_path: Path):
 
 def test_collect_does_not_count_a_success_without_its_recording(monkeypatch, tmp_path: Path):
     from humanoidgen.episodes import collect as collect_mod
-    from humanoidgen.episodes.runner import EpisodeResult
+    from humanoidgen.episodes.result import EpisodeResult
 
     def fake(req, render=True, worker=None):
         return EpisodeResult(TASK, req.seed, True, [], [], 0.0, 0.0, 0.0, {}, []), None

@@ -123,7 +123,7 @@ def test_hgen_render_room(tmp_path):
 
 def test_collect_records_the_dressing(monkeypatch):
     from humanoidgen.episodes import collect
-    from humanoidgen.episodes.runner import EpisodeResult
+    from humanoidgen.episodes.result import EpisodeResult
     from humanoidgen.episodes.task_episode import EpisodeRequest
     from humanoidgen.scenes.dressing import episode_dressing
 

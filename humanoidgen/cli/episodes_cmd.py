@@ -75,6 +75,9 @@ def run(
     Example: hgen run blocks_stack_easy --seed 3 --video stack.mp4 --json stack.json
     """
     os.environ.setdefault("MUJOCO_GL", "egl")
+    from humanoidgen.sandbox.forkserver import prestart
+
+    prestart()  # the workers' server imports and warms up while this process checks its arguments
     from humanoidgen.assets.robot_files import AssetsError
     from humanoidgen.episodes.episode_worker import VideoSpec
     from humanoidgen.episodes.plans import PlanFormatError

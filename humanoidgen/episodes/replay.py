@@ -24,7 +24,6 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from humanoidgen.episodes.recorder import EpisodeRecorder, RecorderConfig
-from humanoidgen.episodes.runner import object_states
 from humanoidgen.planning.settling import MAX_REST_WAIT_S
 from humanoidgen.sim.action import ACTION_DIM
 from humanoidgen.sim.env import HumanoidEnv
@@ -148,6 +147,8 @@ class Replay:
         it for, at most MAX_REST_WAIT_S in all: a plan that stopped early is judged on where things land.
         `claimed_qpos` / `claimed_fingerprint`: the worker's final configuration and `sim.fingerprint`, to
         catch a change after its last step and to name what it edited."""
+        from humanoidgen.episodes.runner import object_states  # the planner's package: only where it replays
+
         env, events = self.env, []
         if settle and self.problem is None and self._last is not None:
             dofs = object_dofs(env.scene)

@@ -1,4 +1,4 @@
-"""What an episode reports (steps, checks, timings, final object poses) and what its plan code may use.
+"""What plan code may use (`step_namespace`) and the final object poses an episode reports.
 
 Plan code never runs in this process: `task_episode.run_task_episode` runs it step by step in the
 locked-down plan worker (`sandbox.runner`), where `step_namespace` is built. A failing step ends the episode
@@ -8,7 +8,6 @@ and is reported as data: which step, which call, why.
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
@@ -17,42 +16,6 @@ from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env
 from humanoidgen.planning.constraints import Const, Constraint
 from humanoidgen.planning.planner import HumanoidMotionPlanner
 from humanoidgen.sim.env import HumanoidEnv
-
-
-@dataclass
-class StepResult:
-    index: int
-    title: str
-    ok: bool
-    error: str = ""  # "<call>: <reason>" or "<ExceptionType>: <message> (line n)"
-    seconds: float = 0.0
-    sim_seconds: float = 0.0
-    events: list[str] = field(default_factory=list)
-
-
-@dataclass
-class EpisodeResult:
-    task: str
-    seed: int | None
-    success: bool
-    checks: list[dict]  # each success predicate: {"ok": bool, "detail": str}
-    steps: list[StepResult]
-    wall_seconds: float
-    sim_seconds: float
-    plan_seconds: float
-    objects: dict[str, dict]  # final pose (and openness) of every object
-    events: list[str]
-
-    @property
-    def failed_step(self) -> StepResult | None:
-        return next((s for s in self.steps if not s.ok), None)
-
-    def to_dict(self) -> dict:
-        return asdict(self)
-
-    @classmethod
-    def from_dict(cls, d: dict) -> EpisodeResult:
-        return cls(**{**d, "steps": [StepResult(**s) for s in d["steps"]]})
 
 
 def step_namespace(planner: HumanoidMotionPlanner) -> dict:

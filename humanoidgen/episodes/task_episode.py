@@ -22,7 +22,7 @@ from humanoidgen.episodes.plans import PlanFormatError
 from humanoidgen.episodes.recorder import RecorderConfig
 from humanoidgen.episodes.replay import OverTime, ReplayVerdict
 from humanoidgen.episodes.replay_twin import TwinReplay
-from humanoidgen.episodes.runner import EpisodeResult, StepResult
+from humanoidgen.episodes.result import EpisodeResult, StepResult
 
 DEFAULT_STEP_TIMEOUT_S = 300.0
 START_TIMEOUT_S = 300.0  # the worker building the task's scene and parsing the plan
