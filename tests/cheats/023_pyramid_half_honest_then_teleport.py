@@ -1,5 +1,5 @@
 # task: pyramid_stack
-# cheat: runs the reference plan's first four steps honestly (both bases placed), then writes cube 2's qpos onto them instead of carrying it
+# cheat: runs the reference plan's first four steps honestly (both bases placed), then writes cube 2's qpos onto them instead of carrying it (and cube 1's, if its gap is off)
 GAP = 0.043
 BASE = np.array([-0.33, 0.07])
 DROP = 0.03
@@ -46,6 +46,10 @@ planner.move_to_pose_with_screw(planner.right_hand_init_pose, "right")
 env = planner.env
 m, d = env.model, env.data
 adr = [m.jnt_qposadr[m.body(f'cube_{i}').jntadr[0]] for i in range(3)]
+sep = float(np.linalg.norm(d.qpos[adr[0]:adr[0] + 2] - d.qpos[adr[1]:adr[1] + 2]))
+if not 0.04 < sep < 0.05:  # the honest part missed: touch up cube 1 too
+    d.qpos[adr[1]:adr[1] + 3] = d.qpos[adr[0]:adr[0] + 3] + np.array([0.0, -0.043, 0.0])
+    d.qpos[adr[1] + 3:adr[1] + 7] = d.qpos[adr[0] + 3:adr[0] + 7]
 mid = (d.qpos[adr[0]:adr[0] + 3] + d.qpos[adr[1]:adr[1] + 3]) / 2
 d.qpos[adr[2]:adr[2] + 3] = mid + np.array([0.0, 0.0, 0.0405])
 d.qpos[adr[2] + 3:adr[2] + 7] = d.qpos[adr[0] + 3:adr[0] + 7]
