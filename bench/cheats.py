@@ -17,6 +17,7 @@ import argparse
 import json
 import os
 import re
+import subprocess
 import sys
 import time
 from pathlib import Path
@@ -84,7 +85,8 @@ def main(argv: list[str] | None = None) -> int:
             print(f"{'SUCCESS' if rec['success'] else 'failed '} {rec['cheat']:45s} seed {seed} "
                   f"({rec['seconds']:.0f} s): {rec['reason'][:150]}", flush=True)
     judged = sum(r["success"] for r in records)
-    report = {"episodes": len(records), "judged_success": judged, "cheats": len(cheats), "seeds": seeds,
+    commit = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "HEAD"], capture_output=True, text=True).stdout.strip()
+    report = {"commit": commit, "episodes": len(records), "judged_success": judged, "cheats": len(cheats), "seeds": seeds,
               "records": records}
     Path(args.out).parent.mkdir(parents=True, exist_ok=True)
     Path(args.out).write_text(json.dumps(report, indent=1) + "\n")

