@@ -1,6 +1,6 @@
-# attempts: write cube 1's free-joint qpos onto cube 0 and settle (physics cheat; just recorded)
+# attempts: write cube 1's free-joint qpos onto cube 0 and settle (a physics cheat: must be judged failed)
 # effect: cheat
-# expect: contained
+# expect: failure
 # needs: planner
 # step: teleport
 env = planner.env

@@ -1,6 +1,6 @@
 # attempts: set model.opt.gravity to 0 and teleport (tampers with the shared MjModel; later episodes must not inherit it)
 # effect: cheat
-# expect: contained
+# expect: failure
 # needs: planner
 m = planner.env.model
 m.opt.gravity[:] = 0
