@@ -99,7 +99,7 @@ class HumanoidTaskEnv(gym.Env):
 
     # -- helpers -------------------------------------------------------------------------------------------
     def _verdict(self) -> dict:
-        from humanoidgen.episodes.task_episode import judge
+        from humanoidgen.tasks.judge import judge
 
         checks = judge(self.spec_task, self.sim)
         return {"success": all(c["ok"] for c in checks), "checks": checks}

@@ -96,7 +96,7 @@ class EpisodeSetup:
             log.flush()
             if frames is not None:
                 frames.close()
-            from humanoidgen.episodes.replay import judge
+            from humanoidgen.tasks.judge import judge
 
             return {"task": spec.name, "checks": judge(spec, env), "wall_seconds": time.perf_counter() - clock[0],
                     "plan_seconds": float(sum(planner.plan_seconds)), "steps": len(log),

@@ -29,6 +29,7 @@ from humanoidgen.sim.action import ACTION_DIM
 from humanoidgen.sim.env import HumanoidEnv
 from humanoidgen.sim.fingerprint import changed_fields, fingerprint
 from humanoidgen.sim.rest import moving_objects, object_dofs
+from humanoidgen.tasks.judge import judge
 
 DIVERGED = 1e-6  # m or rad: an honest worker matches the replay bit for bit
 CHANGED = "the plan changed the simulation outside the robot's commands"
@@ -179,15 +180,6 @@ class Replay:
                 verdict.configurations = np.stack(self.recorder.configurations)
                 verdict.model_stat = model_stat(env.model)
         return verdict
-
-
-def judge(spec, env: HumanoidEnv) -> list[dict]:
-    """The task's success predicates on `env`, each as {"predicate", "ok", "detail"}."""
-    out = []
-    for pred in spec.success:
-        r = pred.evaluate(env)
-        out.append({"predicate": pred.type, "ok": bool(r.ok), "detail": r.detail})
-    return out
 
 
 def _rows(x: object, width: int, single: bool = False) -> np.ndarray | None:

@@ -52,7 +52,7 @@ def _log(actions: list[np.ndarray]) -> np.ndarray:
 def setup() -> dict[str, Any]:
     os.environ.setdefault("MUJOCO_GL", "egl")
     from humanoidgen.episodes.action_log import packed
-    from humanoidgen.episodes.replay import judge
+    from humanoidgen.tasks.judge import judge
     from humanoidgen.episodes.runner import step_namespace
     from humanoidgen.objects.describe import describe_scene
     from humanoidgen.sim.fingerprint import fingerprint

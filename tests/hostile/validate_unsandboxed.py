@@ -53,7 +53,7 @@ def child(plan_path: str, status_path: str, builtins_mode: str) -> None:
     import multiprocessing
     import pickle
 
-    from humanoidgen.episodes import task_episode
+    from humanoidgen.tasks.judge import judge
     from humanoidgen.episodes.plans import parse_plan
     from humanoidgen.episodes.runner import step_namespace
     from humanoidgen.planning.planner import HumanoidMotionPlanner
@@ -128,7 +128,7 @@ def child(plan_path: str, status_path: str, builtins_mode: str) -> None:
     status["phase"] = "judge"
     save()
     try:
-        checks = task_episode.judge(spec, env)
+        checks = judge(spec, env)
         status["judge_ok"] = all(c["ok"] for c in checks)
     except BaseException as e:  # noqa: BLE001
         status["judge_error"] = f"{type(e).__name__}: {str(e)[:200]}"
