@@ -28,21 +28,21 @@ from __future__ import annotations
 
 import ast
 import builtins
-import contextlib
 import difflib
-import re
-import textwrap
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from types import ModuleType
 from typing import Any
 
 from humanoidgen.sandbox.format_fields import format_template_problems
+from humanoidgen.sandbox.steps import STEP_FUNCTION, split_steps, strip_api_imports
+
+__all__ = ["BLOCKED_ATTRIBUTES", "FORBIDDEN_NAMES", "SAFE_BUILTINS", "STEP_FUNCTION", "CheckedCode", "CodeRejected",
+           "Violation", "check_code", "safe_builtins", "split_steps", "strip_api_imports"]
 
 MAX_SOURCE_BYTES = 20_000
 MAX_AST_NODES = 5_000
 MAX_NESTING = 200  # syntax-tree depth; far beyond plan code, well below what `compile` can recurse through
-STEP_FUNCTION = "step"
 
 # Builtins plan code may use; `safe_builtins` installs exactly these (and a restricted `__import__`).
 SAFE_BUILTINS: frozenset[str] = frozenset({
@@ -109,11 +109,6 @@ ALLOWED_IMPORTS: frozenset[str] = frozenset({"numpy", "math", "numpy.linalg", "n
 _IMPORTS_HELP = ("the only imports are `import numpy as np`, `import math` and `from ... import` of their "
                  "functions (e.g. `from math import pi, sqrt`); `numpy.linalg` and `numpy.random` may be imported too")
 _NESTED = "code nested too deeply; split long expressions and deep nesting into variables or helper functions"
-
-# The paper's scripts start with `from humanoidgen.<...>.solver_env import *`; only that exact form is stripped.
-_API_IMPORT = re.compile(r"^[ \t]*(from[ \t]+humanoidgen(\.\w+)*[ \t]+import[ \t]+\*|import[ \t]+humanoidgen(\.\w+)*)"
-                         r"[ \t]*(#.*)?$")
-_FENCE = re.compile(r"```[ \t]*(?:python|py)?[ \t]*\n(.*?)```", re.DOTALL | re.IGNORECASE)
 
 
 @dataclass(frozen=True)
@@ -186,64 +181,6 @@ def _resolve_module(provided: dict[str, ModuleType], name: str) -> ModuleType | 
         return None
     module = getattr(_resolve_module(provided, parent), child, None)
     return module if isinstance(module, ModuleType) else None
-
-
-def strip_api_imports(source: str) -> str:
-    """Blank out the paper's `from humanoidgen... import *` / `import humanoidgen...` lines (line numbers kept)."""
-    return "\n".join("" if _API_IMPORT.match(line) else line for line in source.split("\n"))
-
-
-def split_steps(response_text: str) -> list[str]:
-    """Plan steps from an LLM response.
-
-    Each fenced ```python (or bare ```) block is one step, dedented (the paper's blocks are indented one level)
-    and with API import lines stripped. If there are no fences, the text is taken as a whole script. A block or
-    script that is just `def step(planner): ...` becomes that function's body (so `planner` is the namespace's
-    planner and the body runs at top level), unless the body needs its function (a `return` in it); a block with
-    more (helper functions, imports) is kept whole, without explicit `step(planner)` calls, since the runner
-    calls `step` after executing it.
-    """
-    blocks = _FENCE.findall(response_text) or [response_text]
-    steps = []
-    for block in blocks:
-        code = _as_step(strip_api_imports(textwrap.dedent(block)).strip("\n"))
-        if code.strip():
-            steps.append(code)
-    return steps
-
-
-def _as_step(code: str) -> str:
-    try:
-        tree = ast.parse(code)
-    except (SyntaxError, ValueError, RecursionError, MemoryError):
-        return code
-    defs = [n for n in tree.body if isinstance(n, ast.FunctionDef) and n.name == STEP_FUNCTION]
-    if not defs:
-        return code
-    calls = [n for n in tree.body if isinstance(n, ast.Expr) and isinstance(n.value, ast.Call)
-             and isinstance(n.value.func, ast.Name) and n.value.func.id == STEP_FUNCTION]
-    others = [n for n in tree.body if n not in defs and n not in calls]
-    if len(defs) == 1 and not others:
-        body = _function_body(code, defs[0])
-        if body is not None:
-            return body
-    lines = code.split("\n")
-    for call in calls:  # blank the call's lines unless another statement shares them (`x = 1; step(planner)`)
-        span = range(call.lineno, call.end_lineno + 1)
-        if not any(n is not call and (n.lineno in span or n.end_lineno in span) for n in tree.body):
-            lines[call.lineno - 1: call.end_lineno] = [""] * len(span)
-    return "\n".join(lines).rstrip("\n")
-
-
-def _function_body(code: str, node: ast.FunctionDef) -> str | None:
-    lines = code.split("\n")
-    # Keep comments between the header and the first statement when the header is one line.
-    for start in (node.lineno, node.body[0].lineno - 1):
-        body = textwrap.dedent("\n".join(lines[start:node.body[-1].end_lineno])).strip("\n")
-        with contextlib.suppress(SyntaxError, ValueError, RecursionError, MemoryError, OverflowError):
-            compile(body, "<step>", "exec", dont_inherit=True)  # not only parse: `return` needs its function
-            return body
-    return None
 
 
 def check_code(source: str, allowed_names: set[str] | frozenset[str]) -> CheckedCode:
