@@ -17,7 +17,16 @@ Refused, each with a message: other imports, `class`, decorators, `with` (plans 
 `async`/`await`, `match` (use `if`/`elif`), `del` of attributes, names starting with `__`, attributes starting
 with `_` or in `BLOCKED_ATTRIBUTES`, uses of `FORBIDDEN_NAMES` the plan does not bind itself (`dir = v` makes a plan
 variable, not the builtin), `.format_map`, and `.format` except on a string literal whose fields neither read
-attributes nor index with non-integer keys (`format_fields`).
+attributes nor index with non-integer keys (`format_fields`), and strings that spell a dunder name.
+
+By-name access is a class of its own: a helper that takes an attribute name as a string (operator.attrgetter,
+functools.update_wrapper/wraps and their WRAPPER_* tuples, inspect.getattr_static, typing.get_type_hints,
+string.Formatter) turns a string into the attribute this check refuses; `update_wrapper(f, g, updated=
+('__globals__',))` merges a module's globals (`sys`, the real builtins) into the plan's. So the helpers and the
+modules holding them are refused by name (`_BY_NAME_ATTRIBUTES`, `core` for numpy's private package), strings
+spelling `__x__` are refused (a name built at run time gets past that; the helpers are the wall here), and
+tests/test_sandbox.py walks everything reachable from `np`/`math`, lazily provided submodules included, and
+fails if such a helper or module can be reached.
 
 A name must be provided (`allowed_names`), a safe builtin, or bound in the code (scoping is flat). Annotations are
 removed before compiling, so any annotation is accepted. The tree is compiled at the end, so what Python refuses
@@ -29,6 +38,7 @@ from __future__ import annotations
 import ast
 import builtins
 import difflib
+import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from types import ModuleType
@@ -97,12 +107,22 @@ _MODULE_ATTRIBUTES = frozenset({
     "pathlib", "socket", "inspect", "types", "tempfile", "platform", "gc", "marshal", "runpy", "signal",
     "threading", "multiprocessing", "f2py", "testing", "distutils", "lib", "mmap", "glob", "urllib",
     "bltns", "enum", "re", "warnings", "operator", "functools",
+    "core",  # numpy's private `_core` under a public name (np.core.arrayprint holds contextlib, sys, ...)
+})
+# Helpers that read or write attributes named by strings, and the modules holding them: with them a string
+# reaches what the attribute check refuses (`update_wrapper(f, g, updated=('__globals__',))` merges a module's
+# globals, `sys` and the real builtins, into the plan's namespace).
+_BY_NAME_ATTRIBUTES = frozenset({
+    "contextlib", "wraps", "update_wrapper", "WRAPPER_ASSIGNMENTS", "WRAPPER_UPDATES", "attrgetter",
+    "methodcaller", "getattr_static", "get_type_hints", "typing", "dataclasses", "copyreg", "string",
 })
 _FILE_ATTRIBUTES = frozenset({
     "load", "loads", "save", "savez", "savez_compressed", "savetxt", "loadtxt", "genfromtxt", "fromfile",
     "fromregex", "tofile", "dump", "dumps", "memmap", "DataSource", "open_memmap",
 })
-BLOCKED_ATTRIBUTES: frozenset[str] = _INTERNAL_ATTRIBUTES | _MODULE_ATTRIBUTES | _FILE_ATTRIBUTES
+BLOCKED_ATTRIBUTES: frozenset[str] = _INTERNAL_ATTRIBUTES | _MODULE_ATTRIBUTES | _FILE_ATTRIBUTES | _BY_NAME_ATTRIBUTES
+# A string spelling a dunder name (`'__globals__'`, `'{0.__dict__}'`): only a by-name helper has a use for it.
+_DUNDER = re.compile(r"__\w+__")
 
 # What `import` may bind (the runner's `safe_builtins(modules)` provides the modules themselves).
 ALLOWED_IMPORTS: frozenset[str] = frozenset({"numpy", "math", "numpy.linalg", "numpy.random"})
@@ -267,6 +287,8 @@ class _Checker:
             self.name(node)
         elif isinstance(node, ast.Attribute):
             self.attribute(node)
+        elif isinstance(node, ast.Constant) and isinstance(node.value, (str, bytes)):
+            self.string(node)
         elif isinstance(node, (ast.Import, ast.ImportFrom)):
             self.import_(node)
         elif isinstance(node, ast.FunctionDef):
@@ -330,10 +352,19 @@ class _Checker:
         elif a in _MODULE_ATTRIBUTES:
             self.bad(node, f"attribute `{a}` is not available in plan code: it leads to a module outside the math "
                      "of numpy/math (plans cannot use the OS, files or the interpreter)")
+        elif a in _BY_NAME_ATTRIBUTES:
+            self.bad(node, f"attribute `{a}` is not available in plan code: it reaches attributes by name (a string "
+                     "naming an attribute gets past this check); write the attribute itself (`obj.name`)")
         elif a in _INTERNAL_ATTRIBUTES:
             self.bad(node, f"attribute `{a}` is not available in plan code: it reaches interpreter internals")
         elif isinstance(node.ctx, ast.Del):
             self.bad(node, "`del` of an attribute is not available in plan code; only `del name` and `del x[i]`")
+
+    def string(self, node: ast.Constant) -> None:
+        text = node.value.decode("latin-1") if isinstance(node.value, bytes) else node.value
+        if m := _DUNDER.search(text):
+            self.bad(node, f"the string `{m.group()}` is not available in plan code: it names a Python internal, "
+                     "which plans never need (as a string it would only be an attribute name for a by-name helper)")
 
     def format_call(self, node: ast.Attribute) -> None:
         if node.attr == "format_map":
