@@ -373,3 +373,31 @@ def test_worker_and_fork_server_die_with_their_parent(sig: str) -> None:
             with contextlib.suppress(OSError):
                 if _running(pid) and b"python" in open(f"/proc/{pid}/cmdline", "rb").read():
                     os.kill(pid, 9)
+
+
+_THREAD_PARENT = """
+import multiprocessing.forkserver as fs, threading, time
+from humanoidgen.sandbox import SandboxWorker
+from humanoidgen.sandbox.probe import probe_setup
+
+w = SandboxWorker(probe_setup, memory_limit=2 << 30)
+t = threading.Thread(target=w.start)
+t.start()
+t.join()
+server, worker = fs._forkserver._forkserver_pid, w._proc.pid
+time.sleep(0.5)
+out = w._request(("call", ("attempt", ("x = 1",), {})), 60.0)
+print(out.value, out.worker_restarted, server == fs._forkserver._forkserver_pid, worker == w._proc.pid, flush=True)
+w.close()
+"""
+
+
+def test_a_fork_server_started_from_a_thread_outlives_the_thread() -> None:
+    """The parent-death signal fires when the *thread* that started a process ends: a server started from a
+    pool's thread must not die with that thread (it gets no signal; it still ends when its alive pipe closes)."""
+    import subprocess
+    import sys
+
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(p for p in (os.getcwd(), os.environ.get("PYTHONPATH")) if p)}
+    out = subprocess.run([sys.executable, "-c", _THREAD_PARENT], capture_output=True, text=True, env=env, timeout=300)
+    assert out.stdout.split() == ["ALLOWED", "False", "True", "True"], (out.stdout, out.stderr[-2000:])
