@@ -310,3 +310,62 @@ def test_split_steps_keeps_step_function_whose_body_returns() -> None:
     src = "def step(planner):\n    if planner is None:\n        return\n    x = 1"
     (code,) = split_steps(src)
     assert code == src and check_code(code, NAMES).defines_step
+
+
+# -- by-name routes to `__globals__`, `__dict__`, the real builtins ----------------------------------------
+# functools.update_wrapper copies (assigned) or merges (updated) attributes named by strings: with
+# `updated=('__globals__',)` it merges a numpy module's globals (`sys`, the real `__builtins__`) into the
+# plan's own namespace. numpy provides it through `contextlib.wraps` in the modules of `np.core`, its
+# private package under a public name (tests/hostile/149_*, 150_*).
+UPDATE_WRAPPER = ("def f():\n    pass\n"
+                  "np.core.arrayprint.contextlib.wraps(np.core.arrayprint.get_printoptions, assigned=(), "
+                  "updated=('__globals__',))(f)")
+
+
+_BY_NAME = [
+    (UPDATE_WRAPPER, 3, ["`core`"]),
+    (UPDATE_WRAPPER, 3, ["`contextlib`"]),
+    (UPDATE_WRAPPER, 3, ["`__globals__`"]),
+    ("w = planner.wraps", 1, ["`wraps`", "by name"]),
+    ("w = planner.update_wrapper", 1, ["`update_wrapper`"]),
+    ("a = planner.WRAPPER_ASSIGNMENTS + planner.WRAPPER_UPDATES", 1, ["`WRAPPER_ASSIGNMENTS`"]),
+    ("g = planner.attrgetter('x')", 1, ["`attrgetter`"]),
+    ("g = planner.methodcaller('x')", 1, ["`methodcaller`"]),
+    ("g = planner.getattr_static", 1, ["`getattr_static`"]),
+    ("h = planner.get_type_hints", 1, ["`get_type_hints`"]),
+    ("t = np.typing", 1, ["`typing`"]),
+    ("m = np.ma.core", 1, ["`core`"]),
+    ("names = ['__dict__']", 1, ["`__dict__`", "string"]),
+    ("x = f'{1}__builtins__'", 1, ["`__builtins__`"]),
+    ("b = b'__class__'", 1, ["`__class__`"]),
+]
+
+
+@pytest.mark.parametrize("source, line, needles", _BY_NAME, ids=[n[0].strip("`") for _, _, n in _BY_NAME])
+def test_by_name_routes_are_refused(source: str, line: int, needles: list[str]) -> None:
+    violations = rejected(source)
+    assert [v for v in violations if v.line == line and all(n in v.message for n in needles)], violations
+
+
+def test_update_wrapper_route_really_leaks_without_the_check() -> None:
+    """The route is real (so the refusals above guard something): run unchecked, it lands `sys` and the real
+    builtins in the plan's namespace."""
+    import builtins
+    import warnings
+
+    ns = {"np": numpy, "__builtins__": safe_builtins(MODULES)}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DeprecationWarning)  # np.core is deprecated, not gone
+        exec(compile(UPDATE_WRAPPER, "<step>", "exec"), ns)  # noqa: S102 - deliberately unchecked
+    assert "sys" in ns and ns["__builtins__"]["open"] is builtins.open
+
+
+def test_a_step_starts_with_the_safe_builtins_again() -> None:
+    """The runner puts the restricted builtins back before every step: real ones a step smuggled into the
+    namespace (by a route not known yet) do not carry over to the names of the next step."""
+    from humanoidgen.sandbox.runner import _run
+
+    safe = safe_builtins(MODULES)
+    ns = {"planner": None, "np": numpy, "__builtins__": {"open": open}}
+    out = _run("x = len([1])", ns, safe)
+    assert out.ok and ns["__builtins__"] is safe

@@ -184,6 +184,16 @@ def test_ipc_is_out_of_reach(worker: SandboxWorker, name: str, code: str) -> Non
     assert not made and not leaked_mq, (made, leaked_mq)
 
 
+def test_the_worker_has_an_ipc_namespace_of_its_own_where_allowed(worker: SandboxWorker) -> None:
+    """Where the kernel allows it (root, or a user namespace) the worker moves to an empty IPC namespace."""
+    assert isinstance(worker.lockdown.get("ipc_namespace"), bool)
+    cap_eff = int(next(line for line in open("/proc/self/status") if line.startswith("CapEff")).split()[1], 16)
+    if cap_eff & (1 << 21):  # CAP_SYS_ADMIN: this machine allows it, so the worker must have one
+        assert worker.lockdown["ipc_namespace"]
+    if worker.lockdown["ipc_namespace"]:
+        assert os.readlink(f"/proc/{worker._proc.pid}/ns/ipc") != os.readlink("/proc/self/ns/ipc")
+
+
 def _sysv_ids() -> set[tuple[str, int]]:
     out = set()
     for kind, column in (("shm", 1), ("msg", 1), ("sem", 1)):

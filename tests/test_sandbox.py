@@ -131,25 +131,44 @@ def test_split_steps_whole_file_with_step_function() -> None:
 
 
 def test_numpy_attribute_walk_reaches_no_dangerous_module() -> None:
-    """Every object reachable from `np`/`math` through attributes the checker allows is harmless."""
+    """Every object reachable from `np`/`math` through attributes the checker allows is harmless: no module
+    of the OS or the interpreter, and no helper that reads or writes attributes named by strings (through
+    which `update_wrapper(f, g, updated=('__globals__',))` merges a module's globals into the plan's). A
+    package's submodules count too: numpy hands some out on first access (`np.core`), others are there
+    once anything imported them."""
+    import functools
+    import inspect
+    import operator
+    import pkgutil
+    import typing
+    import warnings
+
     dangerous = {"os", "sys", "subprocess", "builtins", "importlib", "ctypes", "pickle", "io", "shutil",
-                 "pathlib", "inspect", "types", "marshal", "runpy", "posix", "gc"}
-    bad_functions = [open, exec, eval, compile, getattr, __import__]
+                 "pathlib", "inspect", "types", "marshal", "runpy", "posix", "gc", "contextlib", "functools",
+                 "operator", "typing", "string", "dataclasses", "copyreg"}
+    bad_functions = [open, exec, eval, compile, getattr, setattr, delattr, vars, globals, locals, __import__,
+                     functools.update_wrapper, functools.wraps, operator.attrgetter, operator.methodcaller,
+                     inspect.getattr_static, typing.get_type_hints]
     seen, found = set(), []
-    queue = deque([("np", np), ("math", math)])
-    while queue:
-        path, obj = queue.popleft()
-        if id(obj) in seen or path.count(".") > 4:
-            continue
-        seen.add(id(obj))
-        if isinstance(obj, types.ModuleType) and obj.__name__.split(".")[0] in dangerous or any(obj is f for f in bad_functions):
-            found.append(path)
-        elif isinstance(obj, (types.ModuleType, type)):
-            for name in dir(obj):
-                if name.startswith("_") or name in BLOCKED_ATTRIBUTES:
-                    continue
-                with contextlib.suppress(Exception):  # lazy attributes that fail to import
-                    queue.append((f"{path}.{name}", getattr(obj, name)))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DeprecationWarning)  # np.core and friends warn on first access
+        queue = deque([("np", np), ("math", math)])
+        while queue:
+            path, obj = queue.popleft()
+            if id(obj) in seen or path.count(".") > 4:
+                continue
+            seen.add(id(obj))
+            if isinstance(obj, types.ModuleType) and obj.__name__.split(".")[0] in dangerous or any(obj is f for f in bad_functions):
+                found.append(path)
+            elif isinstance(obj, (types.ModuleType, type)):
+                names = set(dir(obj))
+                if isinstance(obj, types.ModuleType) and isinstance(getattr(obj, "__path__", None), list):
+                    names |= {m.name for m in pkgutil.iter_modules(obj.__path__)}
+                for name in sorted(names):
+                    if name.startswith("_") or name in BLOCKED_ATTRIBUTES:
+                        continue
+                    with contextlib.suppress(Exception):  # lazy attributes that fail to import
+                        queue.append((f"{path}.{name}", getattr(obj, name)))
     assert not found
 
 
@@ -354,3 +373,31 @@ def test_worker_and_fork_server_die_with_their_parent(sig: str) -> None:
             with contextlib.suppress(OSError):
                 if _running(pid) and b"python" in open(f"/proc/{pid}/cmdline", "rb").read():
                     os.kill(pid, 9)
+
+
+_THREAD_PARENT = """
+import multiprocessing.forkserver as fs, threading, time
+from humanoidgen.sandbox import SandboxWorker
+from humanoidgen.sandbox.probe import probe_setup
+
+w = SandboxWorker(probe_setup, memory_limit=2 << 30)
+t = threading.Thread(target=w.start)
+t.start()
+t.join()
+server, worker = fs._forkserver._forkserver_pid, w._proc.pid
+time.sleep(0.5)
+out = w._request(("call", ("attempt", ("x = 1",), {})), 60.0)
+print(out.value, out.worker_restarted, server == fs._forkserver._forkserver_pid, worker == w._proc.pid, flush=True)
+w.close()
+"""
+
+
+def test_a_fork_server_started_from_a_thread_outlives_the_thread() -> None:
+    """The parent-death signal fires when the *thread* that started a process ends: a server started from a
+    pool's thread must not die with that thread (it gets no signal; it still ends when its alive pipe closes)."""
+    import subprocess
+    import sys
+
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join(p for p in (os.getcwd(), os.environ.get("PYTHONPATH")) if p)}
+    out = subprocess.run([sys.executable, "-c", _THREAD_PARENT], capture_output=True, text=True, env=env, timeout=300)
+    assert out.stdout.split() == ["ALLOWED", "False", "True", "True"], (out.stdout, out.stderr[-2000:])

@@ -17,7 +17,16 @@ Refused, each with a message: other imports, `class`, decorators, `with` (plans 
 `async`/`await`, `match` (use `if`/`elif`), `del` of attributes, names starting with `__`, attributes starting
 with `_` or in `BLOCKED_ATTRIBUTES`, uses of `FORBIDDEN_NAMES` the plan does not bind itself (`dir = v` makes a plan
 variable, not the builtin), `.format_map`, and `.format` except on a string literal whose fields neither read
-attributes nor index with non-integer keys (`format_fields`).
+attributes nor index with non-integer keys (`format_fields`), and strings that spell a dunder name.
+
+By-name access is a class of its own: a helper that takes an attribute name as a string (operator.attrgetter,
+functools.update_wrapper/wraps and their WRAPPER_* tuples, inspect.getattr_static, typing.get_type_hints,
+string.Formatter) turns a string into the attribute this check refuses; `update_wrapper(f, g, updated=
+('__globals__',))` merges a module's globals (`sys`, the real builtins) into the plan's. So the helpers and the
+modules holding them are refused by name (`_BY_NAME_ATTRIBUTES`, `core` for numpy's private package), strings
+spelling `__x__` are refused (a name built at run time gets past that; the helpers are the wall here), and
+tests/test_sandbox.py walks everything reachable from `np`/`math`, lazily provided submodules included, and
+fails if such a helper or module can be reached.
 
 A name must be provided (`allowed_names`), a safe builtin, or bound in the code (scoping is flat). Annotations are
 removed before compiling, so any annotation is accepted. The tree is compiled at the end, so what Python refuses
@@ -28,21 +37,22 @@ from __future__ import annotations
 
 import ast
 import builtins
-import contextlib
 import difflib
 import re
-import textwrap
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from types import ModuleType
 from typing import Any
 
 from humanoidgen.sandbox.format_fields import format_template_problems
+from humanoidgen.sandbox.steps import STEP_FUNCTION, split_steps, strip_api_imports
+
+__all__ = ["BLOCKED_ATTRIBUTES", "FORBIDDEN_NAMES", "SAFE_BUILTINS", "STEP_FUNCTION", "CheckedCode", "CodeRejected",
+           "Violation", "check_code", "safe_builtins", "split_steps", "strip_api_imports"]
 
 MAX_SOURCE_BYTES = 20_000
 MAX_AST_NODES = 5_000
 MAX_NESTING = 200  # syntax-tree depth; far beyond plan code, well below what `compile` can recurse through
-STEP_FUNCTION = "step"
 
 # Builtins plan code may use; `safe_builtins` installs exactly these (and a restricted `__import__`).
 SAFE_BUILTINS: frozenset[str] = frozenset({
@@ -97,23 +107,28 @@ _MODULE_ATTRIBUTES = frozenset({
     "pathlib", "socket", "inspect", "types", "tempfile", "platform", "gc", "marshal", "runpy", "signal",
     "threading", "multiprocessing", "f2py", "testing", "distutils", "lib", "mmap", "glob", "urllib",
     "bltns", "enum", "re", "warnings", "operator", "functools",
+    "core",  # numpy's private `_core` under a public name (np.core.arrayprint holds contextlib, sys, ...)
+})
+# Helpers that read or write attributes named by strings, and the modules holding them: with them a string
+# reaches what the attribute check refuses (`update_wrapper(f, g, updated=('__globals__',))` merges a module's
+# globals, `sys` and the real builtins, into the plan's namespace).
+_BY_NAME_ATTRIBUTES = frozenset({
+    "contextlib", "wraps", "update_wrapper", "WRAPPER_ASSIGNMENTS", "WRAPPER_UPDATES", "attrgetter",
+    "methodcaller", "getattr_static", "get_type_hints", "typing", "dataclasses", "copyreg", "string",
 })
 _FILE_ATTRIBUTES = frozenset({
     "load", "loads", "save", "savez", "savez_compressed", "savetxt", "loadtxt", "genfromtxt", "fromfile",
     "fromregex", "tofile", "dump", "dumps", "memmap", "DataSource", "open_memmap",
 })
-BLOCKED_ATTRIBUTES: frozenset[str] = _INTERNAL_ATTRIBUTES | _MODULE_ATTRIBUTES | _FILE_ATTRIBUTES
+BLOCKED_ATTRIBUTES: frozenset[str] = _INTERNAL_ATTRIBUTES | _MODULE_ATTRIBUTES | _FILE_ATTRIBUTES | _BY_NAME_ATTRIBUTES
+# A string spelling a dunder name (`'__globals__'`, `'{0.__dict__}'`): only a by-name helper has a use for it.
+_DUNDER = re.compile(r"__\w+__")
 
 # What `import` may bind (the runner's `safe_builtins(modules)` provides the modules themselves).
 ALLOWED_IMPORTS: frozenset[str] = frozenset({"numpy", "math", "numpy.linalg", "numpy.random"})
 _IMPORTS_HELP = ("the only imports are `import numpy as np`, `import math` and `from ... import` of their "
                  "functions (e.g. `from math import pi, sqrt`); `numpy.linalg` and `numpy.random` may be imported too")
 _NESTED = "code nested too deeply; split long expressions and deep nesting into variables or helper functions"
-
-# The paper's scripts start with `from humanoidgen.<...>.solver_env import *`; only that exact form is stripped.
-_API_IMPORT = re.compile(r"^[ \t]*(from[ \t]+humanoidgen(\.\w+)*[ \t]+import[ \t]+\*|import[ \t]+humanoidgen(\.\w+)*)"
-                         r"[ \t]*(#.*)?$")
-_FENCE = re.compile(r"```[ \t]*(?:python|py)?[ \t]*\n(.*?)```", re.DOTALL | re.IGNORECASE)
 
 
 @dataclass(frozen=True)
@@ -186,64 +201,6 @@ def _resolve_module(provided: dict[str, ModuleType], name: str) -> ModuleType | 
         return None
     module = getattr(_resolve_module(provided, parent), child, None)
     return module if isinstance(module, ModuleType) else None
-
-
-def strip_api_imports(source: str) -> str:
-    """Blank out the paper's `from humanoidgen... import *` / `import humanoidgen...` lines (line numbers kept)."""
-    return "\n".join("" if _API_IMPORT.match(line) else line for line in source.split("\n"))
-
-
-def split_steps(response_text: str) -> list[str]:
-    """Plan steps from an LLM response.
-
-    Each fenced ```python (or bare ```) block is one step, dedented (the paper's blocks are indented one level)
-    and with API import lines stripped. If there are no fences, the text is taken as a whole script. A block or
-    script that is just `def step(planner): ...` becomes that function's body (so `planner` is the namespace's
-    planner and the body runs at top level), unless the body needs its function (a `return` in it); a block with
-    more (helper functions, imports) is kept whole, without explicit `step(planner)` calls, since the runner
-    calls `step` after executing it.
-    """
-    blocks = _FENCE.findall(response_text) or [response_text]
-    steps = []
-    for block in blocks:
-        code = _as_step(strip_api_imports(textwrap.dedent(block)).strip("\n"))
-        if code.strip():
-            steps.append(code)
-    return steps
-
-
-def _as_step(code: str) -> str:
-    try:
-        tree = ast.parse(code)
-    except (SyntaxError, ValueError, RecursionError, MemoryError):
-        return code
-    defs = [n for n in tree.body if isinstance(n, ast.FunctionDef) and n.name == STEP_FUNCTION]
-    if not defs:
-        return code
-    calls = [n for n in tree.body if isinstance(n, ast.Expr) and isinstance(n.value, ast.Call)
-             and isinstance(n.value.func, ast.Name) and n.value.func.id == STEP_FUNCTION]
-    others = [n for n in tree.body if n not in defs and n not in calls]
-    if len(defs) == 1 and not others:
-        body = _function_body(code, defs[0])
-        if body is not None:
-            return body
-    lines = code.split("\n")
-    for call in calls:  # blank the call's lines unless another statement shares them (`x = 1; step(planner)`)
-        span = range(call.lineno, call.end_lineno + 1)
-        if not any(n is not call and (n.lineno in span or n.end_lineno in span) for n in tree.body):
-            lines[call.lineno - 1: call.end_lineno] = [""] * len(span)
-    return "\n".join(lines).rstrip("\n")
-
-
-def _function_body(code: str, node: ast.FunctionDef) -> str | None:
-    lines = code.split("\n")
-    # Keep comments between the header and the first statement when the header is one line.
-    for start in (node.lineno, node.body[0].lineno - 1):
-        body = textwrap.dedent("\n".join(lines[start:node.body[-1].end_lineno])).strip("\n")
-        with contextlib.suppress(SyntaxError, ValueError, RecursionError, MemoryError, OverflowError):
-            compile(body, "<step>", "exec", dont_inherit=True)  # not only parse: `return` needs its function
-            return body
-    return None
 
 
 def check_code(source: str, allowed_names: set[str] | frozenset[str]) -> CheckedCode:
@@ -330,6 +287,8 @@ class _Checker:
             self.name(node)
         elif isinstance(node, ast.Attribute):
             self.attribute(node)
+        elif isinstance(node, ast.Constant) and isinstance(node.value, (str, bytes)):
+            self.string(node)
         elif isinstance(node, (ast.Import, ast.ImportFrom)):
             self.import_(node)
         elif isinstance(node, ast.FunctionDef):
@@ -393,10 +352,19 @@ class _Checker:
         elif a in _MODULE_ATTRIBUTES:
             self.bad(node, f"attribute `{a}` is not available in plan code: it leads to a module outside the math "
                      "of numpy/math (plans cannot use the OS, files or the interpreter)")
+        elif a in _BY_NAME_ATTRIBUTES:
+            self.bad(node, f"attribute `{a}` is not available in plan code: it reaches attributes by name (a string "
+                     "naming an attribute gets past this check); write the attribute itself (`obj.name`)")
         elif a in _INTERNAL_ATTRIBUTES:
             self.bad(node, f"attribute `{a}` is not available in plan code: it reaches interpreter internals")
         elif isinstance(node.ctx, ast.Del):
             self.bad(node, "`del` of an attribute is not available in plan code; only `del name` and `del x[i]`")
+
+    def string(self, node: ast.Constant) -> None:
+        text = node.value.decode("latin-1") if isinstance(node.value, bytes) else node.value
+        if m := _DUNDER.search(text):
+            self.bad(node, f"the string `{m.group()}` is not available in plan code: it names a Python internal, "
+                     "which plans never need (as a string it would only be an attribute name for a by-name helper)")
 
     def format_call(self, node: ast.Attribute) -> None:
         if node.attr == "format_map":

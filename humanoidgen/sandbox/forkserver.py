@@ -61,8 +61,9 @@ def context() -> mp.context.BaseContext:
         if _started_env is None or not _server_alive():
             ctx.set_forkserver_preload(PRELOAD)
             env = scrubbed_environ()
-            if threading.current_thread() is threading.main_thread():  # lives as long as this process
-                env[ENV_PARENT] = str(os.getpid())  # the server dies with us (lifeline)
+            # The server dies with the thread that starts it (lifeline): only the main thread lasts as long as
+            # this process.
+            env[ENV_PARENT] = str(os.getpid()) if threading.current_thread() is threading.main_thread() else "-"
             with _environ(env):
                 mp_forkserver.ensure_running()
             _started_env = env

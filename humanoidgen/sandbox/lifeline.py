@@ -22,7 +22,7 @@ import ctypes
 import os
 import signal
 
-ENV_PARENT = "HGEN_SANDBOX_SERVER_PARENT"
+ENV_PARENT = "HGEN_SANDBOX_SERVER_PARENT"  # the parent's pid, or "-": no signal for the server
 PR_SET_PDEATHSIG = 1
 _server_pid: int | None = None  # set in the fork server; a forked worker inherits it
 
@@ -47,9 +47,11 @@ def _in_fork_server() -> None:
     """Runs on import: only the fork server's environment holds ENV_PARENT (taken out, so workers lack it)."""
     global _server_pid
     parent = os.environ.pop(ENV_PARENT, None)
-    if parent is None or not parent.isdigit():
+    if parent is None:
         return
-    _server_pid = os.getpid()
+    _server_pid = os.getpid()  # the workers check for it even where the server itself has no signal
+    if not parent.isdigit():  # started from a thread that may end before its process
+        return
     try:
         die_with_parent(int(parent))
     except OSError:  # the server must come up (multiprocessing skips only ImportError): as before, then

@@ -6,6 +6,7 @@ narrow). What it does, in order:
 
 1. resource limits: address space, CPU seconds, no core files, no file may grow past 0 bytes
    (RLIMIT_FSIZE), no nice or real-time priority to raise to, and the hard limits equal the soft ones;
+   then a fresh IPC namespace where the kernel allows one (optional: step 3 refuses IPC in any case);
 2. Landlock (kernel >= 5.13): the file system becomes read-only and only the paths the simulator needs can
    be read (the Python installation, the package, the robot files, the renderer's libraries and devices,
    this process's own /proc entry); `/proc/<parent>/environ` and the user's files are out of reach;
@@ -76,11 +77,12 @@ class Limits:
 class LockdownReport:
     seccomp: bool = False
     landlock_abi: int = 0  # 0: not applied
+    ipc_namespace: bool = False  # a fresh, empty IPC namespace (needs privilege; the filter refuses IPC anyway)
     threads_at_lockdown: int = 1
     warnings: list[str] = field(default_factory=list)
 
     def to_dict(self) -> dict:
-        return {"seccomp": self.seccomp, "landlock_abi": self.landlock_abi,
+        return {"seccomp": self.seccomp, "landlock_abi": self.landlock_abi, "ipc_namespace": self.ipc_namespace,
                 "threads_at_lockdown": self.threads_at_lockdown, "warnings": list(self.warnings)}
 
 
@@ -97,6 +99,7 @@ def lock_down(limits: Limits, read_paths: list[Path] | None = None) -> LockdownR
     sys.dont_write_bytecode = True
     _import_layers()  # libseccomp is found through ctypes.util, which runs ldconfig: only possible before
     _set_limits(limits)
+    report.ipc_namespace = _unshare_ipc()
     try:
         report.landlock_abi = _apply_landlock(read_paths if read_paths is not None else default_read_paths())
     except Exception as e:  # noqa: BLE001 - any failure of this layer is reported, never silent
@@ -145,6 +148,21 @@ def _set_limits(limits: Limits) -> None:
     soft, hard = resource.getrlimit(resource.RLIMIT_NOFILE)
     cap = min(limits.max_open_files, hard if hard != resource.RLIM_INFINITY else limits.max_open_files)
     resource.setrlimit(resource.RLIMIT_NOFILE, (min(soft, cap), cap))
+
+
+_CLONE_NEWIPC = 0x08000000
+
+
+def _unshare_ipc() -> bool:
+    """Move into a new IPC namespace where the kernel lets this process (root, or a user namespace): no other
+    process's SysV objects or POSIX message queues are there, and whatever is made dies with the worker. Not a
+    layer that must be there: seccomp refuses every IPC call anyway (`_DENY`)."""
+    import ctypes
+
+    try:
+        return ctypes.CDLL(None, use_errno=True).unshare(_CLONE_NEWIPC) == 0
+    except (OSError, AttributeError):
+        return False
 
 
 # -- Landlock ---------------------------------------------------------------------------------------------

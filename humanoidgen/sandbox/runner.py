@@ -380,7 +380,7 @@ def _worker_main(down: Any, up: Any, setup: Callable[[], dict[str, Any]], limits
             return
         if kind == "exit":
             return
-        out = _run(payload, namespace) if kind == "run" else _call(payload, provided)
+        out = _run(payload, namespace, builtins_) if kind == "run" else _call(payload, provided)
         try:
             _send({"kind": "reply", "outcome": asdict(out)})
         except (TypeError, ValueError) as e:  # a call result that is not wire data
@@ -398,7 +398,11 @@ class _CappedIO(io.StringIO):
         return len(s)
 
 
-def _run(source: str, namespace: dict[str, Any]) -> StepOutcome:
+def _run(source: str, namespace: dict[str, Any], builtins_: dict[str, Any]) -> StepOutcome:
+    """Check and execute one step in `namespace`. Its `__builtins__` are put back to the restricted ones first:
+    real builtins a step got in by a route the checker does not know yet do not carry over to the next step
+    (functions it defined keep the builtins they were made with)."""
+    namespace["__builtins__"] = builtins_
     buf = _CappedIO()
     try:
         names = {k for k in namespace if not k.startswith("__")}
