@@ -30,12 +30,14 @@ import time
 import traceback
 import weakref
 from collections.abc import Callable
-from dataclasses import asdict, dataclass
+from dataclasses import asdict
 from typing import Any, Self
 
 from humanoidgen.sandbox import frames, lifeline, wire
 from humanoidgen.sandbox.checker import STEP_FUNCTION, CodeRejected, check_code, safe_builtins
 from humanoidgen.sandbox.lockdown import Limits, lock_down
+from humanoidgen.sandbox.outcome import (MESSAGE_LIMIT, STDOUT_LIMIT, STEP_FILENAME, SandboxError, StepOutcome,
+                                         exit_text, message_of, outcome_of_reply, step_line, type_name)
 from humanoidgen.sandbox.twin import TWIN, TwinChannel, fork_twin
 
 # Measured (2 CPUs): numpy+mujoco+drake ~0.33 GiB of address space, HumanoidEnv + planner ~1.35 GiB peak.
@@ -49,29 +51,6 @@ DEFAULT_MAX_MESSAGE_BYTES = 8 << 30
 # frames; at 1280x720 RGB, 41 GB.
 MAX_STREAM_MESSAGES = 100_000
 MAX_STREAM_BYTES = 64 << 30
-STDOUT_LIMIT = 64_000
-MESSAGE_LIMIT = 4_000  # characters of an error message
-STEP_FILENAME = "<step>"
-
-
-@dataclass
-class StepOutcome:
-    ok: bool
-    error_type: str | None  # exception class name, "CodeRejected", "Timeout", "WorkerDied", "ProtocolError"
-    message: str
-    line: int | None  # line within the step where it failed
-    seconds: float  # wall time seen by the parent (check + execution + round trip)
-    stdout: str = ""
-    worker_restarted: bool = False  # a fresh worker ran this step: state from earlier steps is gone
-    value: Any = None  # the result of `SandboxWorker.call`
-
-
-class SandboxError(RuntimeError):
-    """`SandboxWorker.call` failed; `outcome` says how."""
-
-    def __init__(self, outcome: StepOutcome) -> None:
-        self.outcome = outcome
-        super().__init__(f"{outcome.error_type}: {outcome.message}")
 
 
 class SandboxWorker:
@@ -174,7 +153,9 @@ class SandboxWorker:
         try:
             self._post(message, timeout_s)
             reply = self._receive(timeout_s)
-            out = _outcome(reply)
+            out = outcome_of_reply(reply)
+            if out is None:
+                raise _NoReply("protocol: not a reply")
         except _NoReply as e:
             out = self._lost(e, timeout_s)
         except BaseException:  # Ctrl-C in the parent: the worker must not outlive the request
@@ -229,7 +210,7 @@ class SandboxWorker:
             return StepOutcome(False, "Timeout", f"step exceeded {timeout_s:g} s; worker killed, its state is lost",
                                None, 0.0)
         if reason == "died":
-            return StepOutcome(False, "WorkerDied", f"worker process died ({_exit_text(exitcode)}); its state is "
+            return StepOutcome(False, "WorkerDied", f"worker process died ({exit_text(exitcode)}); its state is "
                                "lost", None, 0.0)
         return StepOutcome(False, "ProtocolError", f"worker sent a malformed message ({reason.split(': ', 1)[-1]});"
                            " worker killed, its state is lost", None, 0.0)
@@ -278,33 +259,6 @@ def kill_all() -> None:
         if proc is not None:
             with contextlib.suppress(Exception):
                 proc.kill()
-
-
-def _exit_text(code: int | None) -> str:
-    if code is None:
-        return "exit code unknown"
-    if code < 0:
-        import signal
-
-        with contextlib.suppress(ValueError):
-            return f"killed by {signal.Signals(-code).name}"
-    return f"exit code {code}"
-
-
-def _outcome(reply: Any) -> StepOutcome:
-    """A StepOutcome from a decoded reply, trusting none of its types."""
-    if not isinstance(reply, dict) or reply.get("kind") != "reply" or not isinstance(reply.get("outcome"), dict):
-        raise _NoReply("protocol: not a reply")
-    o = reply["outcome"]
-
-    def text(x: Any, n: int) -> str:
-        return x[:n] if isinstance(x, str) else ""
-
-    line = o.get("line")
-    return StepOutcome(ok=o.get("ok") is True, error_type=text(o.get("error_type"), 100) or None,
-                       message=text(o.get("message"), MESSAGE_LIMIT),
-                       line=line if isinstance(line, int) and not isinstance(line, bool) else None,
-                       seconds=0.0, stdout=text(o.get("stdout"), STDOUT_LIMIT), value=o.get("value"))
 
 
 # -- worker process ---------------------------------------------------------------------------------------
@@ -417,7 +371,7 @@ def _run(source: str, namespace: dict[str, Any], builtins_: dict[str, Any]) -> S
             if checked.defines_step:
                 namespace[STEP_FUNCTION](namespace.get("planner"))
     except BaseException as e:  # noqa: BLE001 - every failure of the step is reported as data
-        return StepOutcome(False, _type_name(e), _message(e), _step_line(e), 0.0, buf.getvalue())
+        return StepOutcome(False, type_name(e), message_of(e), step_line(e), 0.0, buf.getvalue())
     return StepOutcome(True, None, "", None, 0.0, buf.getvalue())
 
 
@@ -429,35 +383,5 @@ def _call(payload: tuple[str, tuple, dict], provided: dict[str, Any]) -> StepOut
     try:
         value = fn(*args, **kwargs)
     except BaseException as e:  # noqa: BLE001
-        return StepOutcome(False, _type_name(e), _message(e), None, 0.0)
+        return StepOutcome(False, type_name(e), message_of(e), None, 0.0)
     return StepOutcome(True, None, "", None, 0.0, value=value)
-
-
-def _type_name(e: BaseException) -> str:
-    try:
-        return str(type(e).__name__)[:100]
-    except BaseException:  # noqa: BLE001 - a hostile exception class
-        return "Exception"
-
-
-def _message(e: BaseException) -> str:
-    """`call: reason` for planner failures (the LLM's feedback), else the exception's text; never raises."""
-    try:
-        call, reason = getattr(e, "call", None), getattr(e, "reason", None)
-        if isinstance(call, str) and isinstance(reason, str):
-            return f"{call}: {reason}"[:MESSAGE_LIMIT]
-        return (str(e) or repr(e))[:MESSAGE_LIMIT]
-    except BaseException:  # noqa: BLE001 - __str__ of a hostile exception
-        return "(the exception could not be printed)"
-
-
-def _step_line(e: BaseException) -> int | None:
-    """Line of the innermost traceback frame inside the step's code."""
-    line = None
-    try:
-        for frame in traceback.extract_tb(e.__traceback__):
-            if frame.filename == STEP_FILENAME:
-                line = frame.lineno
-    except BaseException:  # noqa: BLE001
-        return None
-    return line
