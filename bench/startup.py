@@ -51,12 +51,16 @@ print(json.dumps({"cli_imports_s": t_cli - t0, "fork_server_s": t_server - t_cli
 """
 
 
-def run_cli(task: str, seed: int) -> dict:
+def _env(code: Path) -> dict:
+    return dict(os.environ, PYTHONPATH=str(code))
+
+
+def run_cli(task: str, seed: int, code: Path = ROOT) -> dict:
     with tempfile.TemporaryDirectory() as tmp:
         out = Path(tmp) / "run.json"
         t0 = time.perf_counter()
         r = subprocess.run([sys.executable, "-m", "humanoidgen.cli.main", "run", task, "--seed", str(seed),
-                            "--json", str(out)], cwd=ROOT, capture_output=True, text=True)
+                            "--json", str(out)], cwd=code, env=_env(code), capture_output=True, text=True)
         total = time.perf_counter() - t0
         if not out.exists():
             raise SystemExit(f"hgen run failed: {(r.stderr or r.stdout).strip().splitlines()[-1:]}")
@@ -65,9 +69,10 @@ def run_cli(task: str, seed: int) -> dict:
             "beyond_episode_s": round(total - d["wall_seconds"], 3), "success": d["success"]}
 
 
-def run_probe(task: str, seed: int) -> dict:
+def run_probe(task: str, seed: int, code: Path = ROOT) -> dict:
     t0 = time.perf_counter()
-    r = subprocess.run([sys.executable, "-c", PROBE, task, str(seed)], cwd=ROOT, capture_output=True, text=True)
+    r = subprocess.run([sys.executable, "-c", PROBE, task, str(seed)], cwd=code, env=_env(code),
+                       capture_output=True, text=True)
     if r.returncode != 0:
         raise SystemExit(f"probe failed: {r.stderr.strip().splitlines()[-3:]}")
     d = json.loads(r.stdout.strip().splitlines()[-1])
@@ -80,15 +85,16 @@ def main() -> None:
     ap.add_argument("--task", default="block_stack_single")
     ap.add_argument("--seed", type=int, default=3)
     ap.add_argument("--rounds", type=int, default=3)
+    ap.add_argument("--code", type=Path, default=ROOT, help="a checkout to time (default: this one)")
     ap.add_argument("--json", type=Path, default=ROOT / "bench/results/startup.json")
     args = ap.parse_args()
-    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True,
+    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=args.code, capture_output=True,
                             text=True).stdout.strip()
-    run_cli(args.task, args.seed)  # warm the OS file cache and numba's kernels
+    run_cli(args.task, args.seed, args.code)  # warm the OS file cache and numba's kernels
     rows = []
     for k in range(args.rounds):
-        row = {"round": k, "load_average": round(os.getloadavg()[0], 2), "cli": run_cli(args.task, args.seed),
-               "phases": run_probe(args.task, args.seed)}
+        row = {"round": k, "load_average": round(os.getloadavg()[0], 2),
+               "cli": run_cli(args.task, args.seed, args.code), "phases": run_probe(args.task, args.seed, args.code)}
         rows.append(row)
         print(json.dumps(row), flush=True)
     beyond = [r["cli"]["beyond_episode_s"] for r in rows]
