@@ -132,11 +132,16 @@ def test_the_time_limit_stops_the_feed():
     spec = load_task(TASK)
     channel = _Channel()
     feed = TwinReplay(channel, spec, 50.0)
-    hold = np.zeros((50, 26))
+    hold, where = np.zeros((50, 26)), np.zeros((50, 52))
     with pytest.raises(OverTime):
         for _ in range(int(spec.time_limit_s) + 2):
-            feed.feed({"actions": hold, "qpos": None})
+            feed.feed({"actions": hold, "qpos": where})
     assert len(channel.posted) == int(spec.time_limit_s) + 1
+    flood = TwinReplay(_Channel(), spec, 50.0)  # empty or broken chunks are not passed on, and still end
+    with pytest.raises(OverTime):
+        for _ in range(10 * flood.max_steps):
+            flood.feed({"actions": np.zeros((0, 26)), "qpos": np.zeros((0, 52))})
+    assert flood.malformed and flood.channel.posted == []
     replay = Replay.build(spec, 0)
     replay.feed(np.tile(replay.env.init_action(), (replay.max_steps + 1, 1)))
     assert "time limit" in replay.problem and not replay.finish().ok

@@ -130,10 +130,12 @@ class Replay:
         if self.recorder is not None:
             self.recorder(action)
 
-    def _compare(self, claimed: np.ndarray) -> None:
+    def _compare(self, claimed: np.ndarray, at_end: bool = False) -> None:
         diff = np.abs(claimed - self.env.data.qpos)
         if not np.all(diff <= DIVERGED):  # NaN in the claim counts as parting too
-            self.problem = f"{CHANGED}: at t={self.env.time - self.start_time:.2f} s {_what_moved(self.env, diff)}"
+            when = "after the last command" if at_end else "at"
+            self.problem = (f"{CHANGED}: {when} t={self.env.time - self.start_time:.2f} s "
+                            f"{_what_moved(self.env, diff)}")
 
     def _over_time(self) -> str:
         limit = self.max_steps - self.rest_steps
@@ -164,7 +166,7 @@ class Replay:
             if q is None:
                 self.problem = "the plan worker sent a malformed final state"
             elif not events:  # after a settle the worker's state is rightly behind
-                self._compare(q[0])
+                self._compare(q[0], at_end=True)
         if self.problem is not None and self.problem.startswith(CHANGED) and claimed_fingerprint is not None:
             edited = changed_fields(self.reference(), claimed_fingerprint)
             if edited:

@@ -63,19 +63,27 @@ class TwinReplay:
         self.channel = channel  # sandbox.twin.TwinChannel
         self.max_steps = step_budget(spec, control_hz)
         self.fed = 0
+        self.malformed = False  # a chunk that was not (k, 26) commands with their (k, nq) configurations
 
     def feed(self, payload: Any) -> None:
-        """A chunk the worker streamed ({"actions", "qpos"}); raises OverTime past the task's time limit."""
+        """A chunk the worker streamed ({"actions": (k, 26), "qpos": (k, nq)}, k >= 1); raises OverTime past the
+        task's time limit. A chunk of any other form is not passed on: the episode is rejected at `finish`."""
         actions = payload.get("actions") if isinstance(payload, dict) else None
         qpos = payload.get("qpos") if isinstance(payload, dict) else None
-        if not isinstance(actions, np.ndarray):
-            actions = np.zeros((0, 0))  # the twin says it is malformed
-        self.fed += len(actions) if actions.ndim == 2 else 1
+        if not (isinstance(actions, np.ndarray) and actions.ndim == 2 and len(actions) >= 1
+                and isinstance(qpos, np.ndarray) and qpos.ndim == 2 and len(qpos) == len(actions)):
+            self.malformed = True
+        self.fed += len(actions) if isinstance(actions, np.ndarray) and actions.ndim == 2 else 0
+        self.fed += 1 if self.malformed else 0  # an empty or broken chunk still costs a step: floods end
         if self.fed > self.max_steps:
             raise OverTime()
-        self.channel.post(("feed", {"actions": actions, "qpos": qpos}), POST_TIMEOUT_S)
+        if not self.malformed:
+            self.channel.post(("feed", {"actions": actions, "qpos": qpos}), POST_TIMEOUT_S)
 
     def finish(self, claimed_qpos: Any = None, claimed_fingerprint: Any = None, settle: bool = True
                ) -> ReplayVerdict:
         self.channel.post(("finish", (claimed_qpos, claimed_fingerprint, settle)), POST_TIMEOUT_S)
-        return _from_wire(self.channel.receive(VERDICT_TIMEOUT_S, MAX_VERDICT_BYTES))
+        verdict = _from_wire(self.channel.receive(VERDICT_TIMEOUT_S, MAX_VERDICT_BYTES))
+        if self.malformed and verdict.problem is None:
+            verdict.problem = "the plan worker sent malformed actions; nothing it did is kept"
+        return verdict
