@@ -31,12 +31,23 @@ def _warm() -> None:
     Not here: the recording level of detail and the point-cloud kernel. Workers hand back configurations and
     the collecting process renders and samples the clouds (`image_job`, which warms both up on its own), so
     they cost every fork server's start (about 0.75 s, before the first worker can start) for nothing."""
+    import threading
+
     from humanoidgen.planning import broadphase
     from humanoidgen.sim.scene import SceneBuilder
 
-    with contextlib.suppress(Exception):
-        broadphase.warm_up()
-    SceneBuilder().build()
+    def kernel() -> None:
+        with contextlib.suppress(Exception):
+            broadphase.warm_up()
+
+    # The kernel's load and the meshes' compile overlap (MuJoCo's compile releases the GIL): about 0.5 s off
+    # the server's start, so off the first worker's. The thread is joined before any fork.
+    loader = threading.Thread(target=kernel, name="hgen-warm-kernel")
+    loader.start()
+    try:
+        SceneBuilder().build()
+    finally:
+        loader.join()
 
 
 with contextlib.suppress(Exception):
