@@ -25,7 +25,7 @@ import numpy as np
 from humanoidgen.objects.describe import openness as openness_of
 from humanoidgen.objects.hands import HAND_POSTURES
 from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env
-from humanoidgen.planning.arm_moves import PlanningError
+from humanoidgen.planning.errors import PlanningError
 from humanoidgen.planning.constraint_gen import ConstraintGenerationError, Generated
 from humanoidgen.planning.constraints import Constraint
 from humanoidgen.planning.hand_ops import finger_contacts
