@@ -10,6 +10,7 @@ import time
 
 import numpy as np
 
+from humanoidgen.objects.library import add_object
 from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env
 from humanoidgen.sim.env import HumanoidEnv
 from humanoidgen.sim.scene import SceneBuilder
@@ -21,7 +22,7 @@ def build() -> tuple[float, HumanoidEnv]:
     t0 = time.perf_counter()
     b = SceneBuilder()
     for k, (name, type_id) in enumerate(OBJECTS):
-        b.add_object(name, type_id, pos=(-0.30 if name != "drawer" else -0.05, -0.30 + 0.15 * k))
+        add_object(b, name, type_id, pos=(-0.30 if name != "drawer" else -0.05, -0.30 + 0.15 * k))
     scene = b.build()
     return time.perf_counter() - t0, HumanoidEnv(scene)
 

@@ -20,6 +20,7 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")
 
 import numpy as np  # noqa: E402
 
+from humanoidgen.objects.library import add_object
 from humanoidgen.planning.planner import HumanoidMotionPlanner, PlanningError  # noqa: E402
 from humanoidgen.sim.env import HumanoidEnv  # noqa: E402
 from humanoidgen.sim.layout import OPERABLE_RANGE, SIDES  # noqa: E402
@@ -30,7 +31,7 @@ BINS = np.array([-0.42, -0.34, -0.26, -0.24, -0.22, -0.19])
 
 def solve(side: str, pos: tuple[float, float], yaw: float, wider: bool) -> tuple[bool, float, list[str]]:
     b = SceneBuilder()
-    b.add_object("cube", 0, pos=pos, yaw=yaw)
+    add_object(b, "cube", 0, pos=pos, yaw=yaw)
     env = HumanoidEnv(b.build())
     planner = HumanoidMotionPlanner(env, wider_search=wider)
     planner.hand_pre_pinch(side)

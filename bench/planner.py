@@ -17,6 +17,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
 from test_planner import cube_on_cube, pick_and_place  # noqa: E402  (the same script the tests run)
 
+from humanoidgen.objects.library import add_object
 from humanoidgen.planning.planner import HumanoidMotionPlanner, PlanningError  # noqa: E402
 from humanoidgen.sim.env import HumanoidEnv  # noqa: E402
 from humanoidgen.sim.scene import SceneBuilder  # noqa: E402
@@ -31,8 +32,8 @@ def main() -> None:
     ok, walls, plan_times, solve_times, sim_seconds, failures = 0, [], [], [], [], []
     for ep in range(args.episodes):
         b = SceneBuilder()
-        b.add_object("cube", 0, pos=(rng.uniform(-0.37, -0.31), rng.uniform(-0.24, -0.14)))
-        b.add_object("cube", 1, pos=(rng.uniform(-0.33, -0.29), rng.uniform(-0.06, 0.0)))
+        add_object(b, "cube", 0, pos=(rng.uniform(-0.37, -0.31), rng.uniform(-0.24, -0.14)))
+        add_object(b, "cube", 1, pos=(rng.uniform(-0.33, -0.29), rng.uniform(-0.06, 0.0)))
         env = HumanoidEnv(b.build())
         planner = HumanoidMotionPlanner(env, seed=ep)
         t0 = time.perf_counter()

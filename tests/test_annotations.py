@@ -5,6 +5,7 @@ import json
 import numpy as np
 import pytest
 
+from humanoidgen.objects.library import add_object
 from humanoidgen.objects.hands import HAND_POSTURES, hand_axes, hand_points
 from humanoidgen.objects.schema import AnnotationError, ObjectAnnotations, load_annotations, save_annotations
 from humanoidgen.sim.layout import SIDES
@@ -81,9 +82,9 @@ from humanoidgen.sim.scene import SceneBuilder  # noqa: E402
 @pytest.fixture(scope="module")
 def query_env():
     b = SceneBuilder()
-    b.add_object("cube", 0, pos=(-0.35, -0.15))
-    b.add_object("cube", 1, pos=(-0.35, 0.15), yaw=np.pi / 2)
-    b.add_object("drawer", 0, pos=(-0.05, 0.30))
+    add_object(b, "cube", 0, pos=(-0.35, -0.15))
+    add_object(b, "cube", 1, pos=(-0.35, 0.15), yaw=np.pi / 2)
+    add_object(b, "drawer", 0, pos=(-0.05, 0.30))
     return HumanoidEnv(b.build())
 
 

@@ -13,6 +13,7 @@ import mujoco  # noqa: E402
 import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 
+from humanoidgen.objects.library import add_object
 from humanoidgen.objects import library  # noqa: E402
 from humanoidgen.objects.barrier import BarrierFamily, covered_share  # noqa: E402
 from humanoidgen.objects.describe import describe_scene  # noqa: E402
@@ -190,7 +191,7 @@ def test_the_scene_fixes_static_families_only():
 
     assert all(f.static is False for f in RIGID_FAMILIES.values())
     b = SceneBuilder()
-    b.add_object("cube", 0, pos=(-0.3, 0.0))
-    b.add_object("barrier", 2, pos=(-0.3, 0.2))
+    add_object(b, "cube", 0, pos=(-0.3, 0.0))
+    add_object(b, "barrier", 2, pos=(-0.3, 0.2))
     model = b.build().model
     assert model.body_jntnum[model.body("cube_0").id] == 1 and model.body_jntnum[model.body("barrier_0").id] == 0

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from humanoidgen.planning import planner as planner_module
-from humanoidgen.planning.arm_moves import PlanningError
+from humanoidgen.planning.errors import PlanningError
 from humanoidgen.planning.planner import SLIP_LIMIT, HumanoidMotionPlanner
 from humanoidgen.tasks.registry import load_task
 from humanoidgen.tasks.scene import build_scene

@@ -11,6 +11,7 @@ import mujoco
 import numpy as np
 import pytest
 
+from humanoidgen.objects.library import add_object
 from humanoidgen.objects.hands import hand_axes, hand_points
 from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env
 from humanoidgen.planning.collision import CollisionWorld
@@ -89,7 +90,7 @@ def empty() -> Setup:
 def air_cube() -> Setup:
     """A 4 cm cube hanging in the air above the right hand's range (the simulation is never stepped)."""
     b = SceneBuilder()
-    b.add_object("cube", 0, pos=(-0.33, -0.15, 0.15))
+    add_object(b, "cube", 0, pos=(-0.33, -0.15, 0.15))
     return Setup(b)
 
 

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from humanoidgen.objects.library import add_object
 from humanoidgen.objects.hands import hand_axes
 from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env
 from humanoidgen.planning import grip_intent
@@ -17,8 +18,8 @@ from humanoidgen.sim.scene import SceneBuilder
 
 def _planner(pos=(-0.32, -0.15), yaw=0.0):
     b = SceneBuilder()
-    b.add_object("cube", 0, pos=pos, yaw=yaw)
-    b.add_object("cube", 1, pos=(-0.32, 0.2))
+    add_object(b, "cube", 0, pos=pos, yaw=yaw)
+    add_object(b, "cube", 1, pos=(-0.32, 0.2))
     env = HumanoidEnv(b.build())
     return env, HumanoidMotionPlanner(env)
 

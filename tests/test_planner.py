@@ -4,6 +4,7 @@ import mujoco
 import numpy as np
 import pytest
 
+from humanoidgen.objects.library import add_object
 from humanoidgen.objects.describe import openness
 from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env
 from humanoidgen.planning.constraints import Constraint
@@ -39,8 +40,8 @@ def test_pick_and_place_succeeds_on_randomized_placements():
     successes, failures = 0, []
     for trial in range(10):
         b = SceneBuilder()
-        b.add_object("cube", 0, pos=(rng.uniform(-0.37, -0.31), rng.uniform(-0.24, -0.14)))
-        b.add_object("cube", 1, pos=(rng.uniform(-0.33, -0.29), rng.uniform(-0.06, 0.0)))
+        add_object(b, "cube", 0, pos=(rng.uniform(-0.37, -0.31), rng.uniform(-0.24, -0.14)))
+        add_object(b, "cube", 1, pos=(rng.uniform(-0.33, -0.29), rng.uniform(-0.06, 0.0)))
         env = HumanoidEnv(b.build())
         planner = HumanoidMotionPlanner(env, seed=trial)
         try:
@@ -57,8 +58,8 @@ def test_pick_and_place_succeeds_on_randomized_placements():
 @pytest.fixture(scope="module")
 def two_cubes():
     b = SceneBuilder()
-    b.add_object("cube", 0, pos=(-0.34, -0.18))
-    b.add_object("cube", 1, pos=(-0.30, -0.02))
+    add_object(b, "cube", 0, pos=(-0.34, -0.18))
+    add_object(b, "cube", 1, pos=(-0.30, -0.02))
     return b.build()
 
 
@@ -86,7 +87,7 @@ def test_held_cube_keeps_its_pose_in_the_hand_and_is_placed_by_its_centre(two_cu
 
 def test_pulling_the_drawer_to_openness_one():
     b = SceneBuilder()
-    b.add_object("drawer", 0, pos=(-0.18, 0.20))
+    add_object(b, "drawer", 0, pos=(-0.18, 0.20))
     env = HumanoidEnv(b.build())
     planner = HumanoidMotionPlanner(env)
     drawer = env.scene.object("drawer", 0)
@@ -267,7 +268,7 @@ def test_finger_offset_moves_the_grip_point_along_the_fingers(two_cubes):
 
 def test_pushing_a_part_to_an_openness_rides_with_the_part():
     b = SceneBuilder()
-    b.add_object("drawer", 0, pos=(-0.08, 0.17))
+    add_object(b, "drawer", 0, pos=(-0.08, 0.17))
     env = HumanoidEnv(b.build())
     planner = HumanoidMotionPlanner(env)
     reach = planner.generate_constraints("drawer", 0, "target1", "left")[0].meta
@@ -281,7 +282,7 @@ def test_pushing_a_part_to_an_openness_rides_with_the_part():
 
 def test_a_wrap_approach_that_would_push_the_body_over_is_refused():
     b = SceneBuilder()
-    b.add_object("bottle", 1, pos=(-0.34, -0.20))
+    add_object(b, "bottle", 1, pos=(-0.34, -0.20))
     env = HumanoidEnv(b.build())
     planner = HumanoidMotionPlanner(env)
     planner.hand_pre_grasp("right")

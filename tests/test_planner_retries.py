@@ -22,6 +22,7 @@ import re
 import numpy as np
 import pytest
 
+from humanoidgen.objects.library import add_object
 from humanoidgen.objects.hands import HAND_POSTURES
 from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env
 from humanoidgen.planning import goal_search
@@ -264,7 +265,7 @@ def test_fingers_may_come_near_the_table_when_the_goal_needs_it_and_say_so():
 
 def test_out_of_range_goal_names_the_range_and_the_other_hand():
     b = SceneBuilder()
-    b.add_object("cube", 0, pos=(-0.33, 0.28))
+    add_object(b, "cube", 0, pos=(-0.33, 0.28))
     env = HumanoidEnv(b.build())
     planner = HumanoidMotionPlanner(env)
     planner.hand_pre_pinch("right")

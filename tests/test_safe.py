@@ -11,6 +11,7 @@ import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 from pydantic import ValidationError  # noqa: E402
 
+from humanoidgen.objects.library import add_object
 from humanoidgen.objects import library  # noqa: E402
 from humanoidgen.objects.articulated import set_openness  # noqa: E402
 from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env  # noqa: E402
@@ -28,7 +29,7 @@ def safe_env():
     from humanoidgen.sim.scene import SceneBuilder
 
     b = SceneBuilder()
-    b.add_object("safe", type_id=0, pos=(-0.05, -0.2), yaw=np.radians(10))
+    add_object(b, "safe", type_id=0, pos=(-0.05, -0.2), yaw=np.radians(10))
     env = HumanoidEnv(b.build())
     return env, env.scene.object("safe", 0)
 

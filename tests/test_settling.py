@@ -6,6 +6,7 @@ import mujoco
 import numpy as np
 import pytest
 
+from humanoidgen.objects.library import add_object
 from humanoidgen.planning.planner import HumanoidMotionPlanner
 from humanoidgen.planning.settling import MAX_REST_WAIT_S, wait_until_still
 from humanoidgen.sim.env import HumanoidEnv
@@ -17,7 +18,7 @@ from humanoidgen.sim.scene import SceneBuilder
 def cube_and_laptop():
     b = SceneBuilder()
     b.add_cube(size=0.04, pos=(-0.30, -0.10, 0.02))
-    b.add_object("laptop", 0, pos=(-0.30, 0.15))
+    add_object(b, "laptop", 0, pos=(-0.30, 0.15))
     return b.build()
 
 

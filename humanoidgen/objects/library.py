@@ -37,3 +37,25 @@ def model(name: str, type_id: int) -> ObjectModel:
 def annotations(name: str, type_id: int) -> ObjectAnnotations:
     model(name, type_id)  # a clear error for an unknown type_id
     return family(name).annotations(type_id)
+
+
+def add_object(builder, type_name: str, type_id: int = 0, pos: tuple[float, ...] | None = None,
+               yaw: float = 0.0):
+    """Add model `type_id` of family `type_name` to `builder` (a sim.scene.SceneBuilder); returns its
+    SceneObject, annotations attached. `pos` is the object's centre; a missing z (or pos=(x, y)) puts it on the
+    table. `yaw` (radians) turns it about the vertical."""
+    import numpy as np
+
+    from humanoidgen.sim.geometry import yaw_quat
+    from humanoidgen.sim.layout import TABLE_TOP_Z
+
+    fam = family(type_name)
+    ann = annotations(type_name, type_id)
+    if pos is None:
+        pos = (-0.30, 0.0)
+    xyz = np.array([pos[0], pos[1], pos[2] if len(pos) > 2 else TABLE_TOP_Z - ann.bbox_min[2]], float)
+    # Articulated objects and static families (barriers) stand fixed on the table: no free joint.
+    free = not (fam.articulated or getattr(fam, "static", False))
+    obj, body = builder.add_object_body(type_name, xyz, yaw_quat(yaw), type_id=type_id, free=free, annotations=ann)
+    fam.build(builder.spec, body, type_id)
+    return obj

@@ -7,6 +7,7 @@ from __future__ import annotations
 import numpy as np
 from PIL import Image, ImageDraw
 
+from humanoidgen.objects.library import add_object
 from humanoidgen.objects.articulated import set_openness
 from humanoidgen.objects.hands import hand_axes, hand_points
 from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env
@@ -84,7 +85,7 @@ def show_object(type_name: str, type_id: int = 0, width: int = 640, height: int 
     ann = library.annotations(type_name, type_id)
     size = float(np.max(np.subtract(ann.bbox_max, ann.bbox_min)))
     builder = SceneBuilder(msaa_samples=4)
-    obj = builder.add_object(type_name, type_id, pos=(-0.25, 0.0))
+    obj = add_object(builder, type_name, type_id, pos=(-0.25, 0.0))
     center = np.array([-0.25, 0.0, -ann.bbox_min[2]])
     eye = center + np.array([-1.6, 0.9, 1.3]) * max(size, 0.08) * 1.6
     panels = []

@@ -9,6 +9,7 @@ from contextlib import nullcontext
 import numpy as np
 
 from humanoidgen.objects.hands import HAND_POSTURES
+from humanoidgen.planning.errors import PlanningError
 from humanoidgen.planning.approach import APPROACH_DISTANCES, WRAP_TOUCH, Approaches  # noqa: F401 (re-exported)
 from humanoidgen.planning.feedback import motion_advice
 from humanoidgen.planning import placing, shared_hold
@@ -49,15 +50,6 @@ RISE_FIRST_M = 0.06  # an empty hand boxed in beside an object rises this much b
 def _with_hand(arm: np.ndarray, hand: np.ndarray) -> np.ndarray:
     """Arm samples (n, 7) with the hand's targets (6,) on every row: (n, 13)."""
     return np.hstack([arm, np.repeat(hand[None], len(arm), 0)])
-
-
-class PlanningError(RuntimeError):
-    """A planner call that could not do its job; `call` and `reason` go back to the plan's author."""
-
-    def __init__(self, call: str, reason: str) -> None:
-        super().__init__(f"{call}: {reason}")
-        self.call = call
-        self.reason = reason
 
 
 class ArmMoves(PartFollowing, Approaches, FingerRoom):

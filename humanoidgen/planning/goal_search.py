@@ -28,7 +28,7 @@ from contextlib import nullcontext
 import mujoco
 import numpy as np
 
-from humanoidgen.planning.arm_moves import PlanningError
+from humanoidgen.planning.errors import PlanningError
 from humanoidgen.planning.feedback import body_label, contact_advice, push_advice, range_advice
 from humanoidgen.planning.goal_solver import GoalResult
 from humanoidgen.planning.goal_targets import AxisWithin

@@ -22,7 +22,7 @@ import numpy as np
 
 from humanoidgen.objects.hands import HAND_POSTURES
 from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env
-from humanoidgen.planning.arm_moves import PlanningError
+from humanoidgen.planning.errors import PlanningError
 from humanoidgen.planning.constraints import Constraint
 from humanoidgen.planning.part_joint import moving_bodies
 from humanoidgen.planning.push_actions import fingers_for_push, part_openness, solve_and_go

@@ -29,7 +29,8 @@ import numpy as np
 
 from humanoidgen.objects.describe import openness
 from humanoidgen.objects.queries import get_point_in_env
-from humanoidgen.planning.arm_moves import RETREAT_DISTANCE, PlanningError
+from humanoidgen.planning.arm_moves import RETREAT_DISTANCE
+from humanoidgen.planning.errors import PlanningError
 from humanoidgen.planning.hand_ops import finger_contacts
 from humanoidgen.planning.motion import MotionError, plan_arm_motion, time_dense_path
 from humanoidgen.planning.paths import time_parametrize

@@ -26,7 +26,8 @@ from humanoidgen.planning.collision import CollisionWorld
 from humanoidgen.planning.constraints import Const, Constraint, ConstraintError
 from humanoidgen.planning.goal_solver import GoalResult, GoalSolver
 from humanoidgen.planning.hand_ops import body_speed, finger_contacts, hand_touches, is_held, resting_on
-from humanoidgen.planning.arm_moves import ArmMoves, PlanningError
+from humanoidgen.planning.arm_moves import ArmMoves
+from humanoidgen.planning.errors import PlanningError
 from humanoidgen.planning.goal_search import GoalSearch
 from humanoidgen.planning.kinematics import Kinematics
 from humanoidgen.planning.poses import Pose

@@ -25,14 +25,14 @@ import numpy as np
 from humanoidgen.objects.describe import openness as openness_of
 from humanoidgen.objects.hands import HAND_POSTURES
 from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env
-from humanoidgen.planning.arm_moves import PlanningError
+from humanoidgen.planning.errors import PlanningError
 from humanoidgen.planning.constraint_gen import ConstraintGenerationError, Generated
 from humanoidgen.planning.constraints import Constraint
 from humanoidgen.planning.hand_ops import finger_contacts
 from humanoidgen.sim.action import HAND_SLICE
 from humanoidgen.sim.layout import HAND_BASE_FRAME, Side
 from humanoidgen.sim.scene import SceneObject
-from humanoidgen.tasks.targets import PushSpec
+from humanoidgen.planning.push_spec import FingertipPush
 
 AT_M = 0.02  # a fingertip this near a pose's contact point is there (no pre-push move needed first)
 REACH_M = 0.02  # the pre-push pose is free space: the hand must get this near it
@@ -51,7 +51,7 @@ class PushMove:
     """What a move to a target1/target2 pose does (the goal solver's Pose carries it to the move)."""
 
     obj: SceneObject
-    spec: PushSpec
+    spec: FingertipPush
     phase: Literal["pre", "push"]
     to: float  # the openness the push brings the part to
 
@@ -69,7 +69,7 @@ def _axis(env, obj: SceneObject, name: str, openness: float | None) -> np.ndarra
     return get_axis_in_env(env, name, obj_type=obj.type_name, obj_id=obj.obj_id, openness=openness)
 
 
-def _aim(env, obj: SceneObject, spec: PushSpec) -> np.ndarray:
+def _aim(env, obj: SceneObject, spec: FingertipPush) -> np.ndarray:
     if isinstance(spec.aim, str):
         return _axis(env, obj, spec.aim, None)
     a = np.asarray(spec.aim, float)
@@ -81,7 +81,7 @@ def part_openness(env, obj: SceneObject) -> float:
     return float(np.clip(openness_of(env.model, env.data, obj), 0.0, 1.0))
 
 
-def contact_point(env, obj: SceneObject, spec: PushSpec, openness: float | None, press: float = 0.0) -> np.ndarray:
+def contact_point(env, obj: SceneObject, spec: FingertipPush, openness: float | None, press: float = 0.0) -> np.ndarray:
     """Where the fingertip's centre touches the part with the part at `openness` (None: as it is now); `press`:
     that many metres further, into the part along the push."""
     o = part_openness(env, obj) if openness is None else openness
@@ -91,7 +91,7 @@ def contact_point(env, obj: SceneObject, spec: PushSpec, openness: float | None,
     return p + spec.inset_at(o) * along + side * (spec.depth - press) * normal
 
 
-def standoff_direction(env, obj: SceneObject, spec: PushSpec, openness: float | None) -> np.ndarray:
+def standoff_direction(env, obj: SceneObject, spec: FingertipPush, openness: float | None) -> np.ndarray:
     """Which way the pre-push pose lies off the contact: under a lid, back against the fingertip's aim (it then
     slides in under the edge); on an outer face, out of it (it then comes down onto it)."""
     if spec.face == "inner":
@@ -99,7 +99,7 @@ def standoff_direction(env, obj: SceneObject, spec: PushSpec, openness: float | 
     return -_axis(env, obj, spec.axes[1], openness)
 
 
-def stage_constraints(env, side: Side, obj: SceneObject, spec: PushSpec, openness: float | None,
+def stage_constraints(env, side: Side, obj: SceneObject, spec: FingertipPush, openness: float | None,
                       off: float = 0.0, what: str = "on", over_edge: bool = False,
                       press: float = 0.0) -> list[Constraint]:
     """The fingertip on (or `off` metres off) the part at `openness`, pointing within the cone of the aim;
@@ -127,7 +127,7 @@ def stage_constraints(env, side: Side, obj: SceneObject, spec: PushSpec, opennes
     return cons
 
 
-def generate(env, holding: dict, obj: SceneObject, side: Side, action: str, spec: PushSpec,
+def generate(env, holding: dict, obj: SceneObject, side: Side, action: str, spec: FingertipPush,
              openness: float | None) -> Generated:
     """Constraints for target1 (the pre-push pose) or target2 (the push's first contact), see the module doc."""
     held = holding.get(side)
@@ -186,7 +186,7 @@ def solve_and_go(planner, side: Side, cons: list, must_reach: bool = False, obj:
     _go(planner, side, pose, must_reach, obj)
 
 
-def _pre_push(planner, side: Side, obj: SceneObject, spec: PushSpec, pose) -> None:
+def _pre_push(planner, side: Side, obj: SceneObject, spec: FingertipPush, pose) -> None:
     """To the pre-push pose (`pose`, solved already, or solved here). Where the way there is blocked, e.g. behind
     a screen that stands nearly upright, from above its edge instead: out of the face and past the edge."""
     env = planner.env

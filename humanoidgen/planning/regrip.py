@@ -13,6 +13,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from humanoidgen.planning.errors import PlanningError
 from humanoidgen.planning.part_joint import follow_openness
 from humanoidgen.sim.layout import Side
 
@@ -52,7 +53,6 @@ def go_on(planner: HumanoidMotionPlanner, side: Side, regrip: dict) -> None:
     """Let go of the part, grip it again at its present openness (the plan's verb, else the other) and move it on
     to `regrip["openness"]`. Where that fails, the move fails with both reasons, unless the regrip is optional
     (the part went most of the way and stays there): then the part is left where it is, with an event."""
-    from humanoidgen.planning.arm_moves import PlanningError
 
     try:
         _go_on(planner, side, regrip)
@@ -70,7 +70,6 @@ def go_on(planner: HumanoidMotionPlanner, side: Side, regrip: dict) -> None:
 
 
 def _go_on(planner: HumanoidMotionPlanner, side: Side, regrip: dict) -> None:
-    from humanoidgen.planning.arm_moves import PlanningError
 
     obj = planner.env.scene.object(*regrip["obj"])
     verb = regrip["verb"] or "grasp"
@@ -119,7 +118,6 @@ def _pushed_on(planner: HumanoidMotionPlanner, side: Side, obj, regrip: dict, no
     for the fingers, and the grip came off at 0.20). A part to be shut is pushed on even where it stayed; one asked
     within NEAR_END of where the task's push ends is pushed to that end. False where there is no such push or it
     fails (then the part is gripped again)."""
-    from humanoidgen.planning.arm_moves import PlanningError
     from humanoidgen.planning.target_actions import scene_targets
 
     targets = scene_targets(planner.env)

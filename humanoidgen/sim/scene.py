@@ -9,7 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from collections.abc import Callable
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import Any
 
 import mujoco
 import numpy as np
@@ -19,9 +19,6 @@ from humanoidgen.sim.cameras import add_cameras
 from humanoidgen.sim.layout import ROBOT_BASE_POS, TABLE_THICKNESS, TABLE_TOP_Z, TABLE_X, TABLE_Y
 from humanoidgen.sim.meshes import floor_grid, visual_faces
 from humanoidgen.sim.robot import build_robot_spec
-
-if TYPE_CHECKING:
-    from humanoidgen.objects.schema import ObjectAnnotations
 
 # Segmentation labels: static world, the robot, then one label per object in the order they were added.
 LABEL_BACKGROUND = 0
@@ -43,7 +40,9 @@ class SceneObject:
     body: str
     label: int
     type_id: int = 0
-    annotations: "ObjectAnnotations | None" = None  # key points and axes (None for ad-hoc shapes)
+    # Key points and axes: an objects.schema.ObjectAnnotations (None for ad-hoc shapes). Typed loosely here
+    # because objects sits above sim: the simulator only carries them.
+    annotations: Any = None
 
 
 @dataclass
@@ -143,15 +142,17 @@ class SceneBuilder:
         return sum(1 for o in self._objects if o.type_name == type_name)
 
     def add_object_body(self, type_name: str, pos: np.ndarray, quat: np.ndarray = (1, 0, 0, 0),
-                        type_id: int = 0, free: bool = True) -> tuple[SceneObject, mujoco.MjsBody]:
-        """Register an object and return its (empty) body for the caller to fill with geoms and joints."""
+                        type_id: int = 0, free: bool = True, annotations: Any = None
+                        ) -> tuple[SceneObject, mujoco.MjsBody]:
+        """Register an object and return its (empty) body for the caller to fill with geoms and joints. A model
+        of the asset library is added with `objects.library.add_object`."""
         obj_id = self._next_obj_id(type_name)
         body_name = f"{type_name}_{obj_id}"
         body = self.spec.worldbody.add_body(name=body_name, pos=list(pos), quat=list(quat))
         if free:
             body.add_freejoint(name=f"{body_name}_free")
         obj = SceneObject(type_name=type_name, obj_id=obj_id, body=body_name,
-                          label=FIRST_OBJECT_LABEL + len(self._objects), type_id=type_id)
+                          label=FIRST_OBJECT_LABEL + len(self._objects), type_id=type_id, annotations=annotations)
         self._objects.append(obj)
         return obj, body
 
@@ -167,28 +168,6 @@ class SceneBuilder:
         half = size / 2
         body.add_geom(name=f"{obj.body}_geom", type=mujoco.mjtGeom.mjGEOM_BOX, size=[half] * 3, rgba=list(rgba),
                       mass=mass, friction=[1.0, 0.01, 0.001], condim=4)
-        return obj
-
-    def add_object(self, type_name: str, type_id: int = 0, pos: tuple[float, ...] | None = None,
-                   yaw: float = 0.0) -> SceneObject:
-        """Add a model of the asset library. `pos` is the object's centre; a missing z (or pos=(x, y)) puts it
-        on the table. `yaw` (radians) turns it about the vertical."""
-        from dataclasses import replace
-
-        from humanoidgen.objects import library
-        from humanoidgen.sim.geometry import yaw_quat
-
-        fam = library.family(type_name)
-        ann = library.annotations(type_name, type_id)
-        if pos is None:
-            pos = (-0.30, 0.0)
-        xyz = np.array([pos[0], pos[1], pos[2] if len(pos) > 2 else TABLE_TOP_Z - ann.bbox_min[2]], float)
-        # Articulated objects and static families (barriers) stand fixed on the table: no free joint.
-        free = not (fam.articulated or getattr(fam, "static", False))
-        obj, body = self.add_object_body(type_name, xyz, yaw_quat(yaw), type_id=type_id, free=free)
-        fam.build(self.spec, body, type_id)
-        obj = replace(obj, annotations=ann)
-        self._objects[-1] = obj
         return obj
 
     # -- compile -----------------------------------------------------------------------------------------

@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING
 import mujoco
 import numpy as np
 
+from humanoidgen.objects.library import add_object
 from humanoidgen.objects import library
 from humanoidgen.objects.articulated import set_openness
 from humanoidgen.sim.env import HumanoidEnv
@@ -121,7 +122,7 @@ def build_layout(layout: list[ResolvedObject], settle_s: float = SETTLE_S,
     holding its initial posture. `dressing`: a room around the table and/or a randomized look."""
     builder = SceneBuilder() if dressing is None else \
         SceneBuilder(surface_height=dressing.surface_height, dressing=dressing)
-    objs = [builder.add_object(o.type, o.type_id, pos=tuple(o.pos), yaw=o.yaw) for o in layout]
+    objs = [add_object(builder, o.type, o.type_id, pos=tuple(o.pos), yaw=o.yaw) for o in layout]
     scene = TaskScene.wrap(builder.build(), aliases)
     env = HumanoidEnv(scene)
     for spec, obj in zip(layout, objs):
