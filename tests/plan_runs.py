@@ -2,12 +2,25 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 from humanoidgen.episodes.result import EpisodeResult
 from humanoidgen.episodes.task_episode import EpisodeRequest, run_task_episode
 
 
-def run_plan(tmp_path, task: str, seed: int, text: str) -> EpisodeResult:
+def run_plan(tmp_path, task: str, seed: int, text: str, time_limit_s: float | None = None) -> EpisodeResult:
+    """`time_limit_s`: run the task with this time limit instead of its own (a test of a planner mechanism,
+    such as letting go and gripping again, whose plan is slower than the task allows; not of its pace)."""
     path = tmp_path / f"{task}_{seed}.py"
     path.write_text(text)
+    if time_limit_s is not None:
+        import yaml
+
+        from humanoidgen.tasks.registry import load_task
+
+        spec = load_task(task).model_dump(mode="json", exclude_none=True)
+        spec.update(time_limit_s=time_limit_s, plan=None)
+        task = str(tmp_path / f"{task}.yaml")
+        Path(task).write_text(yaml.safe_dump(spec))
     result, _ = run_task_episode(EpisodeRequest(task, seed=seed, plan_path=str(path)))
     return result

@@ -206,13 +206,11 @@ def _steps(req: EpisodeRequest, spec, worker, replay: TwinReplay):
     events: list[str] = []
     timeout = req.step_timeout_s
     fed = 0
+    current = (0, "")
     try:
         for i, (title, code) in enumerate(plan):
-            try:
-                out = worker.run_step(code, timeout_s=timeout)
-            except OverTime:
-                steps.append(StepResult(i, title, False, replay_over_time(spec, req)))
-                return _lost(spec.name, req.seed, steps)
+            current = (i, title)
+            out = worker.run_step(code, timeout_s=timeout)
             if out.worker_restarted or not worker.alive:
                 steps.append(StepResult(i, title, False, _error(out, timeout), out.seconds))
                 break
@@ -232,8 +230,9 @@ def _steps(req: EpisodeRequest, spec, worker, replay: TwinReplay):
             raise TypeError("the end of the episode is not a record")
         end["events"] = events + _events(end.get("events"), len(events))
         return steps, len(plan), end
-    except OverTime:
-        steps.append(StepResult(len(steps), "(the scene coming to rest)", False, replay_over_time(spec, req)))
+    except OverTime:  # in a step, or in the commands it left to be sent, or while the scene came to rest
+        i, title = current if len(steps) <= current[0] else (len(steps), "(the scene coming to rest)")
+        steps.append(StepResult(i, title, False, replay_over_time(spec, req)))
         return _lost(spec.name, req.seed, steps)
     except (SandboxError, TypeError, KeyError, ValueError, AttributeError) as exc:
         # The worker's own bookkeeping failed or answered nonsense (plan code can break it): a failed
