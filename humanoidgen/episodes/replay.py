@@ -138,9 +138,7 @@ class Replay:
                             f"{_what_moved(self.env, diff)}")
 
     def _over_time(self) -> str:
-        limit = self.max_steps - self.rest_steps
-        return (f"the plan ran past the task's time limit ({limit / self.env.control_hz:g} s of simulated time, "
-                f"{limit} control steps, plus {MAX_REST_WAIT_S:g} s for the scene to come to rest)")
+        return over_time(self.spec, self.env.control_hz)
 
     # -- the verdict ------------------------------------------------------------------------------------
     def finish(self, claimed_qpos: object = None, claimed_fingerprint: object = None,
@@ -218,6 +216,13 @@ def step_budget(spec, control_hz: float) -> int:
     is given to come to rest."""
     limit = spec.max_steps or int(round(spec.time_limit_s * control_hz))
     return limit + int(round(MAX_REST_WAIT_S * control_hz))
+
+
+def over_time(spec, control_hz: float) -> str:
+    """What an episode that ran past `spec`'s time limit is told (the parent's count and the replay's agree)."""
+    limit = step_budget(spec, control_hz) - int(round(MAX_REST_WAIT_S * control_hz))
+    return (f"the plan ran past the task's time limit ({limit / control_hz:g} s of simulated time, plus "
+            f"{MAX_REST_WAIT_S:g} s for the scene to come to rest): make the moves shorter or fewer")
 
 
 class OverTime(Exception):

@@ -20,7 +20,7 @@ from humanoidgen.episodes.episode_worker import FINISH, PLAN, PROGRESS, EpisodeS
 from humanoidgen.episodes.image_job import PENDING_IMAGES, ImageJob
 from humanoidgen.episodes.plans import PlanFormatError
 from humanoidgen.episodes.recorder import RecorderConfig
-from humanoidgen.episodes.replay import OverTime, ReplayVerdict
+from humanoidgen.episodes.replay import OverTime, ReplayVerdict, over_time
 from humanoidgen.episodes.replay_twin import TwinReplay
 from humanoidgen.episodes.result import EpisodeResult, StepResult
 
@@ -232,7 +232,7 @@ def _steps(req: EpisodeRequest, spec, worker, replay: TwinReplay):
         return steps, len(plan), end
     except OverTime:  # in a step, or in the commands it left to be sent, or while the scene came to rest
         i, title = current if len(steps) <= current[0] else (len(steps), "(the scene coming to rest)")
-        steps.append(StepResult(i, title, False, replay_over_time(spec, req)))
+        steps.append(StepResult(i, title, False, over_time(spec, req.control_hz)))
         return _lost(spec.name, req.seed, steps)
     except (SandboxError, TypeError, KeyError, ValueError, AttributeError) as exc:
         # The worker's own bookkeeping failed or answered nonsense (plan code can break it): a failed
@@ -240,12 +240,6 @@ def _steps(req: EpisodeRequest, spec, worker, replay: TwinReplay):
         steps.append(StepResult(len(steps), "(episode bookkeeping)", False,
                                 f"the plan worker could not report the episode: {type(exc).__name__}: {exc}"))
         return _lost(spec.name, req.seed, steps)
-
-
-def replay_over_time(spec, req: EpisodeRequest) -> str:
-    limit = spec.max_steps / req.control_hz if spec.max_steps else spec.time_limit_s
-    return (f"the plan ran past the task's time limit ({limit:g} s of simulated time): the worker was stopped; "
-            "make the moves shorter or fewer")
 
 
 def _control(worker, name: str, timeout_s: float, **kwargs):
