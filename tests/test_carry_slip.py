@@ -8,9 +8,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from humanoidgen.planning import planner as planner_module
+from humanoidgen.planning import execute, move
 from humanoidgen.planning.errors import PlanningError
-from humanoidgen.planning.planner import SLIP_LIMIT, HumanoidMotionPlanner
+from humanoidgen.planning.execute import SLIP_LIMIT
+from humanoidgen.planning.planner import HumanoidMotionPlanner
 from humanoidgen.tasks.registry import load_task
 from humanoidgen.tasks.scene import build_scene
 
@@ -24,14 +25,15 @@ def carrying(monkeypatch):
     cube = env.scene.object("cube", 0)
 
     def script(shift_m: float, touching: set[str]):
-        planner.holding["right"] = cube
-        planner.grip["right"] = "pinch"
+        planner.ctx.hands["right"].held = cube
+        planner.ctx.hands["right"].grip = "pinch"
         calls = iter(range(1000))
         # The first reading is before the move, the others after it.
-        monkeypatch.setattr(planner, "_relative_to_hand",
+        monkeypatch.setattr(planner.ctx, "relative_to_hand",
                             lambda side, obj: np.array([0.0, 0.0, 0.0 if next(calls) == 0 else shift_m]))
-        monkeypatch.setattr(planner_module, "finger_contacts", lambda *a: set(touching))
-        planner.move_to_pose_with_screw(planner._current_pose("right"), "right")
+        monkeypatch.setattr(move, "finger_contacts", lambda *a: set(touching))
+        monkeypatch.setattr(execute, "finger_contacts", lambda *a: set(touching))
+        planner.move_to_pose_with_screw(planner.ctx.current_pose("right"), "right")
 
     return planner, script
 

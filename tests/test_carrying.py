@@ -15,6 +15,7 @@ import mujoco
 import numpy as np
 import pytest
 
+from humanoidgen.planning import skills
 from humanoidgen.objects.queries import get_point_in_env
 from humanoidgen.planning import constraint_gen
 from humanoidgen.planning.motion import CARRY_TURN_SLACK, carried_turn_check
@@ -46,7 +47,7 @@ def test_the_drawer_head_is_its_front_at_the_handle(storage):
 def test_move_relative_to_a_drawer_measures_from_its_head_then_its_centre(storage):
     env, planner = storage
     offset = np.array([0.08, 0.0, 0.10])
-    gen = constraint_gen.generate(env, planner.holding, "cube", 0, "move", "right", relative_obj_name="drawer",
+    gen = skills.generate(env, planner.holding, "cube", 0, "move", "right", relative_obj_name="drawer",
                                   relative_obj_id=0, relative_p=offset)
     head = get_point_in_env(env, "head", "drawer", 0)
     centre = get_point_in_env(env, "center", "drawer", 0)
@@ -55,7 +56,7 @@ def test_move_relative_to_a_drawer_measures_from_its_head_then_its_centre(storag
     from_centre = [g for g in gen.alternatives if np.allclose(g.constraints[0].object_key_point, centre + offset)]
     assert from_centre and any("centre" in n for n in from_centre[0].notes)
     # An object without a head is measured from its centre only.
-    gen = constraint_gen.generate(env, planner.holding, "drawer", 0, "move", "left", relative_obj_name="cube",
+    gen = skills.generate(env, planner.holding, "drawer", 0, "move", "left", relative_obj_name="cube",
                                   relative_obj_id=0, relative_p=offset)
     np.testing.assert_allclose(gen.constraints[0].object_key_point, get_point_in_env(env, "center", "cube", 0) + offset)
     assert not gen.alternatives
@@ -87,7 +88,7 @@ def test_a_pinch_far_from_the_centre_of_mass_squeezes_top_and_bottom():
 
 def test_a_carried_object_keeps_near_its_shortest_turn(storage):
     env, planner = storage
-    kin = planner.kin
+    kin = planner.ctx.kin
     kin.sync(env.data.qpos)
     kin.attach("right", env.scene.object("cube", 0).body)
     try:
@@ -105,10 +106,10 @@ def test_a_carried_object_keeps_near_its_shortest_turn(storage):
             kin.forward()
             assert check(kin) is ok
         # The sampling planner honours it: no state may be taken, so only the direct way could be (not tried here).
-        res = plan_rrt_connect(kin, planner.collisions, "right", q0, q1, time_limit=0.5, try_direct=False,
+        res = plan_rrt_connect(kin, planner.ctx.collisions, "right", q0, q1, time_limit=0.5, try_direct=False,
                                state_ok=lambda k: False)
         assert not res.ok
-        res = plan_rrt_connect(kin, planner.collisions, "right", q0, q1, time_limit=2.0, state_ok=check)
+        res = plan_rrt_connect(kin, planner.ctx.collisions, "right", q0, q1, time_limit=2.0, state_ok=check)
         assert res.ok
     finally:
         kin.detach("right")

@@ -103,27 +103,27 @@ def planner():
 def test_an_object_in_both_hands_is_carried_by_both_in_planning(planner):
     pot = planner.env.scene.object("pot", 0)
     body = planner.env.model.body(pot.body).id
-    right_arm = planner.collisions._arm_bodies["right"]
+    right_arm = planner.ctx.collisions._arm_bodies["right"]
     # One hand holds it: the other arm is an obstacle as ever.
-    planner.holding["left"] = pot
-    planner._attach_held("left")
-    assert set(planner.kin.attached) == {"left"} and shared_hold.shared_object(planner.holding) is None
+    planner.ctx.hands["left"].held = pot
+    planner.ctx.attach_held("left")
+    assert set(planner.ctx.kin.attached) == {"left"} and shared_hold.shared_object(planner.holding) is None
     bodies = lambda geoms: {int(planner.env.model.geom_bodyid[g]) for g in geoms}  # noqa: E731
-    assert bodies(planner.collisions.obstacles("left")) & right_arm
+    assert bodies(planner.ctx.collisions.obstacles("left")) & right_arm
     # Both hands hold it: attached to both, the left arm (planned) places it, the right arm is no obstacle of the
     # left arm's plan, and the pot is no contact between the arms.
-    planner.holding["right"] = pot
-    planner._attach_held("left")
-    assert list(planner.kin.attached) == ["right", "left"] and planner.collisions.shared_body() == body
-    assert not bodies(planner.collisions.obstacles("left")) & right_arm
-    assert body in bodies(planner.collisions.movers("left")) and body in bodies(planner.collisions.movers("right"))
-    assert planner.collisions.arm_arm_distance() > 0.05  # the hands are far apart; through the pot they touch it
+    planner.ctx.hands["right"].held = pot
+    planner.ctx.attach_held("left")
+    assert list(planner.ctx.kin.attached) == ["right", "left"] and planner.ctx.collisions.shared_body() == body
+    assert not bodies(planner.ctx.collisions.obstacles("left")) & right_arm
+    assert body in bodies(planner.ctx.collisions.movers("left")) and body in bodies(planner.ctx.collisions.movers("right"))
+    assert planner.ctx.collisions.arm_arm_distance() > 0.05  # the hands are far apart; through the pot they touch it
 
 
 def test_arms_carrying_one_object_move_in_step(planner):
     """Two straight joint moves timed on their own (different lengths and profiles) come back as many steps as
     the longer one, each hand at the same share of its way at every step."""
-    kin = planner.kin
+    kin = planner.ctx.kin
     q = {s: kin.arm_q(s) for s in ("left", "right")}
     fingers = np.zeros(6)
 

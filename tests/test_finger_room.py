@@ -59,10 +59,10 @@ def test_a_hand_curls_its_fingers_clear_of_the_drawer_it_let_go():
     planner.move_to_pose_with_screw(pose, "left", attach_obj=True, object_name="drawer", object_id=0)
     planner.open_hand("left")
     before = openness(env.model, env.data, drawer)
-    planner.kin.sync(env.data.qpos)
-    now = planner.action[HAND_SLICE["left"]].copy()
-    cw = planner.collisions
-    sweep, _ = finger_sweep_clearance(planner.kin, cw, "left", now, np.array(HAND_POSTURES["pre_pinch"]),
+    planner.ctx.kin.sync(env.data.qpos)
+    now = planner.ctx.action[HAND_SLICE["left"]].copy()
+    cw = planner.ctx.collisions
+    sweep, _ = finger_sweep_clearance(planner.ctx.kin, cw, "left", now, np.array(HAND_POSTURES["pre_pinch"]),
                                       cw.obstacles("left"))
     assert sweep < 0  # curling in place would push into the drawer
     planner.hand_pre_pinch("left")
@@ -80,14 +80,14 @@ def test_a_hand_lets_go_of_a_handle_along_its_attach_axis(drawer_planner):
     planner.move_to_pose_with_screw(pose, "left", attach_obj=True, object_name="drawer", object_id=0)
     shut = openness(env.model, env.data, drawer)
     assert shut <= 0.05
-    assert planner.part_moved["left"]["unhook_axis"] == "down"  # a grip over the bar (handle_upper)
+    assert planner.ctx.hands["left"].part_moved["unhook_axis"] == "down"  # a grip over the bar (handle_upper)
     z0 = env.hand_pose("left")[0][2]
     planner.open_hand("left")
     assert openness(env.model, env.data, drawer) <= 0.05, planner.events
     if any("along its grip's attach axis" in e for e in planner.events):
         assert env.hand_pose("left")[0][2] < z0 - 0.04  # it left downward, off the bar
     # (here the arm's reach ends 2 cm down: the hand backs straight out instead, as before)
-    assert "left" not in planner.part_moved
+    assert planner.ctx.hands["left"].part_moved is None
 
 
 HANDOVER_AND_STORE = '''

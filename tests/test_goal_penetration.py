@@ -18,7 +18,7 @@ from humanoidgen.tasks.scene import build_scene
 def _deep_in_the_table(planner: HumanoidMotionPlanner, q0: np.ndarray) -> np.ndarray:
     """An arm configuration whose hand is at least 2 cm into the table: the hand tracked straight down from
     `q0` (tracking checks no collisions) until it is."""
-    kin, cw = planner.kin, planner.collisions
+    kin, cw = planner.ctx.kin, planner.ctx.collisions
     kin.set_arm("right", q0)
     kin.forward()
     p0, R0 = kin.ee_pose("right")
@@ -36,7 +36,7 @@ def _deep_in_the_table(planner: HumanoidMotionPlanner, q0: np.ndarray) -> np.nda
 def test_a_goal_deep_in_the_table_is_refused_but_a_start_there_may_leave():
     _, env = build_scene(load_task("block_stack_single"), 0)
     planner = HumanoidMotionPlanner(env, seed=0)
-    kin, cw = planner.kin, planner.collisions
+    kin, cw = planner.ctx.kin, planner.ctx.collisions
     kin.sync(env.data.qpos)
     q0 = kin.arm_q("right").copy()
     deep = _deep_in_the_table(planner, q0)

@@ -18,6 +18,7 @@ import numpy as np
 import pytest
 from pydantic import ValidationError
 
+from humanoidgen.planning import execute
 from humanoidgen.objects import library
 from humanoidgen.objects.queries import get_point_in_env
 from humanoidgen.planning import constraint_gen, move_action, placing
@@ -175,13 +176,13 @@ def test_the_way_out_of_a_grip_turns_with_the_hand(handover_env):
     from humanoidgen.sim.geometry import axis_angle_mat
 
     planner = HumanoidMotionPlanner(handover_env)
-    now = planner._current_pose("right")
-    planner.last_approach["right"] = placing.DOWN
+    now = planner.ctx.current_pose("right")
+    planner.ctx.hands["right"].last_approach = placing.DOWN
     turn = axis_angle_mat(np.array([1.0, 0.0, 0.0]), np.pi / 2)  # a quarter turn about x: down becomes +y
     target = Pose.from_mat(now.p, turn @ now.R, side="right")
-    assert np.allclose(planner._turned_approach("right", target), [0.0, 1.0, 0.0], atol=1e-6)
-    planner.last_approach["right"] = None
-    assert planner._turned_approach("right", target) is None
+    assert np.allclose(execute.turned_approach(planner.ctx, "right", target), [0.0, 1.0, 0.0], atol=1e-6)
+    planner.ctx.hands["right"].last_approach = None
+    assert execute.turned_approach(planner.ctx, "right", target) is None
 
 
 MID_AIR_HANDOVER = '''def step(planner):

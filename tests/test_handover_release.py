@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from humanoidgen.planning import handover
+from humanoidgen.planning.recoveries import hand_over as handover
 from humanoidgen.planning.hand_ops import finger_contacts, is_held
 from humanoidgen.planning.planner import HumanoidMotionPlanner
 from humanoidgen.tasks.registry import load_task
@@ -35,7 +35,7 @@ def _mid_air(close_left: bool = True):
     if close_left:
         planner.hand_pinch("left", "cube", 0)
     else:  # the fingers stay open around the end: the left hand "holds" nothing
-        planner.holding["left"], planner.grip["left"] = cube, "pinch"
+        planner.ctx.hands["left"].held, planner.ctx.hands["left"].grip = cube, "pinch"
     return env, planner, cube
 
 
@@ -47,19 +47,19 @@ def taken():
 @pytest.mark.slow
 def test_a_real_pinch_holds_alone_and_the_trial_changes_nothing(taken):
     env, planner, cube = taken
-    qpos, action, events = env.data.qpos.copy(), planner.action.copy(), list(planner.events)
-    approach = {s: None if a is None else np.array(a) for s, a in planner.last_approach.items()}
-    assert handover.holds_alone(planner, "right", "left", cube)
-    assert np.array_equal(env.data.qpos, qpos) and np.array_equal(planner.action, action)
+    qpos, action, events = env.data.qpos.copy(), planner.ctx.action.copy(), list(planner.events)
+    approach = {s: None if a is None else np.array(a) for s, a in ((s, h.last_approach) for s, h in planner.ctx.hands.items())}
+    assert handover.holds_alone(planner.ctx, "right", "left", cube)
+    assert np.array_equal(env.data.qpos, qpos) and np.array_equal(planner.ctx.action, action)
     assert planner.events == events and planner.holding["right"] is cube and planner.holding["left"] is cube
-    assert all((a is None and planner.last_approach[s] is None) or np.allclose(a, planner.last_approach[s])
+    assert all((a is None and planner.ctx.hands[s].last_approach is None) or np.allclose(a, planner.ctx.hands[s].last_approach)
                for s, a in approach.items())
 
 
 @pytest.mark.slow
 def test_open_fingers_do_not_hold_alone():
     env, planner, cube = _mid_air(close_left=False)
-    assert not handover.holds_alone(planner, "right", "left", cube)
+    assert not handover.holds_alone(planner.ctx, "right", "left", cube)
 
 
 @pytest.mark.slow
@@ -67,9 +67,9 @@ def test_a_grip_that_would_not_hold_is_taken_again_deeper(monkeypatch):
     env, planner, cube = _mid_air()
     verdicts = iter([False, True])
     monkeypatch.setattr(handover, "holds_alone", lambda *a: next(verdicts))
-    axis = np.asarray(planner.last_approach["left"], float)
+    axis = np.asarray(planner.ctx.hands["left"].last_approach, float)
     before = env.hand_pose("left")[0].copy()
-    handover.secure_taker(planner, "right", cube)
+    handover.secure_taker(planner.ctx, "right", cube)
     moved = env.hand_pose("left")[0] - before
     assert float(moved @ axis) == pytest.approx(handover.REGRIP_DEPTHS[0], abs=0.003)  # in along the way it came
     assert "took it again 6 mm deeper" in planner.events[-1]
@@ -83,7 +83,7 @@ def test_where_no_deeper_grip_holds_the_first_one_is_kept_and_said(monkeypatch):
     qpos = env.data.qpos.copy()
     recorded = []
     planner.on_step = recorded.append
-    handover.secure_taker(planner, "right", cube)
+    handover.secure_taker(planner.ctx, "right", cube)
     assert np.array_equal(env.data.qpos, qpos)
     assert recorded == []  # the deeper grips tried were trials: no frame of them is recorded
     assert "may not hold cube 0 alone" in planner.events[-1]

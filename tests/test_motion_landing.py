@@ -23,7 +23,7 @@ def _turned(v: np.ndarray, deg: float) -> np.ndarray:
 def test_joint_landing_keeps_path_constraints_as_well_as_the_goal_does():
     env = HumanoidEnv(SceneBuilder().build())
     planner = HumanoidMotionPlanner(env)
-    kin = planner.kin
+    kin = planner.ctx.kin
     kin.sync(env.data.qpos)
     q0 = kin.arm_q("right").copy()
     palm = get_axis_in_env(env, "right_grasp_axis")

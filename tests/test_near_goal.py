@@ -24,20 +24,20 @@ def _reach_above(env) -> list[Constraint]:
 def test_a_goal_on_a_far_branch_is_solved_again_near_the_arms_posture():
     env = HumanoidEnv(SceneBuilder().build())
     planner = HumanoidMotionPlanner(env)
-    q_now = planner.kin.arm_q("right")
+    q_now = planner.ctx.kin.arm_q("right")
     cons = _reach_above(env)
-    arm = planner.kin.arms["right"]
+    arm = planner.ctx.kin.arms["right"]
     far_seed = np.clip(q_now + np.array([0.0, 0.0, 2.2, 0.0, 2.2, 0.0, 0.0]), arm.lo, arm.hi)
-    far = planner.solver.solve("right", cons, far_seed, far_seed, max_seeds=1)
+    far = planner.ctx.solver.solve("right", cons, far_seed, far_seed, max_seeds=1)
     assert far.success and np.degrees(joint_turn(q_now, far.q)) > FAR_JOINT_DEG  # shoulder yaw and elbow roll
-    near = nearer_goal(planner.solver, "right", cons, q_now, far)
+    near = nearer_goal(planner.ctx.solver, "right", cons, q_now, far)
     assert near is not None and near.success
     assert np.degrees(joint_turn(q_now, near.q)) < FAR_JOINT_DEG
-    planner.kin.set_arm("right", near.q)
-    planner.kin.forward()
-    assert all(c.violation(planner.kin) < 1e-3 for c in cons)
+    planner.ctx.kin.set_arm("right", near.q)
+    planner.ctx.kin.forward()
+    assert all(c.violation(planner.ctx.kin) < 1e-3 for c in cons)
     # A goal near already is left as found.
-    assert nearer_goal(planner.solver, "right", cons, q_now, near) is None
+    assert nearer_goal(planner.ctx.solver, "right", cons, q_now, near) is None
 
 
 def test_the_staged_cup_tip_keeps_the_arm_near_and_pours():

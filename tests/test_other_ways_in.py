@@ -12,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from humanoidgen.planning import approach
 from humanoidgen.objects.queries import get_point_in_env
 from humanoidgen.planning.approach import OTHER_WAY_MAX_COS
 from humanoidgen.planning.constraints import Constraint
@@ -26,9 +27,9 @@ def test_other_directions_keep_the_object_between_thumb_and_fingers():
     planner.hand_pre_pinch("right")
     c = planner.generate_constraints("cube", 0, "pinch", "right")
     _, pose = planner.generate_end_effector_pose(c, "right")
-    ways = planner._other_ways_in("right", pose)
+    ways = approach.other_ways_in(planner.ctx, "right", pose)
     assert len(ways) >= 2
-    thumb, index = planner._fingertips_at("right", pose.joint_q)
+    thumb, index = approach.fingertips_at(planner.ctx, "right", pose.joint_q)
     t = (index - thumb) / np.linalg.norm(index - thumb)
     axis = np.asarray(pose.approach_axis)
     for k, (u, how) in enumerate(ways):
@@ -71,6 +72,6 @@ def test_a_hand_over_beside_the_open_drawer_is_taken_from_another_side():
     planner.move_to_pose_with_screw(pose, "left")
     came_in = [e for e in planner.events if e.startswith("the left hand came in")][-1]
     assert any(how in came_in for how in ("from above", "from the front", "square to")), came_in
-    assert abs(np.asarray(planner.last_approach["left"]) @ np.asarray(pose.approach_axis)) < 0.9
+    assert abs(np.asarray(planner.ctx.hands["left"].last_approach) @ np.asarray(pose.approach_axis)) < 0.9
     planner.hand_pinch("left", "rectangular_cube", 0)
     assert planner.holding["left"] is env.scene.object("cube", 0)

@@ -129,7 +129,7 @@ def test_describe_scene_shows_aliases_and_targets(handover):
 def test_hand_specific_targets_and_alias_lookup_in_generate_constraints(handover):
     _, env, planner = handover
     block = env.scene.object("cube", 0)
-    planner.holding["left"] = block  # constraints only: no motion, so pretend the left hand holds the block
+    planner.ctx.hands["left"].held = block  # constraints only: no motion, so pretend the left hand holds the block
     try:
         c = planner.generate_constraints(obj_name="rectangular_cube", obj_id=0, action="target", hand_name="left")
         goal = c[0].object_key_point
@@ -138,19 +138,19 @@ def test_hand_specific_targets_and_alias_lookup_in_generate_constraints(handover
         c = planner.generate_constraints("cube", 0, "target2", "left")
         assert np.allclose(c[0].object_key_point, goal)
     finally:
-        planner.holding["left"] = None
+        planner.ctx.hands["left"].held = None
 
 
 def test_target_without_holding_says_what_to_do(handover):
     _, _, planner = handover
     with pytest.raises(PlanningError, match="holds nothing.*action='pinch'"):
         planner.generate_constraints(obj_name="rectangular_cube", obj_id=0, action="target", hand_name="right")
-    planner.holding["left"] = planner.env.scene.object("cube", 0)
+    planner.ctx.hands["left"].held = planner.env.scene.object("cube", 0)
     try:
         with pytest.raises(PlanningError, match="held by the left hand.*hand_name='left'"):
             planner.generate_constraints(obj_name="cube0", action="target")
     finally:
-        planner.holding["left"] = None
+        planner.ctx.hands["left"].held = None
 
 
 def test_default_hand_is_right(handover):
@@ -165,7 +165,7 @@ def test_default_hand_is_right(handover):
 
 def test_fallback_lift_where_the_task_defines_no_target(handover):
     _, env, planner = handover
-    planner.holding["right"] = env.scene.object("cube", 1)  # the target cube has no target of its own
+    planner.ctx.hands["right"].held = env.scene.object("cube", 1)  # the target cube has no target of its own
     try:
         before = len(planner.events)
         c = planner.generate_constraints(obj_name="target_cube", action="target")
@@ -175,7 +175,7 @@ def test_fallback_lift_where_the_task_defines_no_target(handover):
         with pytest.raises(PlanningError, match="no 'target1' pose in this task.*action='move'"):
             planner.generate_constraints(obj_name="target_cube", action="target1")
     finally:
-        planner.holding["right"] = None
+        planner.ctx.hands["right"].held = None
 
 
 def test_unknown_action_lists_the_actions(handover):
@@ -209,7 +209,7 @@ def test_pinch_then_target_puts_the_held_cube_at_its_target():
 def test_pour_tips_the_held_cup_toward_the_bowl():
     _, env = build_scene(load_task("cup_pour_easy"), None)
     planner = HumanoidMotionPlanner(env, seed=0)
-    planner.holding["right"] = env.scene.object("cup", 0)
+    planner.ctx.hands["right"].held = env.scene.object("cup", 0)
     c = planner.generate_constraints(obj_name="cup", obj_id=0, action="pour")
     bowl, cup = get_point_in_env(env, "center", "bowl", 0), get_point_in_env(env, "center", "cup", 0)
     goal = c[0].object_key_point
@@ -220,13 +220,13 @@ def test_pour_tips_the_held_cup_toward_the_bowl():
     assert math.degrees(math.acos(tilt[2])) == pytest.approx(160, abs=0.5) and tilt[:2] @ side < 0
     assert "pour lip" in c[2].name and c[2].soft  # the cup's functional "pour" annotation, as a preference
     assert [len(a.constraints) for a in c[0].meta.alternatives] == [3, 3]  # less steep tilts to fall back on
-    planner.holding["right"] = None
+    planner.ctx.hands["right"].held = None
     with pytest.raises(PlanningError, match="holds nothing"):
         planner.generate_constraints(obj_name="cup", obj_id=0, action="pour")
-    planner.holding["right"] = env.scene.object("cube", 0)
+    planner.ctx.hands["right"].held = env.scene.object("cube", 0)
     with pytest.raises(PlanningError, match="cube cannot pour.*cup"):
         planner.generate_constraints(obj_name="cube", obj_id=0, action="pour")
-    planner.holding["right"] = None
+    planner.ctx.hands["right"].held = None
 
 
 def test_grasp_on_a_laptop_screen_takes_its_top_edge():

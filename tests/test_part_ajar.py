@@ -69,7 +69,7 @@ def test_a_pinch_of_a_shut_screen_lifts_it_ajar_first_and_keeps_the_plans_postur
     _, pose = planner.generate_end_effector_pose(c, "right")
     assert openness(env.model, env.data, laptop) >= part_ajar.AJAR_MIN
     assert any("lay shut" in e for e in planner.events)
-    fingers = planner.action[HAND_SLICE["right"]]
+    fingers = planner.ctx.action[HAND_SLICE["right"]]
     assert np.allclose(fingers, HAND_POSTURES["pre_pinch"], atol=1e-6)
     planner.move_to_pose_with_screw(pose, "right", attach_obj=False)
     planner.hand_pinch("right", pinch_object="laptop", obj_id=0)

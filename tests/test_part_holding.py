@@ -15,6 +15,8 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
+from humanoidgen.planning import skills
+from humanoidgen.planning import part_grip
 from humanoidgen.objects.articulated import set_openness
 from humanoidgen.objects.describe import openness
 from humanoidgen.planning import constraint_gen
@@ -42,16 +44,16 @@ def _grasp(planner, obj: str, side: str) -> None:
 def test_a_held_handle_rolls_and_the_whole_drawer_path_is_tracked():
     env, planner = _planner("close_drawer", 0)
     _grasp(planner, "drawer", "left")
-    gen = constraint_gen.generate(env, planner.holding, "drawer", 0, "grasp", "left", 0.0)
+    gen = skills.generate(env, planner.holding, "drawer", 0, "grasp", "left", 0.0)
     assert gen.follow["grip_axis"] == "left" and gen.follow["roll_deg"] > 0
-    kin = planner.kin
+    kin = planner.ctx.kin
     kin.sync(env.data.qpos)
     arm = kin.arms["left"]
     q0 = np.clip(kin.arm_q("left"), arm.lo, arm.hi)
-    poses, q_steps, _ = planner._part_path_poses("left", gen.follow)
+    poses, q_steps, _ = part_grip.part_path_poses(planner.ctx, "left", gen.follow)
     rigid, reason = track_poses(kin, "left", q0, poses)
     assert reason and len(rigid) < 0.6 * len(poses)  # the wrist held at its grasp orientation runs out early
-    path, rolls, reason = track_rolling(kin, "left", q0, poses, *planner._grip_roll_frames("left", gen.follow, q_steps),
+    path, rolls, reason = track_rolling(kin, "left", q0, poses, *part_grip.grip_roll_frames(planner.ctx, "left", gen.follow, q_steps),
                                         limit_deg=gen.follow["roll_deg"])
     assert not reason and len(path) == len(poses)
     assert 5.0 < abs(np.degrees(rolls[-1])) <= gen.follow["roll_deg"]
@@ -82,18 +84,18 @@ def test_closing_a_drawer_by_its_handle(tmp_path):
 def test_a_lid_grasp_takes_the_posture_that_reaches_its_arc():
     env, planner = _planner("close_box_hard", 1)
     planner.hand_pre_grasp("right")
-    gen = constraint_gen.generate(env, planner.holding, "box", 0, "grasp", "right")
+    gen = skills.generate(env, planner.holding, "box", 0, "grasp", "right")
     assert gen.grip_part is not None and gen.grip_part["grip_axis"] == "hinge"
     c = planner.generate_constraints(obj_name="box", obj_id=0, action="grasp", hand_name="right")
     result, _ = planner.generate_end_effector_pose(c, "right")
-    span = planner._arc_span("right", gen.grip_part, result.q)
+    span = part_grip.arc_span(planner.ctx, "right", gen.grip_part, result.q)
     assert span > 1.2  # the exact grip's posture (two joints at their limits) reached 0.45 of 2
     assert any("of its arc" in e for e in planner.events)
 
 
 def test_a_screen_edge_is_pinched_across_its_thickness_and_grasped_over_its_edge():
     env, planner = _planner("close_laptop_hard", 0)
-    gen = constraint_gen.generate(env, planner.holding, "laptop", 0, "pinch", "right")
+    gen = skills.generate(env, planner.holding, "laptop", 0, "pinch", "right")
     lid_in = constraint_gen.get_axis_in_env(env, "lid_in", obj_type="laptop", obj_id=0)
     for g in [gen, *gen.alternatives]:
         squeeze = next(c for c in g.constraints if c.name == "pinch along the attach axis")

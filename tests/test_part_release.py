@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 from humanoidgen.objects.describe import openness
-from humanoidgen.planning import part_release
+from humanoidgen.planning.recoveries import part_release
 from humanoidgen.planning.planner import HumanoidMotionPlanner
 from humanoidgen.planning.snapshot import restore_snapshot, take_snapshot
 from humanoidgen.tasks.registry import load_task
@@ -42,7 +42,7 @@ def _scripted(planner, ways):
     def make(offset, seconds):
         def go():
             env.data.qpos[adr] += offset
-            planner._settle(seconds)
+            planner.ctx.settle(seconds)
         return go
     return [(how, make(offset, seconds)) for how, offset, seconds in ways]
 
@@ -52,7 +52,7 @@ def test_the_way_that_leaves_the_part_in_place_is_run_and_only_it_is_recorded(la
     before = openness(env.model, env.data, laptop)
     ways = [("dragging it", -0.3, 0.1), ("cleanly", 0.0, 0.2), ("also cleanly", 0.0, 0.3)]
     monkeypatch.setattr(part_release, "_ways_out", lambda *a: _scripted(planner, ways))
-    part_release.let_go(planner, "right", laptop, None)
+    part_release.let_go(planner.ctx, "right", laptop, None)
     assert openness(env.model, env.data, laptop) == pytest.approx(before, abs=0.01)
     # The trials ran 0.1 + 0.3 and 0.2 + 0.3 s unrecorded; the chosen way's 0.2 s is all the recorder saw.
     assert len(steps) == round(0.2 * env.control_hz)
@@ -69,15 +69,15 @@ def test_a_hand_left_on_the_part_loses_to_one_that_leaves_it(laptop_scene, monke
     monkeypatch.setattr(part_release, "_ways_out", lambda *a: _scripted(planner, ways))
     order = iter(["dragging", "on it", "off it"])
     monkeypatch.setattr(part_release, "finger_contacts", lambda *a: {"thumb"} if touching[next(order)] else set())
-    part_release.let_go(planner, "right", laptop, None)
+    part_release.let_go(planner.ctx, "right", laptop, None)
     assert "off it" in planner.events[-1]
     # Letting go to grip again at once (a regrip), the usual way may leave the hand on the part it does not drag.
     events = list(planner.events)
     monkeypatch.setattr(part_release, "finger_contacts", lambda *a: {"thumb"})
     monkeypatch.setattr(part_release, "_ways_out", lambda *a: _scripted(planner, [("as usual", 0.0, 0.1),
                                                                                 ("other", 0.0, 0.1)]))
-    planner.regripping = True
-    part_release.let_go(planner, "right", laptop, None)
+    planner.ctx.regripping = True
+    part_release.let_go(planner.ctx, "right", laptop, None)
     assert planner.events == events
 
 
@@ -91,10 +91,10 @@ def test_a_part_going_on_the_way_it_was_moved_is_not_held_back(laptop_scene, mon
     monkeypatch.setattr(part_release, "_ways_out", lambda *a: _scripted(planner, ways))
     monkeypatch.setattr(part_release, "finger_contacts", lambda *a: set())
     events = list(planner.events)
-    part_release.let_go(planner, "right", laptop, closing)
+    part_release.let_go(planner.ctx, "right", laptop, closing)
     assert planner.events == events  # the usual way, run for real
     assert len(steps) == round(0.1 * env.control_hz)
-    part_release.let_go(planner, "right", laptop, opening)
+    part_release.let_go(planner.ctx, "right", laptop, opening)
     assert "holding it up" in planner.events[-1]
 
 
@@ -103,7 +103,7 @@ def test_no_event_when_the_usual_way_is_clean(laptop_scene, monkeypatch):
     ways = [("as usual", 0.0, 0.1), ("other", 0.0, 0.1)]
     monkeypatch.setattr(part_release, "_ways_out", lambda *a: _scripted(planner, ways))
     events = list(planner.events)
-    part_release.let_go(planner, "right", laptop, None)
+    part_release.let_go(planner.ctx, "right", laptop, None)
     assert planner.events == events
     assert len(steps) == round(0.1 * env.control_hz)
 
@@ -123,20 +123,20 @@ def test_a_way_is_judged_once_the_hand_has_gone_home(laptop_scene, monkeypatch):
     def leave(planner, side):  # the move home drags the part after the usual way only
         if tried[-1] == "as usual":
             env.data.qpos[adr] -= 0.3
-        planner._settle(0.1)
+        planner.settle(0.1)
         left.append(tried[-1])
 
     left: list[str] = []
     monkeypatch.setattr(part_release, "_ways_out", ways_out)
     monkeypatch.setattr(part_release, "finger_contacts", lambda *a: {"thumb"})  # the hand on the part either way
     monkeypatch.setattr(part_release, "_leave", leave)
-    part_release.let_go(planner, "right", laptop, None)
+    part_release.let_go(planner.ctx, "right", laptop, None)
     assert left == ["as usual", "other"]
     assert "let go of laptop 0 other" in planner.events[-1]
     assert len(steps) == round(0.1 * env.control_hz)  # the chosen way only: the trials' moves home are not recorded
     left.clear()
-    planner.regripping = True
-    part_release.let_go(planner, "right", laptop, None)
+    planner.ctx.regripping = True
+    part_release.let_go(planner.ctx, "right", laptop, None)
     assert left == []
 
 
@@ -161,13 +161,13 @@ def test_a_trial_leaves_no_trace():
     _, pose = planner.generate_end_effector_pose(c, "right")
     planner.move_to_pose_with_screw(pose, "right")
     planner.hand_pinch("right", "cube", 0)
-    start = take_snapshot(planner)
-    planner.action[:7] += 0.02
-    planner._settle(0.3)
+    start = take_snapshot(planner.ctx)
+    planner.ctx.action[:7] += 0.02
+    planner.ctx.settle(0.3)
     first = env.data.qpos.copy()
-    restore_snapshot(planner, start)
-    planner.action[:7] += 0.02
-    planner._settle(0.3)
+    restore_snapshot(planner.ctx, start)
+    planner.ctx.action[:7] += 0.02
+    planner.ctx.settle(0.3)
     assert np.array_equal(env.data.qpos, first)
 
 

@@ -4,6 +4,7 @@ import mujoco
 import numpy as np
 import pytest
 
+from humanoidgen.planning import approach
 from humanoidgen.objects.library import add_object
 from humanoidgen.objects.describe import openness
 from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env
@@ -174,9 +175,9 @@ def test_collision_ignore_list(two_cubes):
     planner = HumanoidMotionPlanner(env)
     cube = env.model.body("cube_1").id
     planner.ignore_collision("cube", 1)
-    assert cube in planner.collisions.ignored_bodies
+    assert cube in planner.ctx.collisions.ignored_bodies
     planner.restore_collision("cube", 1)
-    assert cube not in planner.collisions.ignored_bodies
+    assert cube not in planner.ctx.collisions.ignored_bodies
 
 
 def test_path_constraints_hold_along_the_motion(empty_scene):
@@ -211,13 +212,13 @@ def test_snapshot_restores_the_episode_exactly(two_cubes):
     _, pose = planner.generate_end_effector_pose(planner.generate_constraints("cube", 0, "pinch", "right"), "right")
     planner.move_to_pose_with_screw(pose, "right")
     planner.hand_pinch("right", "cube", 0)
-    snap = Snapshot.from_dict(take_snapshot(planner).to_dict())  # through JSON-ready data, as the tree log stores it
+    snap = Snapshot.from_dict(take_snapshot(planner.ctx).to_dict())  # through JSON-ready data, as the tree log stores it
     q_at_snap, cube_at_snap = env.data.qpos.copy(), env.object_pose("cube_0")[0]
     # Carry on: lift the cube, then go back to the snapshot.
     _, pose = planner.generate_end_effector_pose(planner.generate_constraints("cube", 0, "target", "right"), "right")
     planner.move_to_pose_with_screw(pose, "right", attach_obj=True, object_name="cube", object_id=0)
     assert np.linalg.norm(env.object_pose("cube_0")[0] - cube_at_snap) > 0.05
-    restore_snapshot(planner, snap)
+    restore_snapshot(planner.ctx, snap)
     assert np.allclose(env.data.qpos, q_at_snap, atol=1e-6)
     assert planner.holding["right"].body == "cube_0"
     # And the restored episode continues like the original did.
@@ -232,9 +233,9 @@ def test_a_trial_records_nothing_and_leaves_the_planner_where_it_was_even_when_i
     env = HumanoidEnv(cube_scene)
     recorded = []
     planner = HumanoidMotionPlanner(env, on_step=recorded.append)
-    planner._settle(0.2)
+    planner.ctx.settle(0.2)
     hook, qpos, events = planner.on_step, env.data.qpos.copy(), list(planner.events)
-    with pytest.raises(RuntimeError), trial(planner):
+    with pytest.raises(RuntimeError), trial(planner.ctx):
         planner.hand_pre_pinch("right")
         planner.events.append("tried")
         raise RuntimeError("the way out failed")
@@ -290,8 +291,8 @@ def test_a_wrap_approach_that_would_push_the_body_over_is_refused():
         c = planner.generate_constraints("bottle", 0, "grasp", "right", point="side_right", finger_offset=offset)
         gen = c[0].meta
         bottle = env.model.body("bottle_0").id
-        planner.collisions.ignored_bodies.add(bottle)  # the hand is meant to touch what it grasps
-        result = planner.solver.solve("right", list(gen.constraints), planner.kin.arm_q("right"), planner.nominal["right"])
-        planner.collisions.ignored_bodies.discard(bottle)
+        planner.ctx.collisions.ignored_bodies.add(bottle)  # the hand is meant to touch what it grasps
+        result = planner.ctx.solver.solve("right", list(gen.constraints), planner.ctx.kin.arm_q("right"), planner.ctx.nominal["right"])
+        planner.ctx.collisions.ignored_bodies.discard(bottle)
         assert result.success and gen.posture == "wrap"
-        assert planner._approach_fits("right", result, gen) is fits
+        assert approach.approach_fits(planner.ctx, "right", result, gen) is fits

@@ -22,6 +22,7 @@ import re
 import numpy as np
 import pytest
 
+from humanoidgen.planning import approach
 from humanoidgen.objects.library import add_object
 from humanoidgen.objects.hands import HAND_POSTURES
 from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env
@@ -210,8 +211,8 @@ def test_scratch_hand_posture_matches_the_simulated_fingers():
     env = HumanoidEnv(SceneBuilder().build())
     planner = HumanoidMotionPlanner(env)
     planner.hand_pre_grasp("left")
-    planner._settle(0.3)
-    kin, m = planner.kin, env.model
+    planner.ctx.settle(0.3)
+    kin, m = planner.ctx.kin, env.model
     kin.sync(env.data.qpos)
     kin.set_hand("left", np.array(HAND_POSTURES["open"]))
     kin.set_hand("left", np.array(HAND_POSTURES["pre_grasp"]))
@@ -237,16 +238,16 @@ def test_fingers_that_would_strike_the_door_as_they_open_come_in_as_they_are():
     planner = HumanoidMotionPlanner(env, seed=9)
     planner.hand_pre_pinch("right")
     _, pose = planner.generate_end_effector_pose(planner.generate_constraints("safe", 0, "pinch", "right"), "right")
-    home = planner.kin.arm_q("right")
-    plan = planner._plan_approach("right", home, pose)
+    home = planner.ctx.kin.arm_q("right")
+    plan = approach.plan_approach(planner.ctx, "right", home, pose)
     pre = plan.legs[-1].waypoints[0]
-    assert not planner._room_to_change("right", pre, "open", pose.approach_part)
-    assert planner._room_to_change("right", home, "open", pose.approach_part)
+    assert not approach.room_to_change(planner.ctx, "right", pre, "open", pose.approach_part)
+    assert approach.room_to_change(planner.ctx, "right", home, "open", pose.approach_part)
     assert plan.posture is None  # it used to be "open"
     planner.move_to_pose_with_screw(pose, "right")
-    planner.kin.sync(env.data.qpos)
-    planner.kin.forward()
-    assert np.linalg.norm(planner.kin.ee_pose("right")[0] - pose.p) < 0.01
+    planner.ctx.kin.sync(env.data.qpos)
+    planner.ctx.kin.forward()
+    assert np.linalg.norm(planner.ctx.kin.ee_pose("right")[0] - pose.p) < 0.01
     planner.hand_pinch("right", "safe", 0)
     assert planner.holding["right"] is not None
 

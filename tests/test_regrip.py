@@ -14,8 +14,8 @@ from pathlib import Path
 
 import pytest
 
-from humanoidgen.planning.goal_search import part_stays
-from humanoidgen.planning.regrip import arrived
+from humanoidgen.planning.part_joint import part_stays
+from humanoidgen.planning.recoveries.grip_again import arrived
 from humanoidgen.tasks.registry import load_task
 from humanoidgen.tasks.scene import build_scene
 from plan_runs import run_plan

@@ -50,12 +50,12 @@ def test_an_honest_run_with_trials_replays_bit_for_bit():
     the replay reaches the worker's very state, bit for bit."""
     spec, env, log, planner = _run()
     planner.hand_pre_pinch("right")
-    with trial(planner):  # moves in the simulation itself, then undone: not the robot's commands
-        planner._move_fingers(("right",), "pinch", seconds=0.4)
-        planner._settle(0.2)
+    with trial(planner.ctx):  # moves in the simulation itself, then undone: not the robot's commands
+        planner.ctx.move_fingers(("right",), "pinch", seconds=0.4)
+        planner.ctx.settle(0.2)
     n_trial = len(log)
     planner.hand_pre_grasp("left")
-    planner._settle(0.3)
+    planner.ctx.settle(0.3)
     assert len(log) > n_trial > 0
     replay = _replayed(spec, log)
     assert replay.problem is None
@@ -71,7 +71,7 @@ def test_a_state_write_is_caught_where_it_happens_and_says_what_moved():
     cube = m.jnt_qposadr[m.body("cube_1").jntadr[0]]
     d.qpos[cube + 2] += 0.04  # lift cube 1 by hand-writing its pose
     mujoco.mj_forward(m, d)
-    planner._settle(0.1)
+    planner.ctx.settle(0.1)
     replay = _replayed(spec, log)
     assert replay.problem is not None and replay.problem.startswith(CHANGED)
     assert "cube[1]" in replay.problem
@@ -83,7 +83,7 @@ def test_a_model_edit_is_named():
     spec, env, log, planner = _run()
     env.model.opt.gravity[:] = (0.0, 0.0, 3.0)  # cubes float up
     env.model.body_mass[env.model.body("cube_0").id] *= 10
-    planner._settle(0.2)
+    planner.ctx.settle(0.2)
     replay = _replayed(spec, log)
     verdict = replay.finish(env.data.qpos.copy(), fingerprint(env.model, env.data))
     assert not verdict.ok
@@ -95,7 +95,7 @@ def test_a_plan_that_stops_early_is_judged_once_the_scene_is_still():
     log already held): a plan that ends with an object in flight is judged where it lands."""
     spec, env, log, planner = _run()
     m, d = env.model, env.data
-    planner._settle(0.02)
+    planner.ctx.settle(0.02)
     replay = _replayed(spec, log)
     cube = m.jnt_qposadr[m.body("cube_1").jntadr[0]]
     replay.env.data.qpos[cube + 2] += 0.02  # (the replay's own scene, as if the commands had tossed it)
@@ -208,7 +208,7 @@ def test_a_teleporting_plan_is_judged_failed_with_its_reason(tmp_path: Path):
 def test_a_plan_that_floods_the_step_hook_is_stopped_at_the_time_limit(tmp_path: Path):
     """Calling the planner's step hook without simulating used to make recorded frames for free; each call is
     now a command the replay simulates, and the worker is stopped once they pass the task's time limit."""
-    code = "# step: fake frames\nfor i in range(200000):\n    planner.on_step(planner.action)\n"
+    code = "# step: fake frames\nfor i in range(200000):\n    planner.on_step(planner.ctx.action)\n"
     result, _ = run_task_episode(EpisodeRequest(TASK, 0, plan_path=_plan(tmp_path, code), step_timeout_s=60))
     assert not result.success
     assert "time limit" in result.steps[-1].error

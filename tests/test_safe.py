@@ -11,6 +11,7 @@ import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 from pydantic import ValidationError  # noqa: E402
 
+from humanoidgen.planning import skills
 from humanoidgen.objects.library import add_object
 from humanoidgen.objects import library  # noqa: E402
 from humanoidgen.objects.articulated import set_openness  # noqa: E402
@@ -206,11 +207,11 @@ def test_a_grip_on_the_knob_follows_the_knobs_own_joint(safe_env):
     _set_knob(env, obj, 0.25)
     assert point_articulation(obj, "knob_fin_right").joint == "knob_hinge"
     assert point_articulation(obj, "handle") == obj.annotations.articulation
-    pinch = constraint_gen.generate(env, {"left": None, "right": None}, "safe", 0, "pinch", "right", openness=0.75)
+    pinch = skills.generate(env, {"left": None, "right": None}, "safe", 0, "pinch", "right", openness=0.75)
     f = pinch.follow
     assert f["joint"] == f"{obj.body}_knob_hinge" and np.degrees(f["q_target"]) == pytest.approx(90.0)
     assert follow_articulation(env, f).part == "knob" and follow_openness(env, f) == pytest.approx(0.25)
-    grasp = constraint_gen.generate(env, {"left": None, "right": None}, "safe", 0, "grasp", "right", openness=1.0)
+    grasp = skills.generate(env, {"left": None, "right": None}, "safe", 0, "grasp", "right", openness=1.0)
     assert grasp.follow["joint"] == f"{obj.body}_hinge" and follow_openness(env, grasp.follow) == 0.0
     assert np.degrees(grasp.follow["q_target"]) == pytest.approx(90.0)
     # A roll about the knob's own axis only undoes its turn; a roll about the handle bar (off the door's hinge)

@@ -64,15 +64,15 @@ def _planner_with_counter(scene):
 
 def test_a_still_scene_gets_no_extra_step(cube_scene):
     env, planner, steps = _planner_with_counter(cube_scene)
-    planner._settle(1.0)  # the cube lands on the table after reset
+    planner.ctx.settle(1.0)  # the cube lands on the table after reset
     steps.clear()
-    assert wait_until_still(planner) == []
+    assert wait_until_still(planner.ctx) == []
     assert steps == []  # a recording of an episode that ends at rest is unchanged
 
 
 def test_a_falling_cube_lands_before_the_wait_ends_and_every_step_is_recorded(cube_scene):
     env, planner, steps = _planner_with_counter(cube_scene)
-    planner._settle(1.0)
+    planner.ctx.settle(1.0)
     body = env.model.body(env.scene.objects[0].body).id
     adr = env.model.jnt_qposadr[env.model.body_jntadr[body]]
     z_rest = float(env.data.qpos[adr + 2])
@@ -80,20 +80,20 @@ def test_a_falling_cube_lands_before_the_wait_ends_and_every_step_is_recorded(cu
     env.data.qvel[:] = 0.0
     mujoco.mj_forward(env.model, env.data)
     steps.clear()
-    assert wait_until_still(planner) == []
+    assert wait_until_still(planner.ctx) == []
     assert abs(float(env.data.qpos[adr + 2]) - z_rest) < 0.003  # on the table again
     assert 0 < len(steps) < MAX_REST_WAIT_S * env.control_hz
 
 
 def test_the_wait_is_bounded_and_says_what_still_moves(cube_scene):
     env, planner, steps = _planner_with_counter(cube_scene)
-    planner._settle(1.0)
+    planner.ctx.settle(1.0)
     body = env.model.body(env.scene.objects[0].body).id
     dof = env.model.jnt_dofadr[env.model.body_jntadr[body]]
     env.data.qvel[dof + 1] = 3.0  # flung sideways, it slides and tumbles for a while
     env.data.qpos[env.model.jnt_qposadr[env.model.body_jntadr[body]] + 2] += 0.3
     steps.clear()
-    assert wait_until_still(planner, max_s=0.1) == ["cube[0]"]
+    assert wait_until_still(planner.ctx, max_s=0.1) == ["cube[0]"]
     assert len(steps) == round(0.1 * env.control_hz)
 
 

@@ -26,8 +26,8 @@ def home_in_the_drawer():
 
 def test_only_the_touched_obstacle_is_let_closer(home_in_the_drawer):
     env, planner, drawer = home_in_the_drawer
-    kin, cw = planner.kin, planner.collisions
-    home = planner.nominal["left"]
+    kin, cw = planner.ctx.kin, planner.ctx.collisions
+    home = planner.ctx.nominal["left"]
     assert touched_at(kin, cw, "left", [home]) == {drawer}  # the open drawer reaches the left hand's home pose
     kin.set_arm("left", home)
     kin.forward()
@@ -42,10 +42,10 @@ def test_only_the_touched_obstacle_is_let_closer(home_in_the_drawer):
 
 def test_a_sampled_path_home_keeps_clear_of_the_other_arm(home_in_the_drawer):
     env, planner, drawer = home_in_the_drawer
-    kin, cw = planner.kin, planner.collisions
+    kin, cw = planner.ctx.kin, planner.ctx.collisions
     # Where the left arm was after letting go of the open drawer's handle in that episode.
     start = np.array([-1.7451, 0.4851, -2.3689, 0.2446, 1.8739, -0.4699, 0.9064])
-    home = planner.nominal["left"]
+    home = planner.ctx.nominal["left"]
     path = plan_arm_motion(kin, cw, "left", start, (planner.left_hand_init_pose.p, planner.left_hand_init_pose.R),
                            q_goal=home, seed=4)
     right_arm = {b for b in range(env.model.nbody) if env.model.body(b).name.startswith(("right_", "R_"))}

@@ -92,7 +92,7 @@ class EpisodeSetup:
             model fingerprint), for the parent to compare with its replay. With `settle` (every step
             succeeded) the robot first holds its command until the scene is still, as the replay checks."""
             if settle is True:
-                wait_until_still(planner)
+                wait_until_still(planner.ctx)
             log.flush()
             if frames is not None:
                 frames.close()

@@ -26,7 +26,7 @@ from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field
 from typing import Any
 
-from humanoidgen.episodes.ray_session import TASK_RETRIES, TaskLost
+from humanoidgen.episodes.ray_session import ON_SHUTDOWN, TASK_RETRIES, TaskLost
 
 DEPTH = 2  # calls queued per actor: one running, one waiting, so it never idles on a round trip to the driver
 ABORT_WAIT_S = 10.0  # how long close() waits for the actors to confirm their plan workers are gone
@@ -127,6 +127,9 @@ def release_pool() -> None:
             if _pool.ray.is_initialized():
                 _pool.release()
         _pool = None
+
+
+ON_SHUTDOWN.append(release_pool)
 
 
 class PoolRunner:

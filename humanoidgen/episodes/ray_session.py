@@ -17,6 +17,9 @@ from collections.abc import Iterator
 from dataclasses import dataclass, field
 from typing import Any
 
+# Called before a session started here shuts Ray down (ray_pool registers its release of the warm actors:
+# the pool builds on the session, so the session cannot import it).
+ON_SHUTDOWN: list = []
 LOCAL_OBJECT_STORE_BYTES = 500 << 20  # a modest store: episodes are small or travel through the shared folder
 WORKER_ENV = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1", "MUJOCO_GL": "egl"}
 # Ray starts its workers at niceness +15 (so that its own daemons come first); on a machine shared with other
@@ -92,9 +95,8 @@ def connect(address: str, workers: int | None = None) -> Iterator[RaySession]:
     try:
         yield RaySession(ray, address, started_here=True)
     finally:
-        from humanoidgen.episodes.ray_pool import release_pool
-
-        release_pool()  # the warm actors end with the connection (they would die with it anyway)
+        for release in ON_SHUTDOWN:  # the warm actors end with the connection (they would die with it anyway)
+            release()
         ray.shutdown()
 
 

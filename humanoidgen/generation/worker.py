@@ -80,7 +80,7 @@ def setup() -> dict[str, Any]:
         """The task's predicates on the current state, plus the planner's event log."""
         if "env" not in state:
             raise RuntimeError("no scene is loaded")
-        wait_until_still(state["planner"])  # as an episode is judged: what the last move set going lands first
+        wait_until_still(state["planner"].ctx)  # as an episode is judged: what the last move set going lands first
         env = state["env"]
         return {"checks": judge(state["spec"], env), "events": [str(e) for e in state["planner"].events[:2000]],
                 "actions": packed(_log(state["actions"])), "qpos": env.data.qpos.copy(),
@@ -90,13 +90,13 @@ def setup() -> dict[str, Any]:
         """The episode's full state (physics and planner bookkeeping), JSON-ready, for a tree search node."""
         from humanoidgen.planning.snapshot import take_snapshot
 
-        return {**take_snapshot(state["planner"]).to_dict(), "actions": packed(_log(state["actions"]))}
+        return {**take_snapshot(state["planner"].ctx).to_dict(), "actions": packed(_log(state["actions"]))}
 
     def restore(snap: dict) -> None:
         from humanoidgen.episodes.action_log import unpack
         from humanoidgen.planning.snapshot import Snapshot, restore_snapshot
 
-        restore_snapshot(state["planner"], Snapshot.from_dict(snap))
+        restore_snapshot(state["planner"].ctx, Snapshot.from_dict(snap))
         state["actions"][:] = list(unpack(snap.get("actions", packed(np.zeros((0, 26)))), 1 << 22))
 
     ns = step_namespace(handle)  # type: ignore[arg-type]

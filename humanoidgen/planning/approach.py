@@ -37,6 +37,7 @@ from humanoidgen.planning.motion import JointPath, MotionError, first_collision,
 from humanoidgen.planning.part_joint import grip_joint, moving_bodies
 from humanoidgen.planning.poses import Pose, screw_interpolate
 from humanoidgen.sim.layout import HAND_PREFIX, Side
+from humanoidgen.planning.context import PlanningContext
 
 # Grasps and pinches come in straight along the approach axis over the first of these that fits (metres).
 APPROACH_DISTANCES = (0.08, 0.05, 0.03)
@@ -72,210 +73,208 @@ class ApproachPlan:
     axis: np.ndarray | None = None  # see ComeIn.axis
 
 
-class Approaches:
-    """Approach planning for HumanoidMotionPlanner (uses env, kin, collisions, solver, nominal, seed)."""
 
-    def _plan_approach(self, side: Side, q0: np.ndarray, target: Pose) -> ApproachPlan:
-        """Transit and straight approach into `target` (which has an approach axis and joint_q); MotionError
-        with every way's reason if none works."""
-        reasons: list[str] = []
-        first = True
-        t0 = time.perf_counter()
-        for way in self._ways_in(side, target, reasons):
-            if time.perf_counter() - t0 > APPROACH_BUDGET_S:
-                reasons.append(f"stopped looking after {APPROACH_BUDGET_S:.0f} s")
-                break
-            try:
-                transit = plan_arm_motion(self.kin, self.collisions, side, q0, way.pre, q_goal=way.path[0],
-                                          seed=self.seed, **({} if first else {"time_limit": TRANSIT_TIME_LIMIT}))
-            except MotionError as exc:
-                reasons.append(f"{way.label}: no way to the pre-approach pose ({exc})")
-                first = False
-                continue
-            return ApproachPlan([transit, JointPath(way.path, "screw")], way.posture, way.label, way.axis)
-        advice = approach_advice(side, reasons, target.p, target.approach_axis)
-        raise MotionError("no straight approach to the target (" + "; ".join(reasons) + ")"
-                          + (f". Suggestion: {advice}" if advice else ""))
-
-    def _ways_in(self, side: Side, target: Pose, reasons: list[str]) -> Iterator[ComeIn]:
-        """Every way of coming in that fits, most direct first; appends why the others do not fit."""
-        p, R, axis, body = target.p, target.R, target.approach_axis, target.approach_object
-        wrap = target.posture == "wrap"
-        yield from self._lines_in(side, target, axis, APPROACH_DISTANCES, "", reasons)
-        for u, how in self._other_ways_in(side, target):
-            yield from self._lines_in(side, target, u, OTHER_WAY_DISTANCES, f" {how}", reasons, other=True)
-        for distance in PRE_POSE_DISTANCES:
-            label = f"{distance * 100:.0f} cm from a pre-approach pose solved on its own"
-            solved = self.solver.solve(side, [PoseTarget(side, p - distance * axis, R, name="pre-approach pose")],
-                                       target.joint_q, self.nominal[side])
-            if not solved.success:
-                # The hand may turn on the way in: a pre-pose turned up to PRE_POSE_TURN_DEG, screwed into the goal.
-                solved = self.solver.solve(side, pose_within(side, p - distance * axis, R, PRE_POSE_TURN_DEG,
-                                                             "pre-approach pose"), target.joint_q, self.nominal[side])
-            pre = (solved.ee_pos, solved.ee_mat) if solved.success else (p - distance * axis, R)
-            if not solved.success:
-                reasons.append(f"{label}: the pre-approach pose is out of reach or in collision "
-                               f"({'; '.join(solved.violations)})")
-                continue
-            fwd, reason = track_poses(self.kin, side, solved.q, screw_interpolate(*pre, p, R))
-            if not reason:
-                path = np.vstack([solved.q, fwd])
-                posture, reason = self._check_way_in(side, path, body, wrap, target.approach_part)
-                if not reason:
-                    yield ComeIn(path, pre, label, posture)
-                    continue
-            reasons.append(f"{label}: {reason}")
-
-    def _lines_in(self, side: Side, target: Pose, u: np.ndarray, distances: tuple[float, ...], how: str,
-                  reasons: list[str], other: bool = False) -> Iterator[ComeIn]:
-        """The straight lines into the goal along `u`, tracked back from the goal's arm posture over `distances`,
-        that fit (`other`: `u` is not the operation's axis); appends why the others do not."""
-        p, R, body = target.p, target.R, target.approach_object
-        for distance in distances:
-            pre = (p - distance * u, R)
-            back, reason = track_poses(self.kin, side, target.joint_q, screw_interpolate(p, R, *pre))
-            label = f"{distance * 100:.0f} cm{how}"
-            if not reason:
-                path = np.vstack([back[::-1], target.joint_q])
-                posture, reason = self._check_way_in(side, path, body, target.posture == "wrap", target.approach_part)
-                if not reason:
-                    yield ComeIn(path, pre, label, posture, axis=u if other else None)
-                    continue
-            reasons.append(f"{label}: {reason}")
-
-    def _other_ways_in(self, side: Side, target: Pose) -> list[tuple[np.ndarray, str]]:
-        """Approach directions other than the operation's axis that keep the grip's closing line (thumb to index
-        at the goal) across the way in, so the object still comes in between thumb and fingers: from above, from
-        the robot's side, and square to the axis both ways; each as (unit direction of motion, how)."""
-        thumb, index = self._fingertips_at(side, target.joint_q)
-        t = index - thumb
-        if np.linalg.norm(t) < 1e-6:
-            return []
-        t = t / np.linalg.norm(t)
-        axis = np.asarray(target.approach_axis, float)
-        side_way = np.cross(t, axis)
-        candidates = [(np.array([0.0, 0.0, -1.0]), "from above"), (np.array([1.0, 0.0, 0.0]), "from the front"),
-                      (side_way, "square to the grip's axis"), (-side_way, "square to the grip's axis")]
-        out: list[tuple[np.ndarray, str]] = []
-        for v, how in candidates:
-            v = v - (v @ t) * t  # across the closing line
-            n = float(np.linalg.norm(v))
-            if n < 0.5:
-                continue
-            v = v / n
-            if v @ axis > OTHER_WAY_MAX_COS or any(v @ w > OTHER_WAY_MAX_COS for w, _ in out):
-                continue
-            out.append((v, how))
-        return out
-
-    def _fingertips_at(self, side: Side, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Thumb and index tip positions with the arm at `q` and the fingers as they are now."""
-        m = self.env.model
-        prefix = HAND_PREFIX[side]
-        self.kin.set_arm(side, q)
-        self.kin.forward()
+def plan_approach(ctx: PlanningContext, side: Side, q0: np.ndarray, target: Pose) -> ApproachPlan:
+    """Transit and straight approach into `target` (which has an approach axis and joint_q); MotionError
+    with every way's reason if none works."""
+    reasons: list[str] = []
+    first = True
+    t0 = time.perf_counter()
+    for way in ways_in(ctx, side, target, reasons):
+        if time.perf_counter() - t0 > APPROACH_BUDGET_S:
+            reasons.append(f"stopped looking after {APPROACH_BUDGET_S:.0f} s")
+            break
         try:
-            return (self.kin.data.xpos[m.body(f"{prefix}_thumb_distal").id].copy(),
-                    self.kin.data.xpos[m.body(f"{prefix}_index_intermediate").id].copy())
-        finally:
-            self.kin.sync(self.env.data.qpos)
+            transit = plan_arm_motion(ctx.kin, ctx.collisions, side, q0, way.pre, q_goal=way.path[0],
+                                      seed=ctx.seed, **({} if first else {"time_limit": TRANSIT_TIME_LIMIT}))
+        except MotionError as exc:
+            reasons.append(f"{way.label}: no way to the pre-approach pose ({exc})")
+            first = False
+            continue
+        return ApproachPlan([transit, JointPath(way.path, "screw")], way.posture, way.label, way.axis)
+    advice = approach_advice(side, reasons, target.p, target.approach_axis)
+    raise MotionError("no straight approach to the target (" + "; ".join(reasons) + ")"
+                      + (f". Suggestion: {advice}" if advice else ""))
 
-    def _check_way_in(self, side: Side, path: np.ndarray, body: str | None, wrap: bool,
-                      part: str | None = None) -> tuple[str | None, str]:
-        """(finger posture to come in with, "") when the approach path fits, else (None, why not). The body
-        approached may be touched; everything else is avoided. `part`: the joint of the articulated part the
-        hand comes to grip (`Pose.approach_part`)."""
-        if first_collision_ignoring(self, side, path, body) is not None:
-            return None, "the straight approach along the operation's axis collides"
-        if body is None:
-            return None, ""
-        if wrap and not self._wrap_clear(side, path, body):
-            return None, f"the open hand would push into {body} on the way in"
-        if self._is_movable_part(body) and not self._part_clear(side, path, body):
-            # Try the way in with open fingers: the grip closes around the part from there.
-            saved = self.kin.hand_q(side)
-            self.kin.set_hand(side, np.array(HAND_POSTURES["open"]))
-            self.kin.forward()
-            try:
-                fits_open = first_collision_ignoring(self, side, path, body) is None and self._part_clear(side, path,
-                                                                                                        body)
-            finally:
-                self.kin.set_hand(side, saved)
-                self.kin.forward()
-            if fits_open and self._room_to_change(side, path[0], "open", part):
-                return "open", ""
-            # Neither fits without pushing the part; come in as before (a part at its end stop does not move).
+def ways_in(ctx: PlanningContext, side: Side, target: Pose, reasons: list[str]) -> Iterator[ComeIn]:
+    """Every way of coming in that fits, most direct first; appends why the others do not fit."""
+    p, R, axis, body = target.p, target.R, target.approach_axis, target.approach_object
+    wrap = target.posture == "wrap"
+    yield from lines_in(ctx, side, target, axis, APPROACH_DISTANCES, "", reasons)
+    for u, how in other_ways_in(ctx, side, target):
+        yield from lines_in(ctx, side, target, u, OTHER_WAY_DISTANCES, f" {how}", reasons, other=True)
+    for distance in PRE_POSE_DISTANCES:
+        label = f"{distance * 100:.0f} cm from a pre-approach pose solved on its own"
+        solved = ctx.solver.solve(side, [PoseTarget(side, p - distance * axis, R, name="pre-approach pose")],
+                                   target.joint_q, ctx.nominal[side])
+        if not solved.success:
+            # The hand may turn on the way in: a pre-pose turned up to PRE_POSE_TURN_DEG, screwed into the goal.
+            solved = ctx.solver.solve(side, pose_within(side, p - distance * axis, R, PRE_POSE_TURN_DEG,
+                                                         "pre-approach pose"), target.joint_q, ctx.nominal[side])
+        pre = (solved.ee_pos, solved.ee_mat) if solved.success else (p - distance * axis, R)
+        if not solved.success:
+            reasons.append(f"{label}: the pre-approach pose is out of reach or in collision "
+                           f"({'; '.join(solved.violations)})")
+            continue
+        fwd, reason = track_poses(ctx.kin, side, solved.q, screw_interpolate(*pre, p, R))
+        if not reason:
+            path = np.vstack([solved.q, fwd])
+            posture, reason = check_way_in(ctx, side, path, body, wrap, target.approach_part)
+            if not reason:
+                yield ComeIn(path, pre, label, posture)
+                continue
+        reasons.append(f"{label}: {reason}")
+
+def lines_in(ctx: PlanningContext, side: Side, target: Pose, u: np.ndarray, distances: tuple[float, ...], how: str,
+              reasons: list[str], other: bool = False) -> Iterator[ComeIn]:
+    """The straight lines into the goal along `u`, tracked back from the goal's arm posture over `distances`,
+    that fit (`other`: `u` is not the operation's axis); appends why the others do not."""
+    p, R, body = target.p, target.R, target.approach_object
+    for distance in distances:
+        pre = (p - distance * u, R)
+        back, reason = track_poses(ctx.kin, side, target.joint_q, screw_interpolate(p, R, *pre))
+        label = f"{distance * 100:.0f} cm{how}"
+        if not reason:
+            path = np.vstack([back[::-1], target.joint_q])
+            posture, reason = check_way_in(ctx, side, path, body, target.posture == "wrap", target.approach_part)
+            if not reason:
+                yield ComeIn(path, pre, label, posture, axis=u if other else None)
+                continue
+        reasons.append(f"{label}: {reason}")
+
+def other_ways_in(ctx: PlanningContext, side: Side, target: Pose) -> list[tuple[np.ndarray, str]]:
+    """Approach directions other than the operation's axis that keep the grip's closing line (thumb to index
+    at the goal) across the way in, so the object still comes in between thumb and fingers: from above, from
+    the robot's side, and square to the axis both ways; each as (unit direction of motion, how)."""
+    thumb, index = fingertips_at(ctx, side, target.joint_q)
+    t = index - thumb
+    if np.linalg.norm(t) < 1e-6:
+        return []
+    t = t / np.linalg.norm(t)
+    axis = np.asarray(target.approach_axis, float)
+    side_way = np.cross(t, axis)
+    candidates = [(np.array([0.0, 0.0, -1.0]), "from above"), (np.array([1.0, 0.0, 0.0]), "from the front"),
+                  (side_way, "square to the grip's axis"), (-side_way, "square to the grip's axis")]
+    out: list[tuple[np.ndarray, str]] = []
+    for v, how in candidates:
+        v = v - (v @ t) * t  # across the closing line
+        n = float(np.linalg.norm(v))
+        if n < 0.5:
+            continue
+        v = v / n
+        if v @ axis > OTHER_WAY_MAX_COS or any(v @ w > OTHER_WAY_MAX_COS for w, _ in out):
+            continue
+        out.append((v, how))
+    return out
+
+def fingertips_at(ctx: PlanningContext, side: Side, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Thumb and index tip positions with the arm at `q` and the fingers as they are now."""
+    m = ctx.env.model
+    prefix = HAND_PREFIX[side]
+    ctx.kin.set_arm(side, q)
+    ctx.kin.forward()
+    try:
+        return (ctx.kin.data.xpos[m.body(f"{prefix}_thumb_distal").id].copy(),
+                ctx.kin.data.xpos[m.body(f"{prefix}_index_intermediate").id].copy())
+    finally:
+        ctx.kin.sync(ctx.env.data.qpos)
+
+def check_way_in(ctx: PlanningContext, side: Side, path: np.ndarray, body: str | None, wrap: bool,
+                  part: str | None = None) -> tuple[str | None, str]:
+    """(finger posture to come in with, "") when the approach path fits, else (None, why not). The body
+    approached may be touched; everything else is avoided. `part`: the joint of the articulated part the
+    hand comes to grip (`Pose.approach_part`)."""
+    if first_collision_ignoring(ctx, side, path, body) is not None:
+        return None, "the straight approach along the operation's axis collides"
+    if body is None:
         return None, ""
-
-    def _room_to_change(self, side: Side, q: np.ndarray, posture: str, part: str | None) -> bool:
-        """Whether the fingers can go from how they are to `posture` with the arm at `q` and come no nearer than
-        PART_TOUCH into anything but the part moved by joint `part`, which gives way (a drawer the opening thumb
-        touches); the rest of its object counts (a safe's door, beside the knob gripped). Unchecked (True) where
-        the part is not known."""
-        if part is None:
-            return True
-        base = self.kin.data.qpos.copy()
-        ignored = set(self.collisions.ignored_bodies)
-        self.collisions.ignored_bodies |= moving_bodies(self.env.model, part)
+    if wrap and not wrap_clear(ctx, side, path, body):
+        return None, f"the open hand would push into {body} on the way in"
+    if is_movable_part(ctx, body) and not part_clear(ctx, side, path, body):
+        # Try the way in with open fingers: the grip closes around the part from there.
+        saved = ctx.kin.hand_q(side)
+        ctx.kin.set_hand(side, np.array(HAND_POSTURES["open"]))
+        ctx.kin.forward()
         try:
-            self.kin.set_arm(side, q)
-            self.kin.forward()
-            clearance, _ = finger_sweep_clearance(self.kin, self.collisions, side, self.kin.hand_q(side),
-                                                  np.array(HAND_POSTURES[posture]), self.collisions.obstacles(side))
-            return clearance > -PART_TOUCH
+            fits_open = first_collision_ignoring(ctx, side, path, body) is None and part_clear(ctx, side, path,
+                                                                                                    body)
         finally:
-            self.collisions.ignored_bodies = ignored
-            self.kin.data.qpos[:] = base
-            self.kin.forward()
+            ctx.kin.set_hand(side, saved)
+            ctx.kin.forward()
+        if fits_open and room_to_change(ctx, side, path[0], "open", part):
+            return "open", ""
+        # Neither fits without pushing the part; come in as before (a part at its end stop does not move).
+    return None, ""
 
-    def _is_movable_part(self, body: str) -> bool:
-        obj = next((o for o in self.env.scene.objects if o.body == body), None)
-        return obj is not None and obj.annotations is not None and obj.annotations.articulation is not None
+def room_to_change(ctx: PlanningContext, side: Side, q: np.ndarray, posture: str, part: str | None) -> bool:
+    """Whether the fingers can go from how they are to `posture` with the arm at `q` and come no nearer than
+    PART_TOUCH into anything but the part moved by joint `part`, which gives way (a drawer the opening thumb
+    touches); the rest of its object counts (a safe's door, beside the knob gripped). Unchecked (True) where
+    the part is not known."""
+    if part is None:
+        return True
+    base = ctx.kin.data.qpos.copy()
+    ignored = set(ctx.collisions.ignored_bodies)
+    ctx.collisions.ignored_bodies |= moving_bodies(ctx.env.model, part)
+    try:
+        ctx.kin.set_arm(side, q)
+        ctx.kin.forward()
+        clearance, _ = finger_sweep_clearance(ctx.kin, ctx.collisions, side, ctx.kin.hand_q(side),
+                                              np.array(HAND_POSTURES[posture]), ctx.collisions.obstacles(side))
+        return clearance > -PART_TOUCH
+    finally:
+        ctx.collisions.ignored_bodies = ignored
+        ctx.kin.data.qpos[:] = base
+        ctx.kin.forward()
 
-    def _part_clear(self, side: Side, path: np.ndarray, body: str) -> bool:
-        return self._clear_of(side, path, body, PART_TOUCH)
+def is_movable_part(ctx: PlanningContext, body: str) -> bool:
+    obj = next((o for o in ctx.env.scene.objects if o.body == body), None)
+    return obj is not None and obj.annotations is not None and obj.annotations.articulation is not None
 
-    def _wrap_clear(self, side: Side, approach: np.ndarray, body: str) -> bool:
-        return self._clear_of(side, approach, body, WRAP_TOUCH)
+def part_clear(ctx: PlanningContext, side: Side, path: np.ndarray, body: str) -> bool:
+    return clear_of(ctx, side, path, body, PART_TOUCH)
 
-    def _clear_of(self, side: Side, path: np.ndarray, body: str, touch: float) -> bool:
-        """Whether `path` stays out of `body` but for `touch` (everything else as the ignore list says)."""
-        ignored = set(self.collisions.ignored_bodies)
-        self.collisions.ignored_bodies.discard(self.env.model.body(body).id)
-        try:
-            return first_collision(self.kin, self.collisions, side, path, clearance=-touch) is None
-        finally:
-            self.collisions.ignored_bodies = ignored
+def wrap_clear(ctx: PlanningContext, side: Side, approach: np.ndarray, body: str) -> bool:
+    return clear_of(ctx, side, approach, body, WRAP_TOUCH)
 
-    def _straight_approach(self, side: Side, q_goal: np.ndarray, p: np.ndarray, R: np.ndarray, axis: np.ndarray,
-                           approach_object: str | None, distances: tuple[float, ...] = APPROACH_DISTANCES,
-                           wrap: bool = False, part: str | None = None):
-        """The straight approach into a goal along `axis` tracked back from the goal, over the first distance
-        that fits: (joint path from the pre-pose to the goal, the pre-pose, reasons) or (None, None, reasons)."""
-        reasons = []
-        for distance in distances:
-            pre = (p - distance * axis, R)
-            back, reason = track_poses(self.kin, side, q_goal, screw_interpolate(p, R, *pre))
+def clear_of(ctx: PlanningContext, side: Side, path: np.ndarray, body: str, touch: float) -> bool:
+    """Whether `path` stays out of `body` but for `touch` (everything else as the ignore list says)."""
+    ignored = set(ctx.collisions.ignored_bodies)
+    ctx.collisions.ignored_bodies.discard(ctx.env.model.body(body).id)
+    try:
+        return first_collision(ctx.kin, ctx.collisions, side, path, clearance=-touch) is None
+    finally:
+        ctx.collisions.ignored_bodies = ignored
+
+def straight_approach(ctx: PlanningContext, side: Side, q_goal: np.ndarray, p: np.ndarray, R: np.ndarray, axis: np.ndarray,
+                       approach_object: str | None, distances: tuple[float, ...] = APPROACH_DISTANCES,
+                       wrap: bool = False, part: str | None = None):
+    """The straight approach into a goal along `axis` tracked back from the goal, over the first distance
+    that fits: (joint path from the pre-pose to the goal, the pre-pose, reasons) or (None, None, reasons)."""
+    reasons = []
+    for distance in distances:
+        pre = (p - distance * axis, R)
+        back, reason = track_poses(ctx.kin, side, q_goal, screw_interpolate(p, R, *pre))
+        if not reason:
+            approach = np.vstack([back[::-1], q_goal])
+            _, reason = check_way_in(ctx, side, approach, approach_object, wrap, part)
             if not reason:
-                approach = np.vstack([back[::-1], q_goal])
-                _, reason = self._check_way_in(side, approach, approach_object, wrap, part)
-                if not reason:
-                    return approach, pre, reasons
-            reasons.append(f"{distance * 100:.0f} cm: {reason}")
-        return None, None, reasons
+                return approach, pre, reasons
+        reasons.append(f"{distance * 100:.0f} cm: {reason}")
+    return None, None, reasons
 
-    def _approach_fits(self, side: Side, result, gen) -> bool:
-        """Whether a solved grip can be approached straight along its axis (the shortest approach)."""
-        if gen is None or gen.approach_axis is None or gen.follow is not None:
-            return True
-        self.kin.sync(self.env.data.qpos)
-        self._attach_held(side)
-        approach, _, _ = self._straight_approach(side, result.q, result.ee_pos, result.ee_mat, gen.approach_axis,
-                                                 gen.approach_object, distances=APPROACH_DISTANCES[-1:],
-                                                 wrap=gen.posture == "wrap",
-                                                 part=grip_joint(gen))
-        self.kin.sync(self.env.data.qpos)
-        return approach is not None
+def approach_fits(ctx: PlanningContext, side: Side, result, gen) -> bool:
+    """Whether a solved grip can be approached straight along its axis (the shortest approach)."""
+    if gen is None or gen.approach_axis is None or gen.follow is not None:
+        return True
+    ctx.kin.sync(ctx.env.data.qpos)
+    ctx.attach_held(side)
+    approach, _, _ = straight_approach(ctx, side, result.q, result.ee_pos, result.ee_mat, gen.approach_axis,
+                                             gen.approach_object, distances=APPROACH_DISTANCES[-1:],
+                                             wrap=gen.posture == "wrap",
+                                             part=grip_joint(gen))
+    ctx.kin.sync(ctx.env.data.qpos)
+    return approach is not None
 
 
 def first_collision_ignoring(planner, side: Side, path: np.ndarray, body: str | None) -> int | None:

@@ -25,7 +25,6 @@ from __future__ import annotations
 import time
 from contextlib import nullcontext
 
-import mujoco
 import numpy as np
 
 from humanoidgen.planning.errors import PlanningError
@@ -34,10 +33,13 @@ from humanoidgen.planning.goal_solver import GoalResult
 from humanoidgen.planning.goal_targets import AxisWithin
 from humanoidgen.planning.motion import track_poses
 from humanoidgen.planning.near_goal import joint_turn, nearer_goal
-from humanoidgen.planning.part_joint import follow_articulation, follow_openness, grip_joint, point_motion
-from humanoidgen.planning import regrip
+from humanoidgen.planning.part_joint import part_stays, follow_articulation, follow_openness, grip_joint, point_motion
+from humanoidgen.planning import regrip_request as regrip
 from humanoidgen.planning.poses import Pose
 from humanoidgen.sim.layout import HAND_PREFIX, OPERABLE_RANGE, Side
+from humanoidgen.planning import approach
+from humanoidgen.planning import part_grip
+from humanoidgen.planning.context import PlanningContext
 
 FINGER_TABLE_CLEARANCE = 0.0015  # m: fingers meant to touch may come this close to the table
 CONE_DEG = 15.0  # the approach direction of a grip or push may tilt this far
@@ -61,393 +63,379 @@ ON_POINT = 0.025  # a fingertip this near a push point is on it: a push from the
 PUSH_MIN_COS = 0.3  # a fingertip drives a part only where the part gives way within ~70 deg of the push
 
 
-def part_stays(env, joint: str, q: float) -> bool:
-    """Would an articulated part left alone at joint value `q` stay there (its joint friction holds its weight)?"""
-    m = env.model
-    jid = m.joint(joint).id
-    d = mujoco.MjData(m)
-    d.qpos[:] = env.data.qpos
-    d.qpos[m.jnt_qposadr[jid]] = q
-    mujoco.mj_forward(m, d)
-    dof = m.jnt_dofadr[jid]
-    return bool(abs(d.qfrc_bias[dof]) <= m.dof_frictionloss[dof])
 
+def solve_goal(ctx: PlanningContext, constraints: list, side: Side) -> tuple[GoalResult, Pose]:
+    ctx.kin.sync(ctx.env.data.qpos)
+    q_now = ctx.kin.arm_q(side)
+    gen = getattr(constraints[0], "meta", None)
+    held = ctx.hands[side].held
+    follow = getattr(gen, "follow", None) if gen is not None else None
+    holds_part = follow is not None and held is not None and held.body == follow["body"]
+    if follow is not None and not holds_part:
+        check_push_direction(ctx, side, gen)
+    # The hand rides with the part from where it is on it: holding it, or a fingertip already on the point.
+    riding = holds_part or (follow is not None and held is None and on_push_point(ctx, side, follow))
+    ignored_before = set(ctx.collisions.ignored_bodies)
+    slack = 0.0
+    try:
+        result = None
+        if riding:
+            result = riding_goal(ctx, side, follow)
+        if result is None or not result.success:
+            first_try = result
+            result, gen, tried = exact_goal(ctx, side, constraints, gen, ignored_before, thorough=not riding)
+            if first_try is not None and (not result.success or not reaches_back(ctx, side, follow, result)):
+                result = first_try  # the part's own path says best why not
+        if not result.success and not riding and getattr(ctx, "wider_search", True):
+            result, gen, slack = wider_goal(ctx, side, gen, tried, ignored_before, result)
+        if result.success and not riding and getattr(gen, "grip_part", None) is not None:
+            result, gen = prefer_arc(ctx, side, gen, result, ignored_before)
+        if result.success and not riding and ctx.carries(side):
+            # The constraints as passed (a plan may add its own to generated ones), or the other grip taken.
+            cons = constraints if gen is None or gen is getattr(constraints[0], "meta", None) else gen.constraints
+            near = nearer_goal(ctx.solver, side, cons, q_now, result, ctx.seed)
+            if near is not None:
+                ctx.events.append(f"the {side} arm takes a goal near its posture: the first found turned a joint "
+                                   f"{np.degrees(joint_turn(q_now, result.q)):.0f} deg, swinging {held.type_name} "
+                                   f"{held.obj_id} through a wide arc")
+                result = near
+    finally:
+        ctx.collisions.ignored_bodies = ignored_before
+        ctx.kin.sync(ctx.env.data.qpos)
+    ctx.goal_results.append(result)
+    partial = None
+    if not result.success and riding and result.partial is not None and ctx.regrips_left > 0:
+        result, partial = partial_goal(ctx, side, follow, result)
+    if not result.success:
+        raise PlanningError("generate_end_effector_pose", goal_failure(ctx, side, constraints, gen, result))
+    pose = Pose.from_mat(result.ee_pos, result.ee_mat, joint_q=result.q, side=side)
+    pose.finger_table_slack = slack
+    if gen is not None:
+        pose.approach_axis = gen.approach_axis
+        pose.approach_object = gen.approach_object
+        pose.approach_part = grip_joint(gen)
+        pose.follow = gen.follow
+        pose.posture = gen.posture
+    if partial is not None:
+        q_reached, pose.regrip = partial
+        pose.follow = dict(gen.follow, q_target=q_reached)
+    return result, pose
 
-class GoalSearch:
-    """Goal search for HumanoidMotionPlanner (uses env, kin, collisions, solver, holding, nominal, events)."""
+def partial_goal(ctx: PlanningContext, side: Side, follow: dict, failed: GoalResult) -> tuple[GoalResult, tuple[float, dict]]:
+    """A held part the arm can move only partway: the goal as far as it gets, the part's joint value there, and
+    what the move does after it (`Pose.regrip`): it lets go, grips the part again and takes it on to the
+    openness asked (planning/regrip.py). Where the part went PARTIAL_ENOUGH of the way and stays where the hand
+    leaves it, that second grip is optional: if it cannot be taken, the part stays there (an event says so: the
+    plan's next steps may push it on); otherwise its failure is the move's."""
+    q, q_reached = failed.partial
+    art = follow_articulation(ctx.env, follow)  # the held part's own joint (a knob's, on a door)
+    now, reached, wanted = (follow_openness(ctx.env, follow), art.openness_of(q_reached),
+                            art.openness_of(follow["q_target"]))
+    share = (reached - now) / (wanted - now) if wanted != now else 1.0
+    # A part already most of the way that stays put is worth going on with (a lid left at 0.88 of a task's
+    # 0.9) but not worth failing the move for.
+    optional = share >= PARTIAL_ENOUGH and part_stays(ctx.env, follow["joint"], q_reached)
+    return goal_at(ctx, side, q, failed.solve_time), (
+        q_reached, regrip.request(follow, wanted, ctx.hands[side].grip, reached, optional))
 
-    def _solve_goal(self, constraints: list, side: Side) -> tuple[GoalResult, Pose]:
-        self.kin.sync(self.env.data.qpos)
-        q_now = self.kin.arm_q(side)
-        gen = getattr(constraints[0], "meta", None)
-        held = self.holding[side]
-        follow = getattr(gen, "follow", None) if gen is not None else None
-        holds_part = follow is not None and held is not None and held.body == follow["body"]
-        if follow is not None and not holds_part:
-            self._check_push_direction(side, gen)
-        # The hand rides with the part from where it is on it: holding it, or a fingertip already on the point.
-        riding = holds_part or (follow is not None and held is None and self._on_push_point(side, follow))
-        ignored_before = set(self.collisions.ignored_bodies)
-        slack = 0.0
-        try:
-            result = None
-            if riding:
-                result = self._riding_goal(side, follow)
-            if result is None or not result.success:
-                first_try = result
-                result, gen, tried = self._exact_goal(side, constraints, gen, ignored_before, thorough=not riding)
-                if first_try is not None and (not result.success or not self._reaches_back(side, follow, result)):
-                    result = first_try  # the part's own path says best why not
-            if not result.success and not riding and getattr(self, "wider_search", True):
-                result, gen, slack = self._wider_goal(side, gen, tried, ignored_before, result)
-            if result.success and not riding and getattr(gen, "grip_part", None) is not None:
-                result, gen = self._prefer_arc(side, gen, result, ignored_before)
-            if result.success and not riding and self._carries(side):
-                # The constraints as passed (a plan may add its own to generated ones), or the other grip taken.
-                cons = constraints if gen is None or gen is getattr(constraints[0], "meta", None) else gen.constraints
-                near = nearer_goal(self.solver, side, cons, q_now, result, self.seed)
-                if near is not None:
-                    self.events.append(f"the {side} arm takes a goal near its posture: the first found turned a joint "
-                                       f"{np.degrees(joint_turn(q_now, result.q)):.0f} deg, swinging {held.type_name} "
-                                       f"{held.obj_id} through a wide arc")
-                    result = near
-        finally:
-            self.collisions.ignored_bodies = ignored_before
-            self.kin.sync(self.env.data.qpos)
-        self.goal_results.append(result)
-        partial = None
-        if not result.success and riding and result.partial is not None and self.regrips_left > 0:
-            result, partial = self._partial_goal(side, follow, result)
-        if not result.success:
-            raise PlanningError("generate_end_effector_pose", self._goal_failure(side, constraints, gen, result))
-        pose = Pose.from_mat(result.ee_pos, result.ee_mat, joint_q=result.q, side=side)
-        pose.finger_table_slack = slack
-        if gen is not None:
-            pose.approach_axis = gen.approach_axis
-            pose.approach_object = gen.approach_object
-            pose.approach_part = grip_joint(gen)
-            pose.follow = gen.follow
-            pose.posture = gen.posture
-        if partial is not None:
-            q_reached, pose.regrip = partial
-            pose.follow = dict(gen.follow, q_target=q_reached)
-        return result, pose
+def goal_at(ctx: PlanningContext, side: Side, q: np.ndarray, solve_time: float) -> GoalResult:
+    """A solved goal at arm configuration q (its end-effector pose read from the kinematics)."""
+    ctx.kin.set_arm(side, q)
+    ctx.kin.forward()
+    p, R = ctx.kin.ee_pose(side)
+    ctx.kin.sync(ctx.env.data.qpos)
+    return GoalResult(True, q, p, R, 0.0, [], None, 0, solve_time)
 
-    def _partial_goal(self, side: Side, follow: dict, failed: GoalResult) -> tuple[GoalResult, tuple[float, dict]]:
-        """A held part the arm can move only partway: the goal as far as it gets, the part's joint value there, and
-        what the move does after it (`Pose.regrip`): it lets go, grips the part again and takes it on to the
-        openness asked (planning/regrip.py). Where the part went PARTIAL_ENOUGH of the way and stays where the hand
-        leaves it, that second grip is optional: if it cannot be taken, the part stays there (an event says so: the
-        plan's next steps may push it on); otherwise its failure is the move's."""
-        q, q_reached = failed.partial
-        art = follow_articulation(self.env, follow)  # the held part's own joint (a knob's, on a door)
-        now, reached, wanted = (follow_openness(self.env, follow), art.openness_of(q_reached),
-                                art.openness_of(follow["q_target"]))
-        share = (reached - now) / (wanted - now) if wanted != now else 1.0
-        # A part already most of the way that stays put is worth going on with (a lid left at 0.88 of a task's
-        # 0.9) but not worth failing the move for.
-        optional = share >= PARTIAL_ENOUGH and part_stays(self.env, follow["joint"], q_reached)
-        return self._goal_at(side, q, failed.solve_time), (
-            q_reached, regrip.request(follow, wanted, self.grip[side], reached, optional))
+# -- ignore lists ----------------------------------------------------------------------------------
+def use_ignores(ctx: PlanningContext, side: Side, gen, ignored_before: set[int]) -> None:
+    """What a goal for `gen` may touch: the body it operates on, a held part, what rests in a carried object."""
+    ctx.collisions.ignored_bodies = ignored_before | ctx.touched_by(gen)
+    held = ctx.hands[side].held
+    if held is not None and held.annotations is not None and held.annotations.articulation is not None:
+        ctx.collisions.ignored_bodies.add(ctx.env.model.body(held.body).id)
+    ctx.attach_held(side)
+    ctx.ignore_contents(side)
 
-    def _goal_at(self, side: Side, q: np.ndarray, solve_time: float) -> GoalResult:
-        """A solved goal at arm configuration q (its end-effector pose read from the kinematics)."""
-        self.kin.set_arm(side, q)
-        self.kin.forward()
-        p, R = self.kin.ee_pose(side)
-        self.kin.sync(self.env.data.qpos)
-        return GoalResult(True, q, p, R, 0.0, [], None, 0, solve_time)
+# -- rung 1: a held part carries the hand ------------------------------------------------------------
+def on_push_point(ctx: PlanningContext, side: Side, follow: dict) -> bool:
+    from humanoidgen.objects.queries import get_point_in_env
 
-    # -- ignore lists ----------------------------------------------------------------------------------
-    def _use_ignores(self, side: Side, gen, ignored_before: set[int]) -> None:
-        """What a goal for `gen` may touch: the body it operates on, a held part, what rests in a carried object."""
-        self.collisions.ignored_bodies = ignored_before | self._touched_by(gen)
-        held = self.holding[side]
-        if held is not None and held.annotations is not None and held.annotations.articulation is not None:
-            self.collisions.ignored_bodies.add(self.env.model.body(held.body).id)
-        self._attach_held(side)
-        self._ignore_contents(side)
+    obj = ctx.env.scene.object(*follow["obj"])
+    tip = get_point_in_env(ctx.env, f"press_point_base_{side}_hand")
+    point = get_point_in_env(ctx.env, follow["part_point"], obj.type_name, obj.obj_id)
+    return float(np.linalg.norm(tip - point)) < ON_POINT
 
-    # -- rung 1: a held part carries the hand ------------------------------------------------------------
-    def _on_push_point(self, side: Side, follow: dict) -> bool:
-        from humanoidgen.objects.queries import get_point_in_env
+def reaches_back(ctx: PlanningContext, side: Side, follow: dict, result: GoalResult) -> bool:
+    """Whether a freshly solved goal for a part the hand rides with can be used: the move then tracks the
+    part's path back from it to where the hand is now (`ArmMoves._follow_part`'s fallback), so check that."""
+    ctx.kin.sync(ctx.env.data.qpos)
+    arm = ctx.kin.arms[side]
+    q0 = np.clip(ctx.kin.arm_q(side), arm.lo, arm.hi)
+    poses, _, _ = part_grip.part_path_poses(ctx, side, follow)
+    back, reason = track_poses(ctx.kin, side, result.q, poses[-2::-1] + [ctx.kin.ee_pose(side)])
+    return not reason and np.max(np.abs(back[-1] - q0)) < 0.15
 
-        obj = self.env.scene.object(*follow["obj"])
-        tip = get_point_in_env(self.env, f"press_point_base_{side}_hand")
-        point = get_point_in_env(self.env, follow["part_point"], obj.type_name, obj.obj_id)
-        return float(np.linalg.norm(tip - point)) < ON_POINT
+def riding_goal(ctx: PlanningContext, side: Side, follow: dict) -> GoalResult:
+    t0 = time.perf_counter()
+    use_ignores(ctx, side, None, set(ctx.collisions.ignored_bodies))
+    arm = ctx.kin.arms[side]
+    q0 = np.clip(ctx.kin.arm_q(side), arm.lo, arm.hi)
+    path, q_steps, q_now, reason = part_grip.track_part(ctx, side, q0, follow)
+    way = abs(follow["q_target"] - q_now)
+    reached = abs(q_steps[len(path) - 1] - q_now) if len(path) else 0.0
+    if not reason or (len(path) and reached >= part_grip.follow_enough(ctx, side) * way):
+        return goal_at(ctx, side, path[-1], time.perf_counter() - t0)
+    obj = ctx.env.scene.object(*follow["obj"])
+    held = ctx.hands[side].held is not None
+    art = follow_articulation(ctx.env, follow)
+    now = follow_openness(ctx.env, follow)
+    got = art.openness_of(q_steps[len(path) - 1]) if len(path) else now
+    wanted = art.openness_of(follow["q_target"])
+    pushes = pushes_toward(ctx, side, obj, wanted, skip_point=None if held else follow["part_point"])
+    ctx.kin.sync(ctx.env.data.qpos)
+    partial = None
+    if held and len(path) and reached >= REGRIP_MIN_SHARE * way:
+        partial = (path[-1], float(q_steps[len(path) - 1]))
+    elif held and part_stays(ctx.env, follow["joint"], q_now):
+        # Hardly any of the way from this grip (a screen lifted 0.3 -> 0.6 in one hold has the wrist turned so
+        # far that it gets 0.6 -> 0.68 of a 0.85 asked): where the part stays put if let go, let go here and
+        # grip it again in a posture that keeps its arc in reach (regrip.py; at most MAX_REGRIPS times).
+        partial = (path[-1], float(q_steps[len(path) - 1])) if len(path) else (q0, float(q_now))
+    return GoalResult(False, None, partial=partial, violations=[
+        f"the {side} hand {'holding' if held else 'pushing'} {obj.type_name} {obj.obj_id} can move it only "
+        f"from openness {now:.2f} to {got:.2f} of the {wanted:.2f} asked ({reason}): the hand would have to go "
+        f"where the {side} arm does not reach. " + (
+            f"Move it to about {got:.2f} this way, then let go (open_hand) and push it the rest with the "
+            f"fingertip (hand_press; " + push_advice(f"{obj.type_name} {obj.obj_id}", wanted, pushes, side) + ")"
+            if held else f"Push it to about {got:.2f} from here, then from a point nearer the robot, or with the "
+            f"other hand ({push_advice(f'{obj.type_name} {obj.obj_id}', wanted, pushes, side)})")],
+        solve_time=time.perf_counter() - t0)
 
-    def _reaches_back(self, side: Side, follow: dict, result: GoalResult) -> bool:
-        """Whether a freshly solved goal for a part the hand rides with can be used: the move then tracks the
-        part's path back from it to where the hand is now (`ArmMoves._follow_part`'s fallback), so check that."""
-        self.kin.sync(self.env.data.qpos)
-        arm = self.kin.arms[side]
-        q0 = np.clip(self.kin.arm_q(side), arm.lo, arm.hi)
-        poses, _, _ = self._part_path_poses(side, follow)
-        back, reason = track_poses(self.kin, side, result.q, poses[-2::-1] + [self.kin.ee_pose(side)])
-        return not reason and np.max(np.abs(back[-1] - q0)) < 0.15
+# -- rung 2: as asked, the other grips, more seeds ----------------------------------------------------
+def exact_goal(ctx: PlanningContext, side: Side, constraints: list, gen, ignored_before: set[int], thorough: bool = True):
+    first_gen = gen
+    tried: list[tuple[object, list, GoalResult]] = []  # (grip or None, its constraints, result)
+    use_ignores(ctx, side, gen, ignored_before)
+    result = ctx.solver.solve(side, list(constraints), ctx.kin.arm_q(side), ctx.nominal[side])
+    tried.append((gen, list(constraints), result))
+    usable = result.success and approach.approach_fits(ctx, side, result, gen)
+    for alternative in (gen.alternatives if gen is not None and not usable else []):
+        use_ignores(ctx, side, alternative, ignored_before)
+        retry = ctx.solver.solve(side, list(alternative.constraints), ctx.kin.arm_q(side), ctx.nominal[side])
+        tried.append((alternative, list(alternative.constraints), retry))
+        # A grip whose goal solves but whose straight approach does not fit is kept only as a last resort.
+        if retry.success and approach.approach_fits(ctx, side, retry, alternative):
+            result, gen = retry, alternative
+            ctx.events.extend(getattr(alternative, "notes", []))  # what this way does differently
+            break
+        if retry.success and not result.success:
+            result, gen = retry, alternative
+    if not result.success and thorough:  # a last, slower try of the first way with many more seeds
+        use_ignores(ctx, side, first_gen, ignored_before)
+        retry = ctx.solver.solve(side, list(constraints), ctx.kin.arm_q(side), ctx.nominal[side], thorough=True)
+        if retry.success:
+            result, gen = retry, first_gen
+    if not result.success:
+        gen = first_gen
+    return result, gen, tried
 
-    def _riding_goal(self, side: Side, follow: dict) -> GoalResult:
-        t0 = time.perf_counter()
-        self._use_ignores(side, None, set(self.collisions.ignored_bodies))
-        arm = self.kin.arms[side]
-        q0 = np.clip(self.kin.arm_q(side), arm.lo, arm.hi)
-        path, q_steps, q_now, reason = self._track_part(side, q0, follow)
-        way = abs(follow["q_target"] - q_now)
-        reached = abs(q_steps[len(path) - 1] - q_now) if len(path) else 0.0
-        if not reason or (len(path) and reached >= self._follow_enough(side) * way):
-            return self._goal_at(side, path[-1], time.perf_counter() - t0)
-        obj = self.env.scene.object(*follow["obj"])
-        held = self.holding[side] is not None
-        art = follow_articulation(self.env, follow)
-        now = follow_openness(self.env, follow)
-        got = art.openness_of(q_steps[len(path) - 1]) if len(path) else now
-        wanted = art.openness_of(follow["q_target"])
-        pushes = self._pushes_toward(side, obj, wanted, skip_point=None if held else follow["part_point"])
-        self.kin.sync(self.env.data.qpos)
-        partial = None
-        if held and len(path) and reached >= REGRIP_MIN_SHARE * way:
-            partial = (path[-1], float(q_steps[len(path) - 1]))
-        elif held and part_stays(self.env, follow["joint"], q_now):
-            # Hardly any of the way from this grip (a screen lifted 0.3 -> 0.6 in one hold has the wrist turned so
-            # far that it gets 0.6 -> 0.68 of a 0.85 asked): where the part stays put if let go, let go here and
-            # grip it again in a posture that keeps its arc in reach (regrip.py; at most MAX_REGRIPS times).
-            partial = (path[-1], float(q_steps[len(path) - 1])) if len(path) else (q0, float(q_now))
-        return GoalResult(False, None, partial=partial, violations=[
-            f"the {side} hand {'holding' if held else 'pushing'} {obj.type_name} {obj.obj_id} can move it only "
-            f"from openness {now:.2f} to {got:.2f} of the {wanted:.2f} asked ({reason}): the hand would have to go "
-            f"where the {side} arm does not reach. " + (
-                f"Move it to about {got:.2f} this way, then let go (open_hand) and push it the rest with the "
-                f"fingertip (hand_press; " + push_advice(f"{obj.type_name} {obj.obj_id}", wanted, pushes, side) + ")"
-                if held else f"Push it to about {got:.2f} from here, then from a point nearer the robot, or with the "
-                f"other hand ({push_advice(f'{obj.type_name} {obj.obj_id}', wanted, pushes, side)})")],
-            solve_time=time.perf_counter() - t0)
+# -- a grip on an articulated part: the arm posture that keeps the part's arc in reach ----------------
+def prefer_arc(ctx: PlanningContext, side: Side, gen, result: GoalResult, ignored_before: set[int]) -> tuple[GoalResult, object]:
+    """A grasp of a drawer handle or a lid's tab is nearly always followed by moving the part, and the arm
+    cannot change its posture family while it holds it: where the solved posture reaches little of the
+    part's arc (`ArmMoves._arc_span`), try the grip with the wrist's freedom (CONE_DEG) and keep the posture
+    that reaches the most (an event says so)."""
+    t0 = time.perf_counter()
+    kind = "pinch" if gen.posture == "pinch" else "grasp"
+    best_span = part_grip.arc_span(ctx, side, gen.grip_part, result.q, kind)
+    if best_span >= ARC_GOOD:
+        return result, gen
+    first_span, best = best_span, (result, gen)
+    for g in [gen] + [a for a in gen.alternatives if a.grip_part is not None][:RELAXED_WAYS - 1]:
+        relaxed = _relax(side, g)
+        if not relaxed or time.perf_counter() - t0 > RELAX_BUDGET_S:
+            continue
+        use_ignores(ctx, side, g, ignored_before)
+        retry = ctx.solver.solve(side, relaxed, ctx.kin.arm_q(side), ctx.nominal[side],
+                                  time_limit=RELAX_SOLVE_S, max_seeds=RELAX_SEEDS)
+        if not retry.success or not approach.approach_fits(ctx, side, retry, g):
+            continue
+        span = part_grip.arc_span(ctx, side, g.grip_part, retry.q, kind)
+        if span > best_span + ARC_MARGIN:
+            best_span, best = span, (retry, g)
+    if best[0] is not result:
+        obj = "{} {}".format(*gen.grip_part["obj"])
+        ctx.events.append(f"the {side} hand takes {obj} with the wrist turned a little, in an arm posture that "
+                           f"can move it over {50 * best_span:.0f}% of its arc (the exact grip: "
+                           f"{50 * first_span:.0f}%)")
+    return best
 
-    # -- rung 2: as asked, the other grips, more seeds ----------------------------------------------------
-    def _exact_goal(self, side: Side, constraints: list, gen, ignored_before: set[int], thorough: bool = True):
-        first_gen = gen
-        tried: list[tuple[object, list, GoalResult]] = []  # (grip or None, its constraints, result)
-        self._use_ignores(side, gen, ignored_before)
-        result = self.solver.solve(side, list(constraints), self.kin.arm_q(side), self.nominal[side])
-        tried.append((gen, list(constraints), result))
-        usable = result.success and self._approach_fits(side, result, gen)
-        for alternative in (gen.alternatives if gen is not None and not usable else []):
-            self._use_ignores(side, alternative, ignored_before)
-            retry = self.solver.solve(side, list(alternative.constraints), self.kin.arm_q(side), self.nominal[side])
-            tried.append((alternative, list(alternative.constraints), retry))
-            # A grip whose goal solves but whose straight approach does not fit is kept only as a last resort.
-            if retry.success and self._approach_fits(side, retry, alternative):
-                result, gen = retry, alternative
-                self.events.extend(getattr(alternative, "notes", []))  # what this way does differently
-                break
-            if retry.success and not result.success:
-                result, gen = retry, alternative
-        if not result.success and thorough:  # a last, slower try of the first way with many more seeds
-            self._use_ignores(side, first_gen, ignored_before)
-            retry = self.solver.solve(side, list(constraints), self.kin.arm_q(side), self.nominal[side], thorough=True)
-            if retry.success:
-                result, gen = retry, first_gen
-        if not result.success:
-            gen = first_gen
-        return result, gen, tried
-
-    # -- a grip on an articulated part: the arm posture that keeps the part's arc in reach ----------------
-    def _prefer_arc(self, side: Side, gen, result: GoalResult, ignored_before: set[int]) -> tuple[GoalResult, object]:
-        """A grasp of a drawer handle or a lid's tab is nearly always followed by moving the part, and the arm
-        cannot change its posture family while it holds it: where the solved posture reaches little of the
-        part's arc (`ArmMoves._arc_span`), try the grip with the wrist's freedom (CONE_DEG) and keep the posture
-        that reaches the most (an event says so)."""
-        t0 = time.perf_counter()
-        kind = "pinch" if gen.posture == "pinch" else "grasp"
-        best_span = self._arc_span(side, gen.grip_part, result.q, kind)
-        if best_span >= ARC_GOOD:
-            return result, gen
-        first_span, best = best_span, (result, gen)
-        for g in [gen] + [a for a in gen.alternatives if a.grip_part is not None][:RELAXED_WAYS - 1]:
-            relaxed = _relax(side, g)
-            if not relaxed or time.perf_counter() - t0 > RELAX_BUDGET_S:
-                continue
-            self._use_ignores(side, g, ignored_before)
-            retry = self.solver.solve(side, relaxed, self.kin.arm_q(side), self.nominal[side],
+# -- rungs 3 and 4: closer to the table, the wrist's freedom -------------------------------------------
+def wider_goal(ctx: PlanningContext, side: Side, gen, tried: list, ignored_before: set[int], failed: GoalResult):
+    """(result, gen, finger-table slack) from the wider searches, or the failure as it was."""
+    t0 = time.perf_counter()
+    table = ctx.env.model.body("table").id
+    fingers = set(finger_bodies(ctx, side))
+    low = [(g, cons) for g, cons, r in tried
+           if r.contacts and all(b1 in fingers and b2 == table for b1, b2, _ in r.contacts)]
+    slack = ctx.solver.clearance - FINGER_TABLE_CLEARANCE
+    table_geoms = ctx.collisions.body_geoms(table)
+    finger_geoms = ctx.collisions.finger_geoms(side)
+    for g, cons in low:
+        use_ignores(ctx, side, g, ignored_before)
+        with ctx.collisions.allow_touch(finger_geoms, table_geoms, slack):
+            retry = ctx.solver.solve(side, cons, ctx.kin.arm_q(side), ctx.nominal[side],
                                       time_limit=RELAX_SOLVE_S, max_seeds=RELAX_SEEDS)
-            if not retry.success or not self._approach_fits(side, retry, g):
-                continue
-            span = self._arc_span(side, g.grip_part, retry.q, kind)
-            if span > best_span + ARC_MARGIN:
-                best_span, best = span, (retry, g)
-        if best[0] is not result:
-            obj = "{} {}".format(*gen.grip_part["obj"])
-            self.events.append(f"the {side} hand takes {obj} with the wrist turned a little, in an arm posture that "
-                               f"can move it over {50 * best_span:.0f}% of its arc (the exact grip: "
-                               f"{50 * first_span:.0f}%)")
-        return best
-
-    # -- rungs 3 and 4: closer to the table, the wrist's freedom -------------------------------------------
-    def _wider_goal(self, side: Side, gen, tried: list, ignored_before: set[int], failed: GoalResult):
-        """(result, gen, finger-table slack) from the wider searches, or the failure as it was."""
-        t0 = time.perf_counter()
-        table = self.env.model.body("table").id
-        fingers = set(self._finger_bodies(side))
-        low = [(g, cons) for g, cons, r in tried
-               if r.contacts and all(b1 in fingers and b2 == table for b1, b2, _ in r.contacts)]
-        slack = self.solver.clearance - FINGER_TABLE_CLEARANCE
-        table_geoms = self.collisions.body_geoms(table)
-        finger_geoms = self.collisions.finger_geoms(side)
-        for g, cons in low:
-            self._use_ignores(side, g, ignored_before)
-            with self.collisions.allow_touch(finger_geoms, table_geoms, slack):
-                retry = self.solver.solve(side, cons, self.kin.arm_q(side), self.nominal[side],
-                                          time_limit=RELAX_SOLVE_S, max_seeds=RELAX_SEEDS)
-            if retry.success:
-                self.events.append(self._table_event(side, retry, finger_geoms, table_geoms))
-                return retry, g, slack
-        if gen is None or getattr(gen, "approach_axis", None) is None:
-            return failed, gen, 0.0
-        robot = {self.env.model.body(b).id for b in range(self.env.model.nbody)
-                 if int(self.env.model.body_rootid[b]) == self.env.model.body("pelvis").id}
-        if failed.contacts and any(b2 in robot for _, b2, _ in failed.contacts):
-            return failed, gen, 0.0  # the other arm or the body in the way: turning the wrist does not clear it
-        cones = [(CONE_DEG, ROLL_DEG), (WIDE_CONE_DEG, WIDE_ROLL_DEG)]
-        if not failed.contacts and all(r.miss is not None and r.miss > RELAX_MAX_MISS for _, _, r in tried):
-            cones = cones[1:]  # far out of reach: a cone of CONE_DEG at the wrist does not bring it there
-        ways = [gen] + list(gen.alternatives)[:RELAXED_WAYS - 1]
-        for cone, roll in cones:
-            for touch in ((0.0, slack) if low else (0.0,)):
-                for g in ways:
-                    if time.perf_counter() - t0 > RELAX_BUDGET_S:
-                        break
-                    relaxed = _relax(side, g, cone, roll)
-                    if not relaxed:
-                        continue
-                    self._use_ignores(side, g, ignored_before)
-                    with (self.collisions.allow_touch(finger_geoms, table_geoms, touch) if touch else nullcontext()):
-                        retry = self.solver.solve(side, relaxed, self.kin.arm_q(side), self.nominal[side],
-                                                  time_limit=RELAX_SOLVE_S, max_seeds=RELAX_SEEDS)
-                    if retry.success:
-                        self.events.append(self._relaxed_event(side, g, relaxed, retry))
-                        if touch:
-                            self.events.append(self._table_event(side, retry, finger_geoms, table_geoms))
-                        return retry, g, touch
-                    if retry.contacts and not failed.contacts and g is gen:
-                        failed = retry  # what the wrist's freedom runs into says more than a bare miss
+        if retry.success:
+            ctx.events.append(table_event(ctx, side, retry, finger_geoms, table_geoms))
+            return retry, g, slack
+    if gen is None or getattr(gen, "approach_axis", None) is None:
         return failed, gen, 0.0
+    robot = {ctx.env.model.body(b).id for b in range(ctx.env.model.nbody)
+             if int(ctx.env.model.body_rootid[b]) == ctx.env.model.body("pelvis").id}
+    if failed.contacts and any(b2 in robot for _, b2, _ in failed.contacts):
+        return failed, gen, 0.0  # the other arm or the body in the way: turning the wrist does not clear it
+    cones = [(CONE_DEG, ROLL_DEG), (WIDE_CONE_DEG, WIDE_ROLL_DEG)]
+    if not failed.contacts and all(r.miss is not None and r.miss > RELAX_MAX_MISS for _, _, r in tried):
+        cones = cones[1:]  # far out of reach: a cone of CONE_DEG at the wrist does not bring it there
+    ways = [gen] + list(gen.alternatives)[:RELAXED_WAYS - 1]
+    for cone, roll in cones:
+        for touch in ((0.0, slack) if low else (0.0,)):
+            for g in ways:
+                if time.perf_counter() - t0 > RELAX_BUDGET_S:
+                    break
+                relaxed = _relax(side, g, cone, roll)
+                if not relaxed:
+                    continue
+                use_ignores(ctx, side, g, ignored_before)
+                with (ctx.collisions.allow_touch(finger_geoms, table_geoms, touch) if touch else nullcontext()):
+                    retry = ctx.solver.solve(side, relaxed, ctx.kin.arm_q(side), ctx.nominal[side],
+                                              time_limit=RELAX_SOLVE_S, max_seeds=RELAX_SEEDS)
+                if retry.success:
+                    ctx.events.append(relaxed_event(ctx, side, g, relaxed, retry))
+                    if touch:
+                        ctx.events.append(table_event(ctx, side, retry, finger_geoms, table_geoms))
+                    return retry, g, touch
+                if retry.contacts and not failed.contacts and g is gen:
+                    failed = retry  # what the wrist's freedom runs into says more than a bare miss
+    return failed, gen, 0.0
 
-    def _finger_bodies(self, side: Side) -> list[int]:
-        m = self.env.model
-        return [b for b in range(m.nbody) if m.body(b).name.startswith(HAND_PREFIX[side] + "_")]
+def finger_bodies(ctx: PlanningContext, side: Side) -> list[int]:
+    m = ctx.env.model
+    return [b for b in range(m.nbody) if m.body(b).name.startswith(HAND_PREFIX[side] + "_")]
 
-    def _table_event(self, side: Side, result: GoalResult, finger_geoms: list[int], table_geoms) -> str:
-        self.kin.set_arm(side, result.q)
-        self.kin.forward()
-        d = min(self.collisions.pair_distance(g, t) for g in finger_geoms for t in table_geoms)
-        self.kin.sync(self.env.data.qpos)
-        return (f"the {side} fingers come within {max(d, 0.0) * 1000:.1f} mm of the table at this goal (they are "
-                f"meant to touch there; {self.solver.clearance * 1000:.0f} mm elsewhere)")
+def table_event(ctx: PlanningContext, side: Side, result: GoalResult, finger_geoms: list[int], table_geoms) -> str:
+    ctx.kin.set_arm(side, result.q)
+    ctx.kin.forward()
+    d = min(ctx.collisions.pair_distance(g, t) for g in finger_geoms for t in table_geoms)
+    ctx.kin.sync(ctx.env.data.qpos)
+    return (f"the {side} fingers come within {max(d, 0.0) * 1000:.1f} mm of the table at this goal (they are "
+            f"meant to touch there; {ctx.solver.clearance * 1000:.0f} mm elsewhere)")
 
-    def _relaxed_event(self, side: Side, gen, relaxed: list, result: GoalResult) -> str:
-        self.kin.set_arm(side, result.q)
-        self.kin.forward()
-        angles = [f"{c.name.split(' (within')[0]} {c.angle(self.kin):.0f} deg" for c in relaxed
-                  if isinstance(c, AxisWithin) and not c.soft]
-        self.kin.sync(self.env.data.qpos)
-        what = gen.constraints[0].name if gen.constraints else "the grip"
-        return (f"the exact {what} is out of the {side} hand's reach; it takes it with the wrist turned "
-                f"({', '.join(angles)} off the annotated axes)")
+def relaxed_event(ctx: PlanningContext, side: Side, gen, relaxed: list, result: GoalResult) -> str:
+    ctx.kin.set_arm(side, result.q)
+    ctx.kin.forward()
+    angles = [f"{c.name.split(' (within')[0]} {c.angle(ctx.kin):.0f} deg" for c in relaxed
+              if isinstance(c, AxisWithin) and not c.soft]
+    ctx.kin.sync(ctx.env.data.qpos)
+    what = gen.constraints[0].name if gen.constraints else "the grip"
+    return (f"the exact {what} is out of the {side} hand's reach; it takes it with the wrist turned "
+            f"({', '.join(angles)} off the annotated axes)")
 
-    # -- pushes ----------------------------------------------------------------------------------------
-    def _push_op(self, gen):
-        """The push/flip/press annotation a part-riding push was made from (by its point), or None."""
-        f = gen.follow
-        ann = self.env.scene.object(*f["obj"]).annotations
-        return next((o for o in ann.operations if o.operation in ("push", "flip", "press") and o.point == f["part_point"]),
-                    None)
+# -- pushes ----------------------------------------------------------------------------------------
+def push_op(ctx: PlanningContext, gen):
+    """The push/flip/press annotation a part-riding push was made from (by its point), or None."""
+    f = gen.follow
+    ann = ctx.env.scene.object(*f["obj"]).annotations
+    return next((o for o in ann.operations if o.operation in ("push", "flip", "press") and o.point == f["part_point"]),
+                None)
 
-    def _push_cos(self, gen) -> float:
-        """How well the fingertip drives the part toward the asked openness: the cosine between the way the
-        touched point moves and the direction the fingertip presses in, both now. A push or press presses along
-        its approach axis; a flip gets under the part and lifts it, so it only ever opens (cosine 1 or -1)."""
-        from humanoidgen.objects.queries import get_axis_in_env
+def push_cos(ctx: PlanningContext, gen) -> float:
+    """How well the fingertip drives the part toward the asked openness: the cosine between the way the
+    touched point moves and the direction the fingertip presses in, both now. A push or press presses along
+    its approach axis; a flip gets under the part and lifts it, so it only ever opens (cosine 1 or -1)."""
+    from humanoidgen.objects.queries import get_axis_in_env
 
-        f = gen.follow
-        obj = self.env.scene.object(*f["obj"])
-        now = follow_openness(self.env, f)
-        wanted = follow_articulation(self.env, f).openness_of(f["q_target"])
-        step = float(np.clip(wanted - now, -0.05, 0.05))
-        op = self._push_op(gen)
-        if abs(step) < 1e-3 or op is None:
-            return 1.0
-        if op.operation == "flip":
-            return 1.0 if step > 0 else -1.0
-        v = point_motion(self.env, f, step)
-        axis = get_axis_in_env(self.env, op.approach_axis, obj_type=obj.type_name, obj_id=obj.obj_id)
-        return 1.0 if not v.any() else float(v @ axis)
+    f = gen.follow
+    obj = ctx.env.scene.object(*f["obj"])
+    now = follow_openness(ctx.env, f)
+    wanted = follow_articulation(ctx.env, f).openness_of(f["q_target"])
+    step = float(np.clip(wanted - now, -0.05, 0.05))
+    op = push_op(ctx, gen)
+    if abs(step) < 1e-3 or op is None:
+        return 1.0
+    if op.operation == "flip":
+        return 1.0 if step > 0 else -1.0
+    v = point_motion(ctx.env, f, step)
+    axis = get_axis_in_env(ctx.env, op.approach_axis, obj_type=obj.type_name, obj_id=obj.obj_id)
+    return 1.0 if not v.any() else float(v @ axis)
 
-    def _pushes_toward(self, side: Side, obj, wanted: float, skip_point: str | None = None) -> list[str]:
-        """The annotated pushes (target1, target2) that drive `obj` toward openness `wanted`, as suggestions;
-        each marked when its push point is out of the hand's reach now."""
-        from humanoidgen.planning import constraint_gen
+def pushes_toward(ctx: PlanningContext, side: Side, obj, wanted: float, skip_point: str | None = None) -> list[str]:
+    """The annotated pushes (target1, target2) that drive `obj` toward openness `wanted`, as suggestions;
+    each marked when its push point is out of the hand's reach now."""
+    from humanoidgen.planning import skills
 
-        out = []
-        for action in ("target1", "target2"):
-            try:
-                other = constraint_gen.generate(self.env, self.holding, obj.type_name, obj.obj_id, action, side, wanted)
-                start = constraint_gen.generate(self.env, self.holding, obj.type_name, obj.obj_id, action, side, None)
-            except (ValueError, KeyError):
-                continue
-            if other.follow is None or other.follow["part_point"] == skip_point or self._push_cos(other) < PUSH_MIN_COS:
-                continue
-            self._use_ignores(side, start, set(self.collisions.ignored_bodies))
-            reach = self.solver.solve(side, list(start.constraints), self.kin.arm_q(side), self.nominal[side])
-            out.append(f"action='{action}' (at {other.follow['part_point']}"
-                       + ("" if reach.success else f", out of the {side} hand's reach now") + ")")
-        return out
-
-    def _check_push_direction(self, side: Side, gen) -> None:
-        """Refuse a fingertip push that cannot move the part the way asked (it would have to pull)."""
-        if not any(getattr(c, "type", "") == "angle" for c in gen.constraints):
-            return  # a grip, not a push
-        cos = self._push_cos(gen)
-        if cos >= PUSH_MIN_COS:
-            return
-        f = gen.follow
-        obj = self.env.scene.object(*f["obj"])
-        wanted = follow_articulation(self.env, f).openness_of(f["q_target"])
-        ignored = set(self.collisions.ignored_bodies)
+    out = []
+    for action in ("target1", "target2"):
         try:
-            usable = self._pushes_toward(side, obj, wanted, skip_point=f["part_point"])
-        finally:
-            self.collisions.ignored_bodies = ignored
-            self.kin.sync(self.env.data.qpos)
-        op = self._push_op(gen)
-        why = (f"a flip gets under {obj.type_name} {obj.obj_id} at {f['part_point']} and lifts it: it opens it, it "
-               f"cannot bring it down to openness {wanted:g}" if op is not None and op.operation == "flip" else
-               f"a fingertip at {obj.type_name} {obj.obj_id} {f['part_point']} cannot move it to openness {wanted:g}: "
-               f"the point moves {np.degrees(np.arccos(np.clip(cos, -1, 1))):.0f} deg away from the push direction, "
-               f"so the finger would have to pull")
-        raise PlanningError("generate_end_effector_pose",
-                            why + "; " + push_advice(f"{obj.type_name} {obj.obj_id}", wanted, usable, side))
+            other = skills.generate(ctx.env, ctx.holding, obj.type_name, obj.obj_id, action, side, wanted)
+            start = skills.generate(ctx.env, ctx.holding, obj.type_name, obj.obj_id, action, side, None)
+        except (ValueError, KeyError):
+            continue
+        if other.follow is None or other.follow["part_point"] == skip_point or push_cos(ctx, other) < PUSH_MIN_COS:
+            continue
+        use_ignores(ctx, side, start, set(ctx.collisions.ignored_bodies))
+        reach = ctx.solver.solve(side, list(start.constraints), ctx.kin.arm_q(side), ctx.nominal[side])
+        out.append(f"action='{action}' (at {other.follow['part_point']}"
+                   + ("" if reach.success else f", out of the {side} hand's reach now") + ")")
+    return out
 
-    # -- failure message ---------------------------------------------------------------------------------
-    def _goal_failure(self, side: Side, constraints: list, gen, result: GoalResult) -> str:
-        msg = result.message()
-        advice = ""
-        if result.contacts:
-            other = self.holding["left" if side == "right" else "right"]
-            advice = contact_advice(self.env, side, result.contacts, getattr(gen, "approach_object", None),
-                                    held_by_other=None if other is None else f"{other.type_name} {other.obj_id}")
-            bodies = ", ".join(dict.fromkeys(body_label(self.env, b) for _, b, _ in result.contacts))
-            msg += f" [in the way: {bodies}]"
-        else:
-            point = next((c.object_key_point for c in constraints
-                          if getattr(c, "type", "") == "point2point" and not c.soft), None)
-            if point is not None and any("mm from its target" in v for v in result.violations):
-                other = "left" if side == "right" else "right"
-                in_other = OPERABLE_RANGE[other].contains(point, tol=0.01)
-                advice = range_advice(side, point) or (
-                    f"the point is just out of the {side} arm's reach in this hand orientation: "
-                    + (f"try the {other} hand, " if in_other else "")
-                    + "another grip (point=...), or move the object nearer the robot first")
-        return msg + (f". Suggestion: {advice}" if advice else "")
+def check_push_direction(ctx: PlanningContext, side: Side, gen) -> None:
+    """Refuse a fingertip push that cannot move the part the way asked (it would have to pull)."""
+    if not any(getattr(c, "type", "") == "angle" for c in gen.constraints):
+        return  # a grip, not a push
+    cos = push_cos(ctx, gen)
+    if cos >= PUSH_MIN_COS:
+        return
+    f = gen.follow
+    obj = ctx.env.scene.object(*f["obj"])
+    wanted = follow_articulation(ctx.env, f).openness_of(f["q_target"])
+    ignored = set(ctx.collisions.ignored_bodies)
+    try:
+        usable = pushes_toward(ctx, side, obj, wanted, skip_point=f["part_point"])
+    finally:
+        ctx.collisions.ignored_bodies = ignored
+        ctx.kin.sync(ctx.env.data.qpos)
+    op = push_op(ctx, gen)
+    why = (f"a flip gets under {obj.type_name} {obj.obj_id} at {f['part_point']} and lifts it: it opens it, it "
+           f"cannot bring it down to openness {wanted:g}" if op is not None and op.operation == "flip" else
+           f"a fingertip at {obj.type_name} {obj.obj_id} {f['part_point']} cannot move it to openness {wanted:g}: "
+           f"the point moves {np.degrees(np.arccos(np.clip(cos, -1, 1))):.0f} deg away from the push direction, "
+           f"so the finger would have to pull")
+    raise PlanningError("generate_end_effector_pose",
+                        why + "; " + push_advice(f"{obj.type_name} {obj.obj_id}", wanted, usable, side))
+
+# -- failure message ---------------------------------------------------------------------------------
+def goal_failure(ctx: PlanningContext, side: Side, constraints: list, gen, result: GoalResult) -> str:
+    msg = result.message()
+    advice = ""
+    if result.contacts:
+        other = ctx.hands["left" if side == "right" else "right"].held
+        advice = contact_advice(ctx.env, side, result.contacts, getattr(gen, "approach_object", None),
+                                held_by_other=None if other is None else f"{other.type_name} {other.obj_id}")
+        bodies = ", ".join(dict.fromkeys(body_label(ctx.env, b) for _, b, _ in result.contacts))
+        msg += f" [in the way: {bodies}]"
+    else:
+        point = next((c.object_key_point for c in constraints
+                      if getattr(c, "type", "") == "point2point" and not c.soft), None)
+        if point is not None and any("mm from its target" in v for v in result.violations):
+            other = "left" if side == "right" else "right"
+            in_other = OPERABLE_RANGE[other].contains(point, tol=0.01)
+            advice = range_advice(side, point) or (
+                f"the point is just out of the {side} arm's reach in this hand orientation: "
+                + (f"try the {other} hand, " if in_other else "")
+                + "another grip (point=...), or move the object nearer the robot first")
+    return msg + (f". Suggestion: {advice}" if advice else "")
 
 
 def _relax(side: Side, gen, cone_deg: float = CONE_DEG, roll_deg: float = ROLL_DEG) -> list:

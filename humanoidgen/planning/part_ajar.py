@@ -25,10 +25,12 @@ from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env
 from humanoidgen.planning.errors import PlanningError
 from humanoidgen.planning.constraints import Constraint
 from humanoidgen.planning.part_joint import moving_bodies
-from humanoidgen.planning.push_actions import fingers_for_push, part_openness, solve_and_go
+from humanoidgen.planning.push_actions import part_openness
+from humanoidgen.planning.push_move import fingers_for_push, solve_and_go
 from humanoidgen.sim.action import HAND_SLICE
 from humanoidgen.sim.layout import HAND_BASE_FRAME, Side
 from humanoidgen.sim.scene import SceneObject
+from humanoidgen.planning import finger_room
 
 SHUT_MAX = 0.1  # a part below this openness is shut for a grip (a laptop screen's edge is < 2.5 cm up)
 AJAR_TO = 0.2  # the laptops' screen grasp and pinch solve from 0.15 up; a margin over that
@@ -157,5 +159,5 @@ def lift_ajar(planner, side: Side, obj: SceneObject) -> float:
                             "(the fingertip under the edge, generate_constraints(..., action='target1'))")
     planner.events.append(f"{label} lay shut (openness {start:.2f}): the {side} index fingertip lifted its edge to "
                           f"{got:.2f} first, to make room for the fingers on its inner face")
-    planner._posture_with_room((side,), posture)
+    finger_room.posture_with_room(planner, (side,), posture)
     return got

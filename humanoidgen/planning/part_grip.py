@@ -21,9 +21,10 @@ from humanoidgen.planning.kinematics import Kinematics
 from humanoidgen.planning.motion import ROT_WEIGHT, MotionError, track_poses
 from humanoidgen.planning.part_joint import follow_articulation, follow_openness, rolls_about_joint
 from humanoidgen.planning.poses import Pose
-from humanoidgen.planning.regrip import SHUT, STOP_SHORT_OF_SHUT, request
+from humanoidgen.planning.regrip_request import SHUT, STOP_SHORT_OF_SHUT, request
 from humanoidgen.sim.geometry import axis_angle_mat, rotation_error
 from humanoidgen.sim.layout import Side
+from humanoidgen.planning.context import PlanningContext
 
 ROLL_LIMIT_DEG = 90.0  # by default the grip may roll (the part pivot in it) this far about the handle's axis
 FOLLOW_ENOUGH = 0.9  # a part followed this much of the way, where the arm's reach ends, is followed enough
@@ -86,198 +87,195 @@ def track_rolling(kin: Kinematics, side: Side, q_start: np.ndarray, poses: list,
     return np.array(out).reshape(-1, 7), np.array(rolls), reason
 
 
-class PartFollowing:
-    """The hand along an articulated part's joint path, for ArmMoves and the goal search (uses env, kin,
-    holding, grip, events of HumanoidMotionPlanner)."""
 
-    def _follow_enough(self, side: Side) -> float:
-        return FOLLOW_ENOUGH_HELD if self.holding[side] is not None else FOLLOW_ENOUGH
+def follow_enough(ctx: PlanningContext, side: Side) -> float:
+    return FOLLOW_ENOUGH_HELD if ctx.hands[side].held is not None else FOLLOW_ENOUGH
 
-    def _part_path_poses(self, side: Side, f: dict, held: bool | None = None) -> tuple[list, np.ndarray, float]:
-        """The hand's poses along an articulated part's joint path to f["q_target"], keeping the hand where it
-        is on the part now: (poses, joint values of the part at each, the part's joint value now).
+def part_path_poses(ctx: PlanningContext, side: Side, f: dict, held: bool | None = None) -> tuple[list, np.ndarray, float]:
+    """The hand's poses along an articulated part's joint path to f["q_target"], keeping the hand where it
+    is on the part now: (poses, joint values of the part at each, the part's joint value now).
 
-        A hand holding the part turns with it. A fingertip pushing it (nothing held) only keeps its tip on the
-        same spot of the part and its orientation as it is: it presses, it has no grip to turn with, and a
-        wrist turned the whole way a lid swings soon runs out of its joint range."""
-        m, d = self.env.model, self.kin.data
-        jid = m.joint(f["joint"]).id
-        adr = m.jnt_qposadr[jid]
-        part_body = m.jnt_bodyid[jid]
-        q_now = float(self.env.data.qpos[adr])
-        slide = m.jnt_type[jid] == mujoco.mjtJoint.mjJNT_SLIDE
-        # Aim a little past the target along the joint, even past its end stop: the arm lags a loaded part by
-        # about that much, and the stop itself holds the part (forward kinematics ignores joint limits).
-        overshoot = 0.01 if slide else 0.05
-        q_end = float(f["q_target"] + np.sign(f["q_target"] - q_now) * overshoot)
-        p_hand, R_hand = self.kin.ee_pose(side)
-        part_p, part_R = d.xpos[part_body].copy(), d.xmat[part_body].reshape(3, 3).copy()
-        rel_p, rel_R = part_R.T @ (p_hand - part_p), part_R.T @ R_hand
-        poses = []
-        base = d.qpos.copy()
-        n = max(2, int(np.ceil(abs(f["q_target"] - q_now) / (0.01 if slide else 0.03))))
-        q_steps = np.linspace(q_now, q_end, n + 1)[1:]
-        pushing = self.holding[side] is None if held is None else not held
-        tip_local = hand_points(side)[f"press_point_base_{side}_hand"]  # in the wrist frame
-        wrist = self.kin.arms[side].wrist
-        wp, wR = d.xpos[wrist].copy(), d.xmat[wrist].reshape(3, 3).copy()
-        tip = wp + wR @ tip_local
-        rel_tip = part_R.T @ (tip - part_p)
-        for qj in q_steps:
-            d.qpos[adr] = qj
-            mujoco.mj_kinematics(m, d)
-            pp, pR = d.xpos[part_body], d.xmat[part_body].reshape(3, 3)
-            if pushing:
-                poses.append((p_hand + (pp + pR @ rel_tip - tip), R_hand))
-            else:
-                poses.append((pp + pR @ rel_p, pR @ rel_R))
-        d.qpos[:] = base
-        self.kin.forward()
-        return poses, q_steps, q_now
-
-    def _grip_roll_frames(self, side: Side, f: dict, q_steps: np.ndarray, held: bool | None = None,
-                          kind: str | None = None) -> tuple[list, list] | None:
-        """For a hand holding the part by a grip that may roll (f["grip_axis"]): the roll axis and its centre
-        (the hand's grip point at the kinematic state now, carried with the part) at each joint value of the
-        path; None otherwise."""
-        holding = self.holding[side] is not None if held is None else held
-        if not holding or not f.get("grip_axis") or not f.get("roll_deg"):
-            return None
-        from humanoidgen.objects.queries import get_axis_in_env
-
-        m, d = self.env.model, self.kin.data
-        jid = m.joint(f["joint"]).id
-        adr, body = m.jnt_qposadr[jid], m.jnt_bodyid[jid]
-        obj = self.env.scene.object(*f["obj"])
-        kind = kind or ("pinch" if self.grip.get(side) == "pinch" else "grasp")
-        wrist = self.kin.arms[side].wrist
-        centre = d.xpos[wrist] + d.xmat[wrist].reshape(3, 3) @ hand_points(side)[f"{kind}_point_base_{side}_hand"]
-        axis = get_axis_in_env(self.env, f["grip_axis"], obj_type=obj.type_name, obj_id=obj.obj_id)
-        if rolls_about_joint(m, d, f["joint"], axis, centre):
-            return None
-        R0, p0 = d.xmat[body].reshape(3, 3).copy(), d.xpos[body].copy()
-        c_local, a_local = R0.T @ (centre - p0), R0.T @ axis
-        base = d.qpos.copy()
-        axes, centres = [], []
-        for qj in q_steps:
-            d.qpos[adr] = qj
-            mujoco.mj_kinematics(m, d)
-            R, p = d.xmat[body].reshape(3, 3), d.xpos[body]
-            axes.append(R @ a_local)
-            centres.append(p + R @ c_local)
-        d.qpos[:] = base
-        self.kin.forward()
-        return axes, centres
-
-    def _track_part(self, side: Side, q0: np.ndarray, f: dict, held: bool | None = None,
-                    kind: str | None = None) -> tuple[np.ndarray, np.ndarray, float, str]:
-        """The arm's path along the part's joint path from q0 (the kinematic state is at q0): (waypoints, the
-        part's joint value at each pose, its value now, why the path stops short or ""). A holding grip may roll
-        about the handle on the way: the wrist need not keep its grasp-time orientation, and it keeps its reach
-        over more of the arc. `held`/`kind`: as if the hand held the part with that grip (default: as it is)."""
-        poses, q_steps, q_now = self._part_path_poses(side, f, held)
-        rolling = self._grip_roll_frames(side, f, q_steps, held, kind)
-        if rolling is None:
-            path, reason = track_poses(self.kin, side, q0, poses)
+    A hand holding the part turns with it. A fingertip pushing it (nothing held) only keeps its tip on the
+    same spot of the part and its orientation as it is: it presses, it has no grip to turn with, and a
+    wrist turned the whole way a lid swings soon runs out of its joint range."""
+    m, d = ctx.env.model, ctx.kin.data
+    jid = m.joint(f["joint"]).id
+    adr = m.jnt_qposadr[jid]
+    part_body = m.jnt_bodyid[jid]
+    q_now = float(ctx.env.data.qpos[adr])
+    slide = m.jnt_type[jid] == mujoco.mjtJoint.mjJNT_SLIDE
+    # Aim a little past the target along the joint, even past its end stop: the arm lags a loaded part by
+    # about that much, and the stop itself holds the part (forward kinematics ignores joint limits).
+    overshoot = 0.01 if slide else 0.05
+    q_end = float(f["q_target"] + np.sign(f["q_target"] - q_now) * overshoot)
+    p_hand, R_hand = ctx.kin.ee_pose(side)
+    part_p, part_R = d.xpos[part_body].copy(), d.xmat[part_body].reshape(3, 3).copy()
+    rel_p, rel_R = part_R.T @ (p_hand - part_p), part_R.T @ R_hand
+    poses = []
+    base = d.qpos.copy()
+    n = max(2, int(np.ceil(abs(f["q_target"] - q_now) / (0.01 if slide else 0.03))))
+    q_steps = np.linspace(q_now, q_end, n + 1)[1:]
+    pushing = ctx.hands[side].held is None if held is None else not held
+    tip_local = hand_points(side)[f"press_point_base_{side}_hand"]  # in the wrist frame
+    wrist = ctx.kin.arms[side].wrist
+    wp, wR = d.xpos[wrist].copy(), d.xmat[wrist].reshape(3, 3).copy()
+    tip = wp + wR @ tip_local
+    rel_tip = part_R.T @ (tip - part_p)
+    for qj in q_steps:
+        d.qpos[adr] = qj
+        mujoco.mj_kinematics(m, d)
+        pp, pR = d.xpos[part_body], d.xmat[part_body].reshape(3, 3)
+        if pushing:
+            poses.append((p_hand + (pp + pR @ rel_tip - tip), R_hand))
         else:
-            path, _, reason = track_rolling(self.kin, side, q0, poses, *rolling, limit_deg=f.get("roll_deg"))
-        return path, q_steps, q_now, reason
+            poses.append((pp + pR @ rel_p, pR @ rel_R))
+    d.qpos[:] = base
+    ctx.kin.forward()
+    return poses, q_steps, q_now
 
-    def _arc_span(self, side: Side, part: dict, q: np.ndarray, kind: str = "grasp") -> float:
-        """How much of its openness range a part could be moved with the hand gripping it at arm posture q:
-        the openness interval reachable toward closed and toward open, as a share of the way to each end,
-        summed (2.0: the whole arc both ways). For choosing among grasp postures: a grasp of a part is nearly
-        always followed by moving it, and the arm cannot change posture family while it holds it."""
-        art = follow_articulation(self.env, part)  # the gripped part's own joint (a knob's, on a door)
-        now = follow_openness(self.env, part)
-        self.kin.sync(self.env.data.qpos)
-        total = 0.0
-        try:
-            for end in (0.0, 1.0):
-                if abs(end - now) < 0.05:
-                    total += 1.0
-                    continue
-                self.kin.set_arm(side, q)
-                self.kin.forward()
-                f = dict(part, q_target=art.joint_position(end))
-                path, q_steps, q_now, reason = self._track_part(side, q, f, held=True, kind=kind)
-                if not reason:
-                    total += 1.0
-                elif len(path):
-                    total += abs(q_steps[len(path) - 1] - q_now) / abs(f["q_target"] - q_now)
-        finally:
-            self.kin.sync(self.env.data.qpos)
-        return total
+def grip_roll_frames(ctx: PlanningContext, side: Side, f: dict, q_steps: np.ndarray, held: bool | None = None,
+                      kind: str | None = None) -> tuple[list, list] | None:
+    """For a hand holding the part by a grip that may roll (f["grip_axis"]): the roll axis and its centre
+    (the hand's grip point at the kinematic state now, carried with the part) at each joint value of the
+    path; None otherwise."""
+    holding = ctx.hands[side].held is not None if held is None else held
+    if not holding or not f.get("grip_axis") or not f.get("roll_deg"):
+        return None
+    from humanoidgen.objects.queries import get_axis_in_env
 
-    def _follow_part(self, side: Side, q0: np.ndarray, target: Pose) -> np.ndarray:
-        """Track the hand along an articulated part's joint path (a drawer slides, a lid turns)."""
-        self._stop_short_of_shut(side, target)
-        f = target.follow
-        path, q_steps, q_now, reason = self._track_part(side, q0, f)
-        if not reason:
-            return np.vstack([q0, path])
-        # Where the arm's reach ends within the last tenth of the way, go that far and say so: whether that is
-        # enough is for the task to judge.
-        way = abs(f["q_target"] - q_now)
-        reached = abs(q_steps[len(path) - 1] - q_now) if len(path) else 0.0
-        if len(path) and reached >= self._follow_enough(side) * way:
-            if reached < 0.995 * way:
-                self.events.append(f"followed {f['obj'][0]} {f['obj'][1]} {100 * reached / way:.0f}% of the way: "
-                                   f"the {side} arm's reach ends there")
-            return np.vstack([q0, path])
-        if target.joint_q is not None:
-            # The solver's goal may sit in another arm posture family: track backward from it to the start and
-            # use that path if it ends where the arm is now.
-            start = (self.kin.ee_pose(side),)
-            poses = self._part_path_poses(side, f)[0]
-            back, back_reason = track_poses(self.kin, side, target.joint_q, poses[-2::-1] + [start[0]])
-            if not back_reason and np.max(np.abs(back[-1] - q0)) < 0.15:
-                return np.vstack([q0, back[::-1][1:], target.joint_q])
-        if self._regrip_from_here(side, target, float(q_steps[len(path) - 1]) if len(path) else float(q_now)):
-            return np.vstack([q0, path]) if len(path) else np.vstack([q0, q0])
-        raise MotionError(f"following {f['body']}'s joint: {reason}")
+    m, d = ctx.env.model, ctx.kin.data
+    jid = m.joint(f["joint"]).id
+    adr, body = m.jnt_qposadr[jid], m.jnt_bodyid[jid]
+    obj = ctx.env.scene.object(*f["obj"])
+    kind = kind or ("pinch" if ctx.hands[side].grip == "pinch" else "grasp")
+    wrist = ctx.kin.arms[side].wrist
+    centre = d.xpos[wrist] + d.xmat[wrist].reshape(3, 3) @ hand_points(side)[f"{kind}_point_base_{side}_hand"]
+    axis = get_axis_in_env(ctx.env, f["grip_axis"], obj_type=obj.type_name, obj_id=obj.obj_id)
+    if rolls_about_joint(m, d, f["joint"], axis, centre):
+        return None
+    R0, p0 = d.xmat[body].reshape(3, 3).copy(), d.xpos[body].copy()
+    c_local, a_local = R0.T @ (centre - p0), R0.T @ axis
+    base = d.qpos.copy()
+    axes, centres = [], []
+    for qj in q_steps:
+        d.qpos[adr] = qj
+        mujoco.mj_kinematics(m, d)
+        R, p = d.xmat[body].reshape(3, 3), d.xpos[body]
+        axes.append(R @ a_local)
+        centres.append(p + R @ c_local)
+    d.qpos[:] = base
+    ctx.kin.forward()
+    return axes, centres
 
-    def _stop_short_of_shut(self, side: Side, target: Pose) -> None:
-        """A hinged plate (a lid, a screen) held by its edge and to be shut: the fingers around the edge would end
-        shut in under it (a thumb between screen and base; every way of letting go then dragged it open again, to
-        0.28-0.48). Where the task has a fingertip push that shuts it, the hand takes it to STOP_SHORT_OF_SHUT,
-        lets go there and the part falls or is pushed shut (regrip.go_on)."""
-        from humanoidgen.planning.target_actions import scene_targets
+def track_part(ctx: PlanningContext, side: Side, q0: np.ndarray, f: dict, held: bool | None = None,
+                kind: str | None = None) -> tuple[np.ndarray, np.ndarray, float, str]:
+    """The arm's path along the part's joint path from q0 (the kinematic state is at q0): (waypoints, the
+    part's joint value at each pose, its value now, why the path stops short or ""). A holding grip may roll
+    about the handle on the way: the wrist need not keep its grasp-time orientation, and it keeps its reach
+    over more of the arc. `held`/`kind`: as if the hand held the part with that grip (default: as it is)."""
+    poses, q_steps, q_now = part_path_poses(ctx, side, f, held)
+    rolling = grip_roll_frames(ctx, side, f, q_steps, held, kind)
+    if rolling is None:
+        path, reason = track_poses(ctx.kin, side, q0, poses)
+    else:
+        path, _, reason = track_rolling(ctx.kin, side, q0, poses, *rolling, limit_deg=f.get("roll_deg"))
+    return path, q_steps, q_now, reason
 
-        f = target.follow
-        if target.regrip is not None or self.regrips_left <= 0 or self.holding[side] is None:
-            return
-        m = self.env.model
-        if m.jnt_type[m.joint(f["joint"]).id] != mujoco.mjtJoint.mjJNT_HINGE:
-            return  # a drawer's handle is outside it: nothing gets shut in
-        art = follow_articulation(self.env, f)
-        wanted, now = art.openness_of(f["q_target"]), follow_openness(self.env, f)
-        obj = self.env.scene.object(*f["obj"])
-        targets = scene_targets(self.env)
-        push = targets.push(obj.type_name, obj.obj_id) if targets is not None else None
-        if wanted > SHUT or now <= STOP_SHORT_OF_SHUT or push is None or push.spec.push.to > SHUT:
-            return
-        target.regrip = request(f, wanted, self.grip[side], STOP_SHORT_OF_SHUT, optional=False,
-                                why=f"{obj.type_name} {obj.obj_id} is to be shut: the {side} hand takes it to "
-                                    f"openness {STOP_SHORT_OF_SHUT:g}, not shut in its fingers")
-        target.follow = dict(f, q_target=art.joint_position(STOP_SHORT_OF_SHUT))
+def arc_span(ctx: PlanningContext, side: Side, part: dict, q: np.ndarray, kind: str = "grasp") -> float:
+    """How much of its openness range a part could be moved with the hand gripping it at arm posture q:
+    the openness interval reachable toward closed and toward open, as a share of the way to each end,
+    summed (2.0: the whole arc both ways). For choosing among grasp postures: a grasp of a part is nearly
+    always followed by moving it, and the arm cannot change posture family while it holds it."""
+    art = follow_articulation(ctx.env, part)  # the gripped part's own joint (a knob's, on a door)
+    now = follow_openness(ctx.env, part)
+    ctx.kin.sync(ctx.env.data.qpos)
+    total = 0.0
+    try:
+        for end in (0.0, 1.0):
+            if abs(end - now) < 0.05:
+                total += 1.0
+                continue
+            ctx.kin.set_arm(side, q)
+            ctx.kin.forward()
+            f = dict(part, q_target=art.joint_position(end))
+            path, q_steps, q_now, reason = track_part(ctx, side, q, f, held=True, kind=kind)
+            if not reason:
+                total += 1.0
+            elif len(path):
+                total += abs(q_steps[len(path) - 1] - q_now) / abs(f["q_target"] - q_now)
+    finally:
+        ctx.kin.sync(ctx.env.data.qpos)
+    return total
 
-    def _regrip_from_here(self, side: Side, target: Pose, q_reached: float) -> bool:
-        """Where following the part runs out of reach partway on a move planned to go all the way (the goal search
-        tracks from the arm at solve time; the arm settled in the grip may run out sooner: open_laptop_hard's
-        screen lifted in stages, at 50-75% of its last stage), make the move go as far as it gets and then let go
-        and grip the part again (regrip.py), as a goal found partial does. Only for a held part that stays where
-        it is let go, and while the move may still grip again; True where the target was changed so."""
-        from humanoidgen.planning.goal_search import part_stays
+def follow_part(ctx: PlanningContext, side: Side, q0: np.ndarray, target: Pose) -> np.ndarray:
+    """Track the hand along an articulated part's joint path (a drawer slides, a lid turns)."""
+    stop_short_of_shut(ctx, side, target)
+    f = target.follow
+    path, q_steps, q_now, reason = track_part(ctx, side, q0, f)
+    if not reason:
+        return np.vstack([q0, path])
+    # Where the arm's reach ends within the last tenth of the way, go that far and say so: whether that is
+    # enough is for the task to judge.
+    way = abs(f["q_target"] - q_now)
+    reached = abs(q_steps[len(path) - 1] - q_now) if len(path) else 0.0
+    if len(path) and reached >= follow_enough(ctx, side) * way:
+        if reached < 0.995 * way:
+            ctx.events.append(f"followed {f['obj'][0]} {f['obj'][1]} {100 * reached / way:.0f}% of the way: "
+                               f"the {side} arm's reach ends there")
+        return np.vstack([q0, path])
+    if target.joint_q is not None:
+        # The solver's goal may sit in another arm posture family: track backward from it to the start and
+        # use that path if it ends where the arm is now.
+        start = (ctx.kin.ee_pose(side),)
+        poses = part_path_poses(ctx, side, f)[0]
+        back, back_reason = track_poses(ctx.kin, side, target.joint_q, poses[-2::-1] + [start[0]])
+        if not back_reason and np.max(np.abs(back[-1] - q0)) < 0.15:
+            return np.vstack([q0, back[::-1][1:], target.joint_q])
+    if regrip_from_here(ctx, side, target, float(q_steps[len(path) - 1]) if len(path) else float(q_now)):
+        return np.vstack([q0, path]) if len(path) else np.vstack([q0, q0])
+    raise MotionError(f"following {f['body']}'s joint: {reason}")
 
-        f = target.follow
-        art = follow_articulation(self.env, f)
-        if target.regrip is not None:  # the move lets go and grips again after this anyway: from wherever it ends
-            target.regrip["reached"] = art.openness_of(q_reached)
-        elif self.regrips_left <= 0 or self.holding[side] is None or not part_stays(self.env, f["joint"], q_reached):
-            return False
-        else:
-            target.regrip = request(f, art.openness_of(f["q_target"]), self.grip[side], art.openness_of(q_reached),
-                                    optional=False)
-        target.follow = dict(f, q_target=q_reached)
-        return True
+def stop_short_of_shut(ctx: PlanningContext, side: Side, target: Pose) -> None:
+    """A hinged plate (a lid, a screen) held by its edge and to be shut: the fingers around the edge would end
+    shut in under it (a thumb between screen and base; every way of letting go then dragged it open again, to
+    0.28-0.48). Where the task has a fingertip push that shuts it, the hand takes it to STOP_SHORT_OF_SHUT,
+    lets go there and the part falls or is pushed shut (regrip.go_on)."""
+    from humanoidgen.planning.push_spec import scene_targets
+
+    f = target.follow
+    if target.regrip is not None or ctx.regrips_left <= 0 or ctx.hands[side].held is None:
+        return
+    m = ctx.env.model
+    if m.jnt_type[m.joint(f["joint"]).id] != mujoco.mjtJoint.mjJNT_HINGE:
+        return  # a drawer's handle is outside it: nothing gets shut in
+    art = follow_articulation(ctx.env, f)
+    wanted, now = art.openness_of(f["q_target"]), follow_openness(ctx.env, f)
+    obj = ctx.env.scene.object(*f["obj"])
+    targets = scene_targets(ctx.env)
+    push = targets.push(obj.type_name, obj.obj_id) if targets is not None else None
+    if wanted > SHUT or now <= STOP_SHORT_OF_SHUT or push is None or push.spec.push.to > SHUT:
+        return
+    target.regrip = request(f, wanted, ctx.hands[side].grip, STOP_SHORT_OF_SHUT, optional=False,
+                            why=f"{obj.type_name} {obj.obj_id} is to be shut: the {side} hand takes it to "
+                                f"openness {STOP_SHORT_OF_SHUT:g}, not shut in its fingers")
+    target.follow = dict(f, q_target=art.joint_position(STOP_SHORT_OF_SHUT))
+
+def regrip_from_here(ctx: PlanningContext, side: Side, target: Pose, q_reached: float) -> bool:
+    """Where following the part runs out of reach partway on a move planned to go all the way (the goal search
+    tracks from the arm at solve time; the arm settled in the grip may run out sooner: open_laptop_hard's
+    screen lifted in stages, at 50-75% of its last stage), make the move go as far as it gets and then let go
+    and grip the part again (regrip.py), as a goal found partial does. Only for a held part that stays where
+    it is let go, and while the move may still grip again; True where the target was changed so."""
+    from humanoidgen.planning.part_joint import part_stays
+
+    f = target.follow
+    art = follow_articulation(ctx.env, f)
+    if target.regrip is not None:  # the move lets go and grips again after this anyway: from wherever it ends
+        target.regrip.reached = art.openness_of(q_reached)
+    elif ctx.regrips_left <= 0 or ctx.hands[side].held is None or not part_stays(ctx.env, f["joint"], q_reached):
+        return False
+    else:
+        target.regrip = request(f, art.openness_of(f["q_target"]), ctx.hands[side].grip, art.openness_of(q_reached),
+                                optional=False)
+    target.follow = dict(f, q_target=q_reached)
+    return True

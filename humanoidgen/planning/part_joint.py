@@ -93,3 +93,15 @@ def moving_bodies(model: mujoco.MjModel, joint: str) -> set[int]:
         if x == top:
             out.add(b)
     return out
+
+
+def part_stays(env, joint: str, q: float) -> bool:
+    """Would an articulated part left alone at joint value `q` stay there (its joint friction holds its weight)?"""
+    m = env.model
+    jid = m.joint(joint).id
+    d = mujoco.MjData(m)
+    d.qpos[:] = env.data.qpos
+    d.qpos[m.jnt_qposadr[jid]] = q
+    mujoco.mj_forward(m, d)
+    dof = m.jnt_dofadr[jid]
+    return bool(abs(d.qfrc_bias[dof]) <= m.dof_frictionloss[dof])

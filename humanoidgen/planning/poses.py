@@ -3,10 +3,14 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from humanoidgen.sim.geometry import axis_angle_mat, mat_to_quat, quat_to_mat, rotation_error
+
+if TYPE_CHECKING:
+    from humanoidgen.planning.regrip_request import RegripRequest
 
 
 @dataclass
@@ -30,8 +34,9 @@ class Pose:
     # (a goal that needs a fingertip at a low edge; goal_search.FINGER_TABLE_CLEARANCE).
     finger_table_slack: float = 0.0
     # A held part moved only partway by this pose (the arm's reach ends): what the move does next, gripping it
-    # again to move it on (planning/regrip.py).
-    regrip: dict | None = field(default=None, repr=False)
+    # again to move it on (recoveries/grip_again.py).
+    regrip: RegripRequest | None = field(default=None, repr=False)
+    push: Any = field(default=None, repr=False)  # a task's push on a part this pose starts (push_actions.mark)
 
     def __post_init__(self) -> None:
         self.p = np.asarray(self.p, float).reshape(3)

@@ -21,3 +21,8 @@ class FingertipPush(Protocol):
 
     def inset_at(self, openness: float) -> float:
         """The contact's inset (m along axes[0]) with the part at `openness`."""
+
+
+def scene_targets(env):
+    """The task's targets (tasks.targets.SceneTargets), or None for a scene built without a task."""
+    return getattr(env.scene, "targets", None)

@@ -2,19 +2,15 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
+from humanoidgen.planning.context import PlanningContext
 from humanoidgen.sim.rest import moving_objects, object_dofs
-
-if TYPE_CHECKING:
-    from humanoidgen.planning.planner import HumanoidMotionPlanner
 
 # Long enough for a cube tipped from 15 cm to land and stop bouncing (about 0.2 s); an object still moving
 # after this is judged where it is (a part swinging on its own, a ball rolling away).
 MAX_REST_WAIT_S = 1.0
 
 
-def wait_until_still(planner: HumanoidMotionPlanner, max_s: float = MAX_REST_WAIT_S) -> list[str]:
+def wait_until_still(planner: PlanningContext, max_s: float = MAX_REST_WAIT_S) -> list[str]:
     """Hold the robot's last command until no object moves (returns at once when none does, so a still scene
     gets no extra control steps), for at most `max_s`. The steps go through the planner, so a recording keeps
     them. Returns the objects still moving at the end (empty when all came to rest)."""
@@ -24,6 +20,6 @@ def wait_until_still(planner: HumanoidMotionPlanner, max_s: float = MAX_REST_WAI
     for _ in range(int(round(max_s * env.control_hz))):
         if not moving:
             break
-        planner._step()
+        planner.step()
         moving = moving_objects(env.data.qvel, env.data.qacc, dofs)
     return moving

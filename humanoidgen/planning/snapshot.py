@@ -11,6 +11,8 @@ from dataclasses import dataclass
 import mujoco
 import numpy as np
 
+from humanoidgen.planning.context import PlanningContext
+
 # Everything the next step integrates from, the constraint solver's warm start included: restored from the
 # physics alone, a contact-rich state stepped on 1.5e-9 rad off the original, enough to change a later hand-over.
 STATE_SPEC = mujoco.mjtState.mjSTATE_INTEGRATION
@@ -42,41 +44,44 @@ class Snapshot:
                    dict(d["last_approach"]), list(d["ignored_bodies"]), list(d["events"]), dict(d.get("closing") or {}))
 
 
-def take_snapshot(planner) -> Snapshot:
+def take_snapshot(planner: PlanningContext) -> Snapshot:
     env = planner.env
+    hands = planner.hands
     size = mujoco.mj_stateSize(env.model, STATE_SPEC)
     physics = np.empty(size)
     mujoco.mj_getState(env.model, env.data, physics, STATE_SPEC)
     return Snapshot(
         physics=physics,
         action=planner.action.copy(),
-        holding={s: (o.type_name, o.obj_id) if o is not None else None for s, o in planner.holding.items()},
-        grip=dict(planner.grip),
-        last_approach={s: (np.asarray(a).tolist() if a is not None else None) for s, a in planner.last_approach.items()},
+        holding={s: (h.held.type_name, h.held.obj_id) if h.held is not None else None for s, h in hands.items()},
+        grip={s: h.grip for s, h in hands.items() if h.grip is not None},
+        last_approach={s: np.asarray(h.last_approach).tolist() for s, h in hands.items() if h.last_approach is not None},
         ignored_bodies=sorted(planner.collisions.ignored_bodies),
         events=list(planner.events),
-        closing=dict(planner.closing),
+        closing={s: h.closing for s, h in hands.items() if h.closing is not None},
     )
 
 
-def restore_snapshot(planner, snap: Snapshot) -> None:
+def restore_snapshot(planner: PlanningContext, snap: Snapshot) -> None:
     env = planner.env
     mujoco.mj_setState(env.model, env.data, snap.physics, STATE_SPEC)
     mujoco.mj_forward(env.model, env.data)
     planner.action[:] = snap.action
-    planner.holding = {s: (env.scene.object(*v) if v else None) for s, v in snap.holding.items()}
-    planner.grip = dict(snap.grip)
-    planner.last_approach = {s: (np.asarray(a) if a is not None else None) for s, a in snap.last_approach.items()}
+    for s, h in planner.hands.items():
+        v, a = snap.holding.get(s), snap.last_approach.get(s)
+        h.held = env.scene.object(*v) if v else None
+        h.grip = snap.grip.get(s)
+        h.last_approach = np.asarray(a) if a is not None else None
+        h.closing = (snap.closing or {}).get(s)
     planner.collisions.ignored_bodies = set(snap.ignored_bodies)
     planner.events = list(snap.events)
-    planner.closing = dict(snap.closing or {})
     planner.kin.sync(env.data.qpos)
-    for side in planner.holding:
+    for side in planner.hands:
         planner.kin.detach(side)
 
 
 @contextmanager
-def trial(planner, start: Snapshot | None = None) -> Iterator[None]:
+def trial(planner: PlanningContext, start: Snapshot | None = None) -> Iterator[None]:
     """Run the block as a trial in the simulation itself: nothing it does is recorded (the planner's step hook is
     off) and afterwards the planner is back at `start` (default: its state on entry), whatever the block did."""
     snap = start if start is not None else take_snapshot(planner)

@@ -21,6 +21,7 @@ from humanoidgen.planning import push_actions
 from humanoidgen.planning import placing
 from humanoidgen.planning.constraint_gen import LIFT, ConstraintGenerationError, Generated, keep_orientation
 from humanoidgen.planning.constraints import Const, Constraint
+from humanoidgen.planning.push_spec import scene_targets
 from humanoidgen.sim.layout import HAND_BASE_FRAME, OTHER_SIDE, Side
 from humanoidgen.sim.scene import SceneObject
 
@@ -43,11 +44,6 @@ SIMILAR_OPERATIONS = {"grasp": ("pinch",), "pinch": ("grasp",)}
 
 def _label(obj: SceneObject) -> str:
     return f"{obj.type_name} {obj.obj_id}"
-
-
-def scene_targets(env):
-    """The task's targets (tasks.targets.SceneTargets), or None for a scene built without a task."""
-    return getattr(env.scene, "targets", None)
 
 
 def has_task_target(env, obj: SceneObject, name: str, side: Side) -> bool:

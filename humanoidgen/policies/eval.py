@@ -9,34 +9,26 @@ rerun gives the same result."""
 from __future__ import annotations
 
 import time
-from collections import deque
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
 import numpy as np
 import torch
 
-from humanoidgen.envs.config import EVAL_SEED_BASE, TaskEnvConfig
+from humanoidgen.envs.config import EVAL_SEED_BASE
 from humanoidgen.policies import checkpoint as ck
+from humanoidgen.policies.rollout import (  # noqa: F401 (evaluation's names, re-exported)
+    MAX_EPISODES_PER_SEED,
+    EpisodeOutcome,
+    EvalError,
+    _video,
+    env_config_for,
+    final_detail,
+    policy_obs,
+    rollout,
+    with_action_steps,
+)
 from humanoidgen.policies.train import resolve_device
-
-MAX_EPISODES_PER_SEED = 1000
-
-
-class EvalError(ValueError):
-    pass
-
-
-@dataclass
-class EpisodeOutcome:
-    checkpoint: str
-    seed: int
-    scene_seed: int
-    success: bool
-    steps: int
-    seconds: float
-    final: str = ""  # the success predicates' details at the episode's end (e.g. "drawer 0 openness 0.07 (max 0.05)")
-
 
 @dataclass
 class EvalReport:
@@ -67,70 +59,6 @@ class EvalReport:
                 "episodes": self.episodes, "success_mean": self.success_mean, "success_std": self.success_std,
                 "rates": [{"checkpoint": c, "seed": s, "success": r} for (c, s), r in self.rates().items()],
                 "outcomes": [asdict(o) for o in self.outcomes]}
-
-
-def with_action_steps(model, action_steps: int | None):
-    """The policy executing `action_steps` of its predicted actions per prediction (None: its config's). Fewer
-    than trained with is allowed (a new prediction sooner); more than fit in the horizon is refused."""
-    if action_steps is None:
-        return model
-    cfg = model.cfg
-    most = cfg.horizon - cfg.n_obs_steps + 1
-    if not 1 <= action_steps <= most:
-        raise EvalError(f"--action-steps must be in 1..{most} for horizon {cfg.horizon} and {cfg.n_obs_steps} "
-                        f"observation steps, got {action_steps}")
-    model.cfg = cfg.model_copy(update={"n_action_steps": action_steps})
-    return model
-
-
-def env_config_for(policy: str, cfg, meta: dict, max_steps: int | None = None) -> TaskEnvConfig:
-    """The environment observing what the policy was trained on, at the data's action rate."""
-    rec = dict(meta.get("recorder") or {})
-    hz = meta.get("control_hz", 50.0)
-    if policy == "dp":
-        return TaskEnvConfig.from_recorder(rec, hz, cameras=(cfg.camera,), depth=False, point_cloud=False,
-                                           max_steps=max_steps)
-    return TaskEnvConfig.from_recorder(rec, hz, cameras=(), depth=False, point_cloud=True, max_steps=max_steps)
-
-
-def policy_obs(model, history: deque, device: str) -> dict[str, torch.Tensor]:
-    """The last n_obs_steps environment observations as a batch of one, with the zarr's names."""
-    cfg = model.cfg
-    out = {"state": torch.as_tensor(np.stack([h["joint_pos"] for h in history]))[None]}
-    if "point_cloud" in model.obs_keys:
-        out["point_cloud"] = torch.as_tensor(np.stack([h["point_cloud"][: cfg.num_points] for h in history]))[None]
-    if "img" in model.obs_keys:
-        from humanoidgen.policies.dp.model import resize_images
-
-        frames = np.stack([h[f"rgb/{cfg.camera}"] for h in history])
-        out["img"] = resize_images(frames, cfg.image_size)[None]
-    return {k: v.to(device) for k, v in out.items()}
-
-
-def rollout(model, env, scene_seed: int, generator: torch.Generator, device: str, video=None
-            ) -> tuple[bool, int, str]:
-    """One closed-loop episode: (success, actions taken, the predicates' details at its end)."""
-    obs, info = env.reset(seed=scene_seed)
-    history = deque([obs] * model.cfg.n_obs_steps, maxlen=model.cfg.n_obs_steps)
-    steps, done = 0, False
-    if video is not None:
-        video.frame(env.render())
-    while not done:
-        actions = model.predict_action(policy_obs(model, history, device), generator=generator)["action"][0]
-        for a in actions.cpu().numpy():
-            obs, _, terminated, truncated, info = env.step(a)
-            history.append(obs)
-            steps += 1
-            if video is not None:
-                video.frame(env.render())
-            if terminated or truncated:
-                done = True
-                break
-    return bool(info["success"]), steps, final_detail(info)
-
-
-def final_detail(info: dict) -> str:
-    return "; ".join(str(c.get("detail", "")) for c in info.get("checks", []))
 
 
 def evaluate(run: Path, task: str | None = None, episodes: int = 20, seeds: tuple[int, ...] = (0, 1, 2),
@@ -197,11 +125,3 @@ def evaluate(run: Path, task: str | None = None, episodes: int = 20, seeds: tupl
     return report
 
 
-def _video(video_dir: Path | None, ckpt: Path, seed: int, i: int, fps: float):
-    if video_dir is None:
-        return None
-    from humanoidgen.episodes.video import VideoWriter
-
-    w = VideoWriter(Path(video_dir) / f"{ckpt.stem}_seed{seed}_ep{i:03d}.mp4", fps=max(1, round(fps)))
-    w.open()
-    return w

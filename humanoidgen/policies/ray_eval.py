@@ -15,7 +15,7 @@ _loaded: dict[tuple, tuple] = {}  # per Ray actor process: the checkpoint in use
 def _model_and_env(path: str, device: str, max_steps: int | None, render: bool, action_steps: int | None = None):
     from humanoidgen.envs.task_env import HumanoidTaskEnv
     from humanoidgen.policies import checkpoint as ck
-    from humanoidgen.policies.eval import env_config_for, with_action_steps
+    from humanoidgen.policies.rollout import env_config_for, with_action_steps
 
     key = (path, os.path.getmtime(path), device, max_steps, render, action_steps)
     if key not in _loaded:
@@ -40,7 +40,7 @@ def remote_episode(path: str, seed: int, i: int, device: str, max_steps: int | N
     import torch
 
     from humanoidgen.envs.config import EVAL_SEED_BASE
-    from humanoidgen.policies.eval import MAX_EPISODES_PER_SEED, EpisodeOutcome, _video, rollout
+    from humanoidgen.policies.rollout import MAX_EPISODES_PER_SEED, EpisodeOutcome, _video, rollout
     from humanoidgen.policies.train import resolve_device
 
     device = resolve_device(device)

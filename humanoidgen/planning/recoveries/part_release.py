@@ -30,6 +30,8 @@ import numpy as np
 from humanoidgen.objects.describe import openness
 from humanoidgen.objects.queries import get_point_in_env
 from humanoidgen.planning.arm_moves import RETREAT_DISTANCE
+from humanoidgen.planning.context import PlanningContext
+from humanoidgen.planning.recovery import Recovery, ReleaseRequest
 from humanoidgen.planning.errors import PlanningError
 from humanoidgen.planning.hand_ops import finger_contacts
 from humanoidgen.planning.motion import MotionError, plan_arm_motion, time_dense_path
@@ -39,6 +41,8 @@ from humanoidgen.planning.snapshot import take_snapshot, trial
 from humanoidgen.objects.hands import HAND_POSTURES
 from humanoidgen.sim.layout import Side
 from humanoidgen.sim.scene import SceneObject
+from humanoidgen.planning import arm_moves
+from humanoidgen.planning import finger_room
 
 log = logging.getLogger(__name__)
 
@@ -47,7 +51,27 @@ TRIAL_SETTLE_S = 0.3  # after a way out is tried, the part is watched this long 
 BACK_OUT_SPEED = 0.3  # rad/s, as the retreat after a release
 
 
-def let_go(planner, side: Side, part: SceneObject, follow: dict | None) -> None:
+class PartRelease(Recovery):
+    stage = "release"
+    trigger = "before"
+    answers = "a hand lets go of an articulated part it moved (its fingers may drag the part back)"
+    tries = ("each way out (unhook, back out, loosen, open and rise, ...) in a trial from a snapshot, judged "
+             "after the move home; the first that leaves the part where it was runs for real")
+    event = "letting go of <part>, the <side> hand <way> (the usual way moved it back <n>)"
+
+    def applies(self, ctx: PlanningContext, request: ReleaseRequest, failure: Exception | None) -> bool:
+        held = request.held
+        return held is not None and held.annotations is not None and held.annotations.articulation is not None
+
+    def attempt(self, ctx: PlanningContext, request: ReleaseRequest, failure: Exception | None) -> bool:
+        # A hooked handle: back away while the fingers open, so they do not push the part back.
+        hand = ctx.hands[request.side]
+        hand.held = None
+        let_go(ctx, request.side, request.held, hand.take("part_moved"))
+        return True  # released: the usual way is not taken
+
+
+def let_go(planner: PlanningContext, side: Side, part: SceneObject, follow: dict | None) -> None:
     """Open `side`'s hand on `part` (no longer in `planner.holding`) and move it off, the way that moves the part
     least (see the module's doc). Adds an event when the usual way was not the one taken."""
     measure = _openness_gauge(planner, part, follow)
@@ -67,7 +91,7 @@ def let_go(planner, side: Side, part: SceneObject, follow: dict | None) -> None:
         try:
             with trial(planner, start):  # nothing of it is recorded
                 way()
-                planner._settle(TRIAL_SETTLE_S)
+                planner.settle(TRIAL_SETTLE_S)
                 touching = bool(finger_contacts(planner.env.model, planner.env.data, side, part.body))
                 if not planner.regripping:
                     _leave(planner, side)  # judged once the hand has gone, as the plan's next move takes it
@@ -104,10 +128,10 @@ def _leave(planner, side: Side) -> None:
     """In a trial: the hand goes to its arm's init pose, as the paper's plans send a hand after letting go (any
     move away drags a part the fingers still rest on alike); where there is no way, it stays."""
     try:
-        planner._run_arm_samples({side: planner._plan_side(side, getattr(planner, f"{side}_hand_init_pose"))})
+        planner.run_arm_samples({side: arm_moves.plan_side(planner, side, planner.init_poses[side])})
     except (MotionError, PlanningError):
         return
-    planner._settle(TRIAL_SETTLE_S)
+    planner.settle(TRIAL_SETTLE_S)
 
 
 def _openness_gauge(planner, part: SceneObject, follow: dict | None) -> Callable[[], float | None]:
@@ -120,23 +144,23 @@ def _openness_gauge(planner, part: SceneObject, follow: dict | None) -> Callable
 def _ways_out(planner, side: Side, part: SceneObject, follow: dict | None) -> list[tuple[str, Callable[[], None]]]:
     """(how, do it) for each way of letting go, the usual one first."""
     def usual() -> None:
-        if not planner._unhook(side, part, follow):
-            planner._retreat(side, open_fingers=True)
+        if not finger_room.unhook(planner, side, part, follow):
+            arm_moves.retreat(planner, side, open_fingers=True)
 
     def loosened_then(posture: str, direction: Callable[[], np.ndarray | None],
                       sampled: bool = False) -> Callable[[], None]:
         def go() -> None:
-            planner._loosen_in_place(side)
-            planner._move_fingers((side,), posture)
+            finger_room.loosen_in_place(planner, side)
+            planner.move_fingers((side,), posture)
             u = direction()
             if u is not None:
                 _back_out(planner, side, u, sampled)
             if posture != "open":
-                planner._move_fingers((side,), "open")
-            planner.last_approach[side] = None
+                planner.move_fingers((side,), "open")
+            planner.hands[side].last_approach = None
         return go
 
-    approach = planner.last_approach.get(side)
+    approach = planner.hands[side].last_approach
     ways_back = {
         "backing out the way it came in": lambda: None if approach is None else -np.asarray(approach, float),
         "sliding off the part's edge, away from its hinge": lambda: _off_the_edge(planner, side, follow),
@@ -145,7 +169,7 @@ def _ways_out(planner, side: Side, part: SceneObject, follow: dict | None) -> li
     ways = [("as usual", usual)]
     # The grip's own "pre" posture first (a pinch: only thumb and index open; the curled fingers, straightening,
     # would push the part): it leaves the part without sweeping it; the hand opens fully once off it.
-    pre = f"pre_{planner.grip.get(side) or 'grasp'}"
+    pre = f"pre_{planner.hands[side].grip or 'grasp'}"
     if pre in HAND_POSTURES:
         ways += [(f"loosening to {pre} first, then {how}", loosened_then(pre, way)) for how, way in ways_back.items()]
     ways += [(f"opening in place first, then {how}", loosened_then("open", way)) for how, way in ways_back.items()]
@@ -190,7 +214,7 @@ def _back_out(planner, side: Side, u: np.ndarray, sampled: bool = False,
         samples = time_parametrize(path.waypoints, dt=dt, v_max=BACK_OUT_SPEED)[1]
     else:
         samples = time_dense_path(path.waypoints, dt, v_max=BACK_OUT_SPEED)
-    planner._run_arm_samples({side: samples})
+    planner.run_arm_samples({side: samples})
 
 
 def _hinge_away(planner, side: Side, part: SceneObject, follow: dict | None) -> np.ndarray | None:

@@ -3,42 +3,28 @@
 A lid or screen swung far with one grip turns the wrist with it until the arm's reach or joint range ends (a
 screen that starts nearly upright and is to be closed to 0.3). A person lets go there and takes the part again
 from a posture that suits the rest of the way. The goal search (`GoalSearch._partial_goal`) returns the goal as
-far as the arm gets, with `Pose.regrip` saying where the plan asked to go; after that move, `go_on` does the rest
-with the plan's own verb (grasp or pinch) through the planner's API, so every call is logged as the plan's are.
+far as the arm gets, with `Pose.regrip` saying where the plan asked to go; after that move, this recovery does the
+rest with the plan's own verb (grasp or pinch) through the planner's verbs (handed to it in the request, never
+imported), so every call is logged as the plan's are. The budget (`ctx.regrips_left`) is the pipeline's.
 A part to be shut is not taken shut in the fingers (they would end shut in under it): let go on its way, or
 stopped short in the hand, it is pushed shut with the task's fingertip push where the task has one.
 """
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
+from typing import Any
 
+from humanoidgen.objects.describe import openness
+from humanoidgen.planning.context import PlanningContext
 from humanoidgen.planning.errors import PlanningError
+from humanoidgen.planning.part_joint import part_stays
 from humanoidgen.planning.part_joint import follow_openness
+from humanoidgen.planning.recovery import AfterMove, Recovery
+from humanoidgen.planning.regrip_request import SHUT, RegripRequest
 from humanoidgen.sim.layout import Side
-
-if TYPE_CHECKING:
-    from humanoidgen.planning.planner import HumanoidMotionPlanner
-
-MAX_REGRIPS = 2  # a part is gripped again at most this many times on one move
 ARRIVED_TOL = 0.05  # openness: a part let go this near the openness asked, and at rest there, got there
 NEAR_END = 0.1  # openness: a part asked this near the end of the task's push is pushed to that end
-STOP_SHORT_OF_SHUT = 0.2  # a hinged part to be shut is let go here by a hand holding it by its edge (part_grip)
-SHUT = 0.05  # openness: a part asked this near its closed end is to be shut (tasks check shut parts to 0.05)
 AT_REST_RAD_S = 0.05  # a part's joint turning or sliding slower than this is at rest
-
-
-def request(follow: dict, wanted: float, verb: str | None, reached: float, optional: bool,
-            why: str | None = None) -> dict:
-    """What a move does after it (`Pose.regrip`, read by `go_on`): let go of the part `follow` moves where it is
-    (at openness `reached`), then get it to `wanted` (pushed on, or gripped again with `verb`). `optional`: where
-    that fails the part stays, with an event, instead of the move failing. `why`: the event's reason for letting
-    go (default: the arm's reach ends there)."""
-    out = {"obj": follow["obj"], "openness": wanted, "verb": verb, "reached": reached, "optional": optional,
-           "follow": follow}
-    if why:
-        out["why"] = why
-    return out
 
 
 def arrived(now: float, wanted: float) -> bool:
@@ -49,47 +35,60 @@ def arrived(now: float, wanted: float) -> bool:
     return abs(now - wanted) <= ARRIVED_TOL
 
 
-def go_on(planner: HumanoidMotionPlanner, side: Side, regrip: dict) -> None:
+class GripAgain(Recovery):
+    stage = "move"
+    trigger = "after"
+    answers = "a held part moved only partway: the arm's reach ends, or the grip slipped short of shut"
+    tries = ("let go, push it on with the task's fingertip push, or grip it again (the plan's verb, then the "
+             "other) and move it on; optional when the part went most of the way and stays")
+    event = "...: it lets go there, grips it again and moves it on to <openness>"
+
+    def applies(self, ctx: PlanningContext, request: AfterMove, failure: Exception | None) -> bool:
+        return request.target.regrip is not None
+
+    def attempt(self, ctx: PlanningContext, request: AfterMove, failure: Exception | None) -> None:
+        go_on(ctx, request.verbs, request.side, request.target.regrip)
+
+
+def go_on(ctx: PlanningContext, planner: Any, side: Side, regrip: RegripRequest) -> None:
     """Let go of the part, grip it again at its present openness (the plan's verb, else the other) and move it on
-    to `regrip["openness"]`. Where that fails, the move fails with both reasons, unless the regrip is optional
+    to `regrip.openness`. Where that fails, the move fails with both reasons, unless the regrip is optional
     (the part went most of the way and stays there): then the part is left where it is, with an event."""
 
     try:
-        _go_on(planner, side, regrip)
+        _go_on(ctx, planner, side, regrip)
     except PlanningError as exc:
-        if not regrip.get("optional"):
+        if not regrip.optional:
             raise
-        from humanoidgen.objects.describe import openness
-
-        obj = planner.env.scene.object(*regrip["obj"])
+        obj = ctx.env.scene.object(*regrip.obj)
         planner.open_hand(side)
-        now = openness(planner.env.model, planner.env.data, obj)
-        planner.events.append(f"{obj.type_name} {obj.obj_id} stays at openness {now:.2f} of the "
-                              f"{regrip['openness']:g} asked: the {side} arm's reach ends there holding it, and "
+        now = openness(ctx.env.model, ctx.env.data, obj)
+        ctx.events.append(f"{obj.type_name} {obj.obj_id} stays at openness {now:.2f} of the "
+                              f"{regrip.openness:g} asked: the {side} arm's reach ends there holding it, and "
                               f"going on from a second grip failed ({exc.reason})")
 
 
-def _go_on(planner: HumanoidMotionPlanner, side: Side, regrip: dict) -> None:
+def _go_on(ctx: PlanningContext, planner: Any, side: Side, regrip: RegripRequest) -> None:
 
-    obj = planner.env.scene.object(*regrip["obj"])
-    verb = regrip["verb"] or "grasp"
+    obj = ctx.env.scene.object(*regrip.obj)
+    verb = regrip.verb or "grasp"
     label = f"{obj.type_name} {obj.obj_id}"
-    why = regrip.get("why") or f"the {side} arm reaches only openness {regrip['reached']:.2f} holding {label}"
-    planner.events.append(f"{why}: it lets go there, grips it again and moves it on to {regrip['openness']:g}")
-    planner.regrips_left -= 1
+    why = regrip.why or f"the {side} arm reaches only openness {regrip.reached:.2f} holding {label}"
+    ctx.events.append(f"{why}: it lets go there, grips it again and moves it on to {regrip.openness:g}")
+    ctx.regrips_left -= 1
     try:
-        planner.regripping = True  # letting go to grip again: the hand may stay on the part (part_release)
+        ctx.regripping = True  # letting go to grip again: the hand may stay on the part (part_release)
         try:
             planner.open_hand(side)
         finally:
-            planner.regripping = False
-        now = follow_openness(planner.env, regrip["follow"])
-        at_rest = _at_rest(planner.env, regrip["follow"]["joint"])
-        if arrived(now, regrip["openness"]) and at_rest:
-            planner.events.append(f"{label} went on to openness {now:.2f} by itself when let go (asked "
-                                  f"{regrip['openness']:g}): it is not gripped again")
+            ctx.regripping = False
+        now = follow_openness(ctx.env, regrip.follow)
+        at_rest = _at_rest(ctx.env, regrip.follow["joint"])
+        if arrived(now, regrip.openness) and at_rest:
+            ctx.events.append(f"{label} went on to openness {now:.2f} by itself when let go (asked "
+                                  f"{regrip.openness:g}): it is not gripped again")
             return
-        if at_rest and _pushed_on(planner, side, obj, regrip, now):
+        if at_rest and _pushed_on(ctx, planner, side, obj, regrip, now):
             return
         why = []
         for v in (verb, "pinch" if verb == "grasp" else "grasp"):
@@ -101,35 +100,35 @@ def _go_on(planner: HumanoidMotionPlanner, side: Side, regrip: dict) -> None:
                 planner.open_hand(side)
         else:
             raise PlanningError("move_to_pose_with_screw",
-                                f"{label} reached only openness {regrip['reached']:.2f} of the {regrip['openness']:g} "
+                                f"{label} reached only openness {regrip.reached:.2f} of the {regrip.openness:g} "
                                 f"asked (the {side} arm's reach ends there holding it), and gripping it again there "
                                 f"failed ({'; '.join(why)}): move it there, let go and push it the rest of the way")
-        cons = planner.generate_constraints(obj.type_name, obj.obj_id, v, side, openness=regrip["openness"])
+        cons = planner.generate_constraints(obj.type_name, obj.obj_id, v, side, openness=regrip.openness)
         _, pose = planner.generate_end_effector_pose(cons, side)
         planner.move_to_pose_with_screw(pose, side, attach_obj=True, object_name=obj.type_name, object_id=obj.obj_id)
     finally:
-        planner.regrips_left += 1
+        ctx.regrips_left += 1
 
 
-def _pushed_on(planner: HumanoidMotionPlanner, side: Side, obj, regrip: dict, now: float) -> bool:
+def _pushed_on(ctx: PlanningContext, planner: Any, side: Side, obj, regrip: RegripRequest, now: float) -> bool:
     """A part that went on by itself toward the openness asked when let go and came to rest short of it (at openness
     `now`): where the task defines a fingertip push that way, push it on from there instead of gripping it again (a
     screen let go at 0.25 on its way shut fell to 0.08; gripped again it was first lifted ajar to 0.24 to make room
     for the fingers, and the grip came off at 0.20). A part to be shut is pushed on even where it stayed; one asked
     within NEAR_END of where the task's push ends is pushed to that end. False where there is no such push or it
     fails (then the part is gripped again)."""
-    from humanoidgen.planning.target_actions import scene_targets
+    from humanoidgen.planning.push_spec import scene_targets
 
-    targets = scene_targets(planner.env)
+    targets = scene_targets(ctx.env)
     push = targets.push(obj.type_name, obj.obj_id) if targets is not None else None
-    wanted = regrip["openness"]
+    wanted = regrip.openness
     if push is None or (push.spec.push.to - now) * (wanted - now) <= 0:
         return False  # no push, or the task's push goes the other way
-    went_on = (regrip["reached"] - now) * (regrip["reached"] - wanted)  # > 0: it went on toward the goal
+    went_on = (regrip.reached - now) * (regrip.reached - wanted)  # > 0: it went on toward the goal
     # A part to be shut is pushed the rest of the way even where it stayed: gripped again and taken shut, the
     # fingers around its edge end up shut in under it (a screen pinched shut to 0.04 had the thumb between screen
     # and base; every way of letting go dragged it, and the hand going home lifted it to 0.48).
-    if went_on < ARRIVED_TOL * abs(regrip["reached"] - wanted) and wanted > SHUT:
+    if went_on < ARRIVED_TOL * abs(regrip.reached - wanted) and wanted > SHUT:
         return False  # it stayed where the hand let go (a lid at 0.66): grip it again
     # Asked near the end the task's push goes to, push to that end: a fingertip stops short of a point on the way
     # (a lid pushed on to 0.95 came to 0.90, just at a task's 0.9), and pressed home it gets there.
@@ -139,24 +138,22 @@ def _pushed_on(planner: HumanoidMotionPlanner, side: Side, obj, regrip: dict, no
         _, pose = planner.generate_end_effector_pose(cons, side)
         planner.move_to_pose_with_screw(pose, side)
     except PlanningError as exc:
-        planner.events.append(f"pushing {obj.type_name} {obj.obj_id} on from openness {now:.2f} failed "
+        ctx.events.append(f"pushing {obj.type_name} {obj.obj_id} on from openness {now:.2f} failed "
                               f"({exc.reason}): it is gripped again")
         return False
-    planner.events.append(f"{obj.type_name} {obj.obj_id}, let go at openness {now:.2f}, is pushed on to "
+    ctx.events.append(f"{obj.type_name} {obj.obj_id}, let go at openness {now:.2f}, is pushed on to "
                           f"{to:g} with the fingertip (the task's push) instead of gripped again")
     return True
 
 
 def _at_rest(env, joint: str) -> bool:
     """Whether a part's joint is still and would stay where it is left (a lid let go high is still falling)."""
-    from humanoidgen.planning.goal_search import part_stays
-
     jid = env.model.joint(joint).id
     still = abs(float(env.data.qvel[env.model.jnt_dofadr[jid]])) < AT_REST_RAD_S
     return still and part_stays(env, joint, float(env.data.qpos[env.model.jnt_qposadr[jid]]))
 
 
-def _grip(planner: HumanoidMotionPlanner, side: Side, obj, verb: str) -> None:
+def _grip(planner: Any, side: Side, obj, verb: str) -> None:
     (planner.hand_pre_grasp if verb == "grasp" else planner.hand_pre_pinch)(side)
     cons = planner.generate_constraints(obj.type_name, obj.obj_id, verb, side)
     _, pose = planner.generate_end_effector_pose(cons, side)

@@ -15,19 +15,17 @@ Where none does, the plan goes on as asked (its next move says what fell).
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 import numpy as np
 
 from humanoidgen.objects.hands import HAND_POSTURES
 from humanoidgen.planning.hand_ops import finger_contacts, is_held
 from humanoidgen.planning.motion import MotionError, plan_arm_motion, time_dense_path
+from humanoidgen.planning.context import PlanningContext
+from humanoidgen.planning.recovery import Recovery, ReleaseRequest
 from humanoidgen.planning.snapshot import trial
 from humanoidgen.sim.layout import OTHER_SIDE, Side
 from humanoidgen.sim.scene import SceneObject
-
-if TYPE_CHECKING:
-    from humanoidgen.planning.planner import HumanoidMotionPlanner
+from humanoidgen.planning import arm_moves
 
 TRIAL_S = 0.4  # after the giver let go, the object is watched this long
 DROP_M = 0.01  # an object that moved this far from the taking hand in the trial is not held by it
@@ -35,33 +33,51 @@ REGRIP_DEPTHS = (0.006, 0.012)  # deeper along the taker's way in, tried in turn
 DEEPER_SPEED = 0.1  # m/s, the taker's short move in
 
 
-def holds_alone(planner: HumanoidMotionPlanner, giver: Side, taker: Side, obj: SceneObject) -> bool:
+class HandOverTrial(Recovery):
+    stage = "release"
+    trigger = "before"
+    answers = "a hand lets go of an object the other hand also holds (a hand-over)"
+    tries = ("the release in a trial from a snapshot; where the object would fall, the taker closes deeper "
+             f"({', '.join(f'{d * 1000:.0f}' for d in REGRIP_DEPTHS)} mm) and the release is tried again")
+    event = "the <taker> hand's <grip> would not hold <object> alone: it took it again <n> mm deeper"
+
+    def applies(self, ctx: PlanningContext, request: ReleaseRequest, failure: Exception | None) -> bool:
+        held, other = request.held, OTHER_SIDE[request.side]
+        return (held is not None and held.annotations is not None and held.annotations.articulation is None
+                and ctx.hands[other].held is held and other not in request.releasing)
+
+    def attempt(self, ctx: PlanningContext, request: ReleaseRequest, failure: Exception | None) -> bool:
+        secure_taker(ctx, request.side, request.held)
+        return False  # the release itself goes on as usual
+
+
+def holds_alone(planner: PlanningContext, giver: Side, taker: Side, obj: SceneObject) -> bool:
     """Whether `taker` keeps `obj` once `giver` loosens its grip (tried from a snapshot; the state is restored)."""
     env = planner.env
     before = _in_hand(planner, taker, obj)
     with trial(planner):
         # As open_hand lets go: loosen, back out the way it came in, open.
-        planner._move_fingers((giver,), f"pre_{planner.grip.get(giver) or 'pinch'}")
-        planner.holding[giver] = None
+        planner.move_fingers((giver,), f"pre_{planner.hands[giver].grip or 'pinch'}")
+        planner.hands[giver].held = None
         planner.kin.detach(giver)
-        planner._settle(0.3)
-        planner._retreat(giver)
-        planner._move_fingers((giver,), "open")
-        planner._settle(TRIAL_S)
+        planner.settle(0.3)
+        arm_moves.retreat(planner, giver)
+        planner.move_fingers((giver,), "open")
+        planner.settle(TRIAL_S)
         moved = float(np.linalg.norm(_in_hand(planner, taker, obj) - before))
         return moved <= DROP_M and is_held(finger_contacts(env.model, env.data, taker, obj.body))
 
 
-def secure_taker(planner: HumanoidMotionPlanner, giver: Side, obj: SceneObject) -> None:
+def secure_taker(planner: PlanningContext, giver: Side, obj: SceneObject) -> None:
     """Before `giver` lets go of `obj` that the other hand also holds: make the other hand's grip one that holds
     it alone (see the module's doc)."""
     taker = OTHER_SIDE[giver]
     if holds_alone(planner, giver, taker, obj):
         return
-    axis = planner.last_approach.get(taker)
+    axis = planner.hands[taker].last_approach
     if axis is None:
         return
-    posture = planner.grip.get(taker) or "pinch"
+    posture = planner.hands[taker].grip or "pinch"
     axis = np.asarray(axis, float)
     for depth in REGRIP_DEPTHS:
         # A trial too (nothing recorded): a recording must not hold a grip that is then undone.
@@ -76,19 +92,19 @@ def secure_taker(planner: HumanoidMotionPlanner, giver: Side, obj: SceneObject) 
                           f"{giver} hand lets go (taking it deeper did not help)")
 
 
-def _in_hand(planner: HumanoidMotionPlanner, side: Side, obj: SceneObject) -> np.ndarray:
+def _in_hand(planner: PlanningContext, side: Side, obj: SceneObject) -> np.ndarray:
     p_hand, R_hand = planner.env.hand_pose(side)
     return R_hand.T @ (planner.env.object_pose(obj.body)[0] - p_hand)
 
 
-def _close_deeper(planner: HumanoidMotionPlanner, side: Side, obj: SceneObject, axis: np.ndarray, depth: float,
+def _close_deeper(planner: PlanningContext, side: Side, obj: SceneObject, axis: np.ndarray, depth: float,
                   posture: str) -> bool:
     """Loosen `side`'s fingers, move the hand `depth` further along `axis` (its way in) and close again; False
     where that move cannot be planned."""
     kin = planner.kin
     body = planner.env.model.body(obj.body).id
     ignored = set(planner.collisions.ignored_bodies)
-    planner._move_fingers((side,), f"pre_{posture}")
+    planner.move_fingers((side,), f"pre_{posture}")
     try:
         kin.sync(planner.env.data.qpos)
         kin.set_hand(side, np.array(HAND_POSTURES[f"pre_{posture}"]))
@@ -99,13 +115,13 @@ def _close_deeper(planner: HumanoidMotionPlanner, side: Side, obj: SceneObject, 
         path = plan_arm_motion(kin, planner.collisions, side, np.clip(kin.arm_q(side), arm.lo, arm.hi),
                                (p + depth * axis, R), allow_sampling=False)
     except MotionError:
-        planner._move_fingers((side,), posture)
+        planner.move_fingers((side,), posture)
         return False
     finally:
         planner.collisions.ignored_bodies = ignored
         kin.sync(planner.env.data.qpos)
-    planner._run_arm_samples({side: time_dense_path(path.waypoints, 1.0 / planner.env.control_hz,
+    planner.run_arm_samples({side: time_dense_path(path.waypoints, 1.0 / planner.env.control_hz,
                                                     v_max=DEEPER_SPEED)})
-    planner._move_fingers((side,), posture)
-    planner._settle(0.3)
+    planner.move_fingers((side,), posture)
+    planner.settle(0.3)
     return is_held(finger_contacts(planner.env.model, planner.env.data, side, obj.body))
