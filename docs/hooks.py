@@ -12,6 +12,8 @@ from pathlib import Path
 
 from mkdocs.structure.files import File, Files
 
+TABLE_MARK = "<!-- recoveries-table -->"
+
 RESULTS = Path(__file__).resolve().parent.parent / "bench" / "results"
 SERVED = {".png": "results/img", ".json": "results/data"}
 
@@ -23,6 +25,22 @@ def on_files(files: Files, config) -> Files:
             continue
         files.append(File.generated(config, f"{folder}/{path.name}", abs_src_path=str(path)))
     return files
+
+
+def recoveries_table() -> str:
+    """The planning pipeline's recoveries as a Markdown table, from its registry (planning/pipeline.py)."""
+    from humanoidgen.planning.pipeline import design_table
+
+    rows = ["| # | stage | when | recovery | answers | tries | event |", "|---|---|---|---|---|---|---|"]
+    for k, r in enumerate(design_table(), 1):
+        rows.append(f"| {k} | {r['stage']} | {r['trigger']} | `{r['recovery']}` (`{r['file']}`) | {r['answers']} | "
+                    f"{r['tries']} | {r['event']} |".replace("<", "&lt;"))
+    return "\n".join(rows)
+
+
+def on_page_markdown(markdown: str, page, config, files) -> str:
+    """The design page's table of recoveries is generated from the registry at every build."""
+    return markdown.replace(TABLE_MARK, recoveries_table()) if TABLE_MARK in markdown else markdown
 
 
 def on_serve(server, config, builder):
