@@ -24,3 +24,11 @@ def run_plan(tmp_path, task: str, seed: int, text: str, time_limit_s: float | No
         Path(task).write_text(yaml.safe_dump(spec))
     result, _ = run_task_episode(EpisodeRequest(task, seed=seed, plan_path=str(path)))
     return result
+
+
+def task_planner(env, **kwargs):
+    """The planner API on a task's scene with the task's targets (`targets=scene.targets`), as the episode
+    worker makes it; a scene built without a task has none."""
+    from humanoidgen.planning.planner import HumanoidMotionPlanner
+
+    return HumanoidMotionPlanner(env, targets=getattr(env.scene, "targets", None), **kwargs)

@@ -11,9 +11,10 @@ import pytest
 from humanoidgen.planning import execute, move
 from humanoidgen.planning.errors import PlanningError
 from humanoidgen.planning.execute import SLIP_LIMIT
-from humanoidgen.planning.planner import HumanoidMotionPlanner
 from humanoidgen.tasks.registry import load_task
 from humanoidgen.tasks.scene import build_scene
+
+from plan_runs import task_planner  # noqa: E402
 
 
 @pytest.fixture
@@ -21,7 +22,7 @@ def carrying(monkeypatch):
     """A planner whose right hand "pinches" cube 0, and a way to script how far the cube moves in the hand during
     the next move and what touches it afterwards."""
     _, env = build_scene(load_task("block_stack_single"), 0)
-    planner = HumanoidMotionPlanner(env)
+    planner = task_planner(env)
     cube = env.scene.object("cube", 0)
 
     def script(shift_m: float, touching: set[str]):

@@ -20,15 +20,16 @@ from humanoidgen.objects.queries import get_point_in_env
 from humanoidgen.planning import constraint_gen
 from humanoidgen.planning.motion import CARRY_TURN_SLACK, carried_turn_check
 from humanoidgen.planning.paths import plan_rrt_connect
-from humanoidgen.planning.planner import HumanoidMotionPlanner
 from humanoidgen.tasks.registry import load_task
 from humanoidgen.tasks.scene import build_scene
+
+from plan_runs import task_planner  # noqa: E402
 
 
 @pytest.fixture(scope="module")
 def storage():
     _, env = build_scene(load_task("handover_and_storage"), 0)
-    return env, HumanoidMotionPlanner(env, seed=0)
+    return env, task_planner(env, seed=0)
 
 
 def test_the_drawer_head_is_its_front_at_the_handle(storage):
@@ -75,7 +76,7 @@ def _lay_block_level(env) -> None:
 def test_a_pinch_far_from_the_centre_of_mass_squeezes_top_and_bottom():
     _, env = build_scene(load_task("handover_and_storage"), 0)
     _lay_block_level(env)
-    HumanoidMotionPlanner(env, seed=0)  # the planner's kinematics anchor the hand points
+    task_planner(env, seed=0)  # the planner's kinematics anchor the hand points
     end = get_point_in_env(env, "pinch_bottom", "cube", 0)
     assert constraint_gen._off_centre(env, "cube", 0, end) > constraint_gen.OFF_CENTRE_PINCH_M
     ways = constraint_gen._grip_variants(env, "left", "cube", 0, "pinch",
@@ -121,7 +122,7 @@ def test_a_cube_set_down_beside_another_lines_up_with_it_just_clear():
     from humanoidgen.planning import move_action
 
     _, env = build_scene(load_task("pyramid_stack"), 0)
-    HumanoidMotionPlanner(env, seed=0)
+    task_planner(env, seed=0)
     cube0, cube1 = env.scene.object("cube", 0), env.scene.object("cube", 1)
     gen = move_action.move(env, {"right": cube1, "left": None}, "cube", 1, "right", cube0, np.array([0.0, -0.04, 0.0]))
     first = gen.constraints

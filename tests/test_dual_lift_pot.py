@@ -16,11 +16,10 @@ import pytest  # noqa: E402
 from humanoidgen.objects import library  # noqa: E402
 from humanoidgen.objects.family_data import ENV_FAMILIES_PATH, FamilyDataError  # noqa: E402
 from humanoidgen.planning import shared_hold  # noqa: E402
-from humanoidgen.planning.planner import HumanoidMotionPlanner  # noqa: E402
 from humanoidgen.tasks.predicates import evaluate_all  # noqa: E402
 from humanoidgen.tasks.registry import load_task, plan_path  # noqa: E402
 from humanoidgen.tasks.scene import build_scene  # noqa: E402
-from plan_runs import run_plan  # noqa: E402
+from plan_runs import run_plan, task_planner  # noqa: E402
 
 TASK = "dual_lift_pot"
 POT = 2  # the stock pot with an upright grip on each side
@@ -97,7 +96,7 @@ def test_success_predicates_positive_and_negative():
 @pytest.fixture()
 def planner():
     _, env = build_scene(load_task(TASK), None)
-    return HumanoidMotionPlanner(env)
+    return task_planner(env)
 
 
 def test_an_object_in_both_hands_is_carried_by_both_in_planning(planner):

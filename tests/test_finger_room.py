@@ -19,7 +19,7 @@ from humanoidgen.planning.planner import HumanoidMotionPlanner
 from humanoidgen.sim.action import HAND_SLICE
 from humanoidgen.tasks.registry import load_task
 from humanoidgen.tasks.scene import build_scene
-from plan_runs import run_plan
+from plan_runs import run_plan, task_planner
 
 
 def test_back_off_directions_keep_order_and_drop_repeats():
@@ -44,14 +44,14 @@ def _grasp_handle(planner: HumanoidMotionPlanner) -> None:
 def drawer_planner():
     spec = load_task("close_drawer")
     _, env = build_scene(spec, 0)
-    return env, HumanoidMotionPlanner(env, seed=0)
+    return env, task_planner(env, seed=0)
 
 
 def test_a_hand_curls_its_fingers_clear_of_the_drawer_it_let_go():
     # handover_and_storage seed 1: the hand that pulled the drawer out lets go above its front; curled for a
     # pinch in place, its fingers rested on the drawer and the next move dragged it from 0.85 to 0.78.
     _, env = build_scene(load_task("handover_and_storage"), 1)
-    planner = HumanoidMotionPlanner(env, seed=0)
+    planner = task_planner(env, seed=0)
     drawer = env.scene.object("drawer", 0)
     _grasp_handle(planner)
     c = planner.generate_constraints(obj_name="drawer", obj_id=0, action="grasp", hand_name="left", openness=0.9)

@@ -14,6 +14,8 @@ from humanoidgen.planning.planner import HumanoidMotionPlanner
 from humanoidgen.tasks.registry import load_task
 from humanoidgen.tasks.scene import build_scene
 
+from plan_runs import task_planner  # noqa: E402
+
 
 def _deep_in_the_table(planner: HumanoidMotionPlanner, q0: np.ndarray) -> np.ndarray:
     """An arm configuration whose hand is at least 2 cm into the table: the hand tracked straight down from
@@ -35,7 +37,7 @@ def _deep_in_the_table(planner: HumanoidMotionPlanner, q0: np.ndarray) -> np.nda
 
 def test_a_goal_deep_in_the_table_is_refused_but_a_start_there_may_leave():
     _, env = build_scene(load_task("block_stack_single"), 0)
-    planner = HumanoidMotionPlanner(env, seed=0)
+    planner = task_planner(env, seed=0)
     kin, cw = planner.ctx.kin, planner.ctx.collisions
     kin.sync(env.data.qpos)
     q0 = kin.arm_q("right").copy()

@@ -4,14 +4,15 @@
 
 from __future__ import annotations
 
-from humanoidgen.planning.planner import HumanoidMotionPlanner
 from humanoidgen.tasks.registry import load_task
 from humanoidgen.tasks.scene import build_scene
+
+from plan_runs import task_planner  # noqa: E402
 
 
 def _planner(task: str, seed: int = 0) -> tuple:
     _, env = build_scene(load_task(task), seed)
-    return env, HumanoidMotionPlanner(env, seed=seed)
+    return env, task_planner(env, seed=seed)
 
 
 def test_a_grasp_of_a_small_cube_is_taken_as_a_pinch_and_lifts_it():

@@ -11,9 +11,10 @@ from humanoidgen.objects.hands import hand_axes
 from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env
 from humanoidgen.planning import grip_intent
 from humanoidgen.planning.constraints import Constraint
-from humanoidgen.planning.planner import HumanoidMotionPlanner
 from humanoidgen.sim.env import HumanoidEnv
 from humanoidgen.sim.scene import SceneBuilder
+
+from plan_runs import task_planner  # noqa: E402
 
 
 def _planner(pos=(-0.32, -0.15), yaw=0.0):
@@ -21,7 +22,7 @@ def _planner(pos=(-0.32, -0.15), yaw=0.0):
     add_object(b, "cube", 0, pos=pos, yaw=yaw)
     add_object(b, "cube", 1, pos=(-0.32, 0.2))
     env = HumanoidEnv(b.build())
-    return env, HumanoidMotionPlanner(env)
+    return env, task_planner(env)
 
 
 def _pinch_from_above(env, side: str, obj_id: int = 0, dz: float = 0.0) -> list:

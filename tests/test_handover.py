@@ -26,7 +26,7 @@ from humanoidgen.tasks.predicates import Upright
 from humanoidgen.tasks.registry import load_task
 from humanoidgen.tasks.scene import build_scene
 from humanoidgen.tasks.targets import TargetSpec
-from plan_runs import run_plan
+from plan_runs import run_plan, task_planner
 
 
 @pytest.fixture(scope="module")
@@ -171,11 +171,10 @@ def test_the_move_sets_a_cube_down_with_alternatives(handover_env):
 def test_the_way_out_of_a_grip_turns_with_the_hand(handover_env):
     # A hand that turned the block on its side (a hand-over) lets go along its turned approach, not straight up:
     # backing out upward, its thumb under the block would lift it out of the other hand.
-    from humanoidgen.planning.planner import HumanoidMotionPlanner
     from humanoidgen.planning.poses import Pose
     from humanoidgen.sim.geometry import axis_angle_mat
 
-    planner = HumanoidMotionPlanner(handover_env)
+    planner = task_planner(handover_env)
     now = planner.ctx.current_pose("right")
     planner.ctx.hands["right"].last_approach = placing.DOWN
     turn = axis_angle_mat(np.array([1.0, 0.0, 0.0]), np.pi / 2)  # a quarter turn about x: down becomes +y

@@ -11,14 +11,15 @@ import pytest
 
 from humanoidgen.planning.recoveries import hand_over as handover
 from humanoidgen.planning.hand_ops import finger_contacts, is_held
-from humanoidgen.planning.planner import HumanoidMotionPlanner
 from humanoidgen.tasks.registry import load_task
 from humanoidgen.tasks.scene import build_scene
+
+from plan_runs import task_planner  # noqa: E402
 
 
 def _mid_air(close_left: bool = True):
     _, env = build_scene(load_task("block_handover"), 0)
-    planner = HumanoidMotionPlanner(env, seed=0)
+    planner = task_planner(env, seed=0)
     planner.hand_pre_pinch("right")
     c = planner.generate_constraints("cube", 0, "pinch", "right")
     _, pose = planner.generate_end_effector_pose(c, "right")

@@ -8,9 +8,10 @@ import numpy as np
 from humanoidgen.objects.queries import get_axis_in_env
 from humanoidgen.planning.constraints import Constraint
 from humanoidgen.planning.motion import LANDING_MAX_RAD, joint_landing
-from humanoidgen.planning.planner import HumanoidMotionPlanner
 from humanoidgen.sim.env import HumanoidEnv
 from humanoidgen.sim.scene import SceneBuilder
+
+from plan_runs import task_planner  # noqa: E402
 
 
 def _turned(v: np.ndarray, deg: float) -> np.ndarray:
@@ -22,7 +23,7 @@ def _turned(v: np.ndarray, deg: float) -> np.ndarray:
 
 def test_joint_landing_keeps_path_constraints_as_well_as_the_goal_does():
     env = HumanoidEnv(SceneBuilder().build())
-    planner = HumanoidMotionPlanner(env)
+    planner = task_planner(env)
     kin = planner.ctx.kin
     kin.sync(env.data.qpos)
     q0 = kin.arm_q("right").copy()

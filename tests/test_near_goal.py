@@ -9,9 +9,10 @@ import numpy as np
 from humanoidgen.objects.queries import get_point_in_env
 from humanoidgen.planning.constraints import Constraint
 from humanoidgen.planning.near_goal import FAR_JOINT_DEG, joint_turn, nearer_goal
-from humanoidgen.planning.planner import HumanoidMotionPlanner
 from humanoidgen.sim.env import HumanoidEnv
 from humanoidgen.sim.scene import SceneBuilder
+
+from plan_runs import task_planner  # noqa: E402
 
 
 def _reach_above(env) -> list[Constraint]:
@@ -23,7 +24,7 @@ def _reach_above(env) -> list[Constraint]:
 
 def test_a_goal_on_a_far_branch_is_solved_again_near_the_arms_posture():
     env = HumanoidEnv(SceneBuilder().build())
-    planner = HumanoidMotionPlanner(env)
+    planner = task_planner(env)
     q_now = planner.ctx.kin.arm_q("right")
     cons = _reach_above(env)
     arm = planner.ctx.kin.arms["right"]

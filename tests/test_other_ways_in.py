@@ -16,14 +16,15 @@ from humanoidgen.planning import approach
 from humanoidgen.objects.queries import get_point_in_env
 from humanoidgen.planning.approach import OTHER_WAY_MAX_COS
 from humanoidgen.planning.constraints import Constraint
-from humanoidgen.planning.planner import HumanoidMotionPlanner
 from humanoidgen.tasks.registry import load_task
 from humanoidgen.tasks.scene import build_scene
+
+from plan_runs import task_planner  # noqa: E402
 
 
 def test_other_directions_keep_the_object_between_thumb_and_fingers():
     _, env = build_scene(load_task("block_stack_single"), 0)
-    planner = HumanoidMotionPlanner(env)
+    planner = task_planner(env)
     planner.hand_pre_pinch("right")
     c = planner.generate_constraints("cube", 0, "pinch", "right")
     _, pose = planner.generate_end_effector_pose(c, "right")
@@ -42,7 +43,7 @@ def test_other_directions_keep_the_object_between_thumb_and_fingers():
 @pytest.mark.slow
 def test_a_hand_over_beside_the_open_drawer_is_taken_from_another_side():
     _, env = build_scene(load_task("handover_and_storage"), 0)
-    planner = HumanoidMotionPlanner(env)
+    planner = task_planner(env)
     planner.hand_pre_grasp("left")
     c = planner.generate_constraints("drawer", 0, "grasp", "left")
     _, pose = planner.generate_end_effector_pose(c, "left")

@@ -12,9 +12,11 @@ import pytest
 
 from humanoidgen.objects.describe import describe_scene
 from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env
-from humanoidgen.planning.planner import HumanoidMotionPlanner, PlanningError
+from humanoidgen.planning.planner import PlanningError
 from humanoidgen.tasks.registry import TaskSpecError, load_task, parse_task
 from humanoidgen.tasks.scene import build_scene
+
+from plan_runs import task_planner  # noqa: E402
 
 # -- spec validation -----------------------------------------------------------------------------------------------
 BASE = {
@@ -92,7 +94,7 @@ def test_targets_do_not_change_the_layouts_and_random_offsets_follow_the_seed():
 def handover():
     spec = load_task("block_handover")
     scene, env = build_scene(spec, 0)
-    return spec, env, HumanoidMotionPlanner(env, seed=0)
+    return spec, env, task_planner(env, seed=0)
 
 
 def test_aliases_and_numbered_names_resolve_to_the_object(handover):
@@ -188,7 +190,7 @@ def test_unknown_action_lists_the_actions(handover):
 def test_pinch_then_target_puts_the_held_cube_at_its_target():
     spec = load_task("block_stack_single")
     _, env = build_scene(spec, 0)
-    planner = HumanoidMotionPlanner(env, seed=0)
+    planner = task_planner(env, seed=0)
     planner.hand_pre_pinch("right")
     c = planner.generate_constraints(obj_name="cube", obj_id=1, action="pinch", hand_name="right")
     _, pose = planner.generate_end_effector_pose(c, hand_name="right")
@@ -208,7 +210,7 @@ def test_pinch_then_target_puts_the_held_cube_at_its_target():
 # -- pour, mapped operations, the box lid's second point --------------------------------------------------------
 def test_pour_tips_the_held_cup_toward_the_bowl():
     _, env = build_scene(load_task("cup_pour_easy"), None)
-    planner = HumanoidMotionPlanner(env, seed=0)
+    planner = task_planner(env, seed=0)
     planner.ctx.hands["right"].held = env.scene.object("cup", 0)
     c = planner.generate_constraints(obj_name="cup", obj_id=0, action="pour")
     bowl, cup = get_point_in_env(env, "center", "bowl", 0), get_point_in_env(env, "center", "cup", 0)
@@ -233,7 +235,7 @@ def test_grasp_on_a_laptop_screen_takes_its_top_edge():
     # The screen has its own grasp now (the hand over the top edge, test_part_holding); it used to map to the
     # pinch, which did not hold the screen.
     _, env = build_scene(load_task("close_laptop_hard"), None)
-    planner = HumanoidMotionPlanner(env, seed=0)
+    planner = task_planner(env, seed=0)
     c = planner.generate_constraints(obj_name="laptop", obj_id=0, action="grasp")
     assert c[0].name.startswith("grasp point on laptop 0 screen_grip")
     assert c[0].meta.posture is None  # hand_grasp closes the whole hand
@@ -253,7 +255,7 @@ def test_an_action_with_no_close_operation_lists_what_the_object_has():
 def test_box_lid_has_two_push_points():
     # Without the task's push target (tests/test_push_targets.py), target1/target2 are the annotated push points.
     _, env = build_scene(load_task("close_box_easy").model_copy(update={"targets": []}), None)
-    planner = HumanoidMotionPlanner(env, seed=0)
+    planner = task_planner(env, seed=0)
     t1 = planner.generate_constraints(obj_name="box", obj_id=0, action="target1")
     t2 = planner.generate_constraints(obj_name="box", obj_id=0, action="target2")
     assert t1[0].name == "fingertip on box lid_front" and t2[0].name == "fingertip on box lid_top"

@@ -14,11 +14,10 @@ import pytest
 from humanoidgen.objects.describe import openness
 from humanoidgen.objects.hands import HAND_POSTURES
 from humanoidgen.planning import part_ajar
-from humanoidgen.planning.planner import HumanoidMotionPlanner
 from humanoidgen.sim.action import HAND_SLICE
 from humanoidgen.tasks.registry import load_task
 from humanoidgen.tasks.scene import build_scene
-from plan_runs import run_plan
+from plan_runs import run_plan, task_planner
 
 PAPER_STYLE = """
 def step(planner):
@@ -63,7 +62,7 @@ def test_the_screen_thickness_and_shut_state_come_from_the_part(shut_laptop):
 
 def test_a_pinch_of_a_shut_screen_lifts_it_ajar_first_and_keeps_the_plans_posture(shut_laptop):
     env, laptop = shut_laptop
-    planner = HumanoidMotionPlanner(env, seed=1)
+    planner = task_planner(env, seed=1)
     planner.hand_pre_pinch("right")
     c = planner.generate_constraints(obj_name="laptop", obj_id=0, action="pinch", hand_name="right")
     _, pose = planner.generate_end_effector_pose(c, "right")

@@ -22,15 +22,14 @@ from humanoidgen.objects.describe import openness
 from humanoidgen.planning import constraint_gen
 from humanoidgen.planning.motion import track_poses
 from humanoidgen.planning.part_grip import track_rolling
-from humanoidgen.planning.planner import HumanoidMotionPlanner
 from humanoidgen.tasks.registry import load_task
 from humanoidgen.tasks.scene import build_scene
-from plan_runs import run_plan
+from plan_runs import run_plan, task_planner
 
 
 def _planner(task: str, seed: int) -> tuple:
     _, env = build_scene(load_task(task), seed)
-    return env, HumanoidMotionPlanner(env, seed=seed)
+    return env, task_planner(env, seed=seed)
 
 
 def _grasp(planner, obj: str, side: str) -> None:

@@ -13,10 +13,9 @@ os.environ.setdefault("MUJOCO_GL", "egl")
 
 from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env  # noqa: E402
 from humanoidgen.planning.constraint_gen import PART_PINCH_INSET_M  # noqa: E402
-from humanoidgen.planning.planner import HumanoidMotionPlanner  # noqa: E402
 from humanoidgen.tasks.registry import load_task  # noqa: E402
 from humanoidgen.tasks.scene import build_scene  # noqa: E402
-from plan_runs import run_plan  # noqa: E402
+from plan_runs import run_plan, task_planner  # noqa: E402
 
 # A corpus plan written from the paper's API (bench/foreign_plans): pinch the screen's edge, lift it to 0.85.
 PINCH_OPEN = Path(__file__).parent.parent / "bench" / "foreign_plans" / "open_laptop_easy" / "alt_pinch_open.py"
@@ -24,7 +23,7 @@ PINCH_OPEN = Path(__file__).parent.parent / "bench" / "foreign_plans" / "open_la
 
 def test_a_half_open_screens_top_edge_is_pinched_with_the_fingers_slanted_and_the_pads_over_the_screen():
     _, env = build_scene(load_task("close_laptop_easy"), 0)
-    planner = HumanoidMotionPlanner(env, seed=0)
+    planner = task_planner(env, seed=0)
     planner.hand_pre_pinch("right")
     cons = planner.generate_constraints(obj_name="laptop", obj_id=0, action="pinch", hand_name="right")
     _, pose = planner.generate_end_effector_pose(cons, "right")  # straight in it is ~10 cm out of reach
@@ -46,7 +45,7 @@ def test_a_pinched_screen_is_lifted_open(tmp_path):
 
 
 def _first_squeeze(env) -> np.ndarray:
-    planner = HumanoidMotionPlanner(env, seed=0)
+    planner = task_planner(env, seed=0)
     cons = planner.generate_constraints(obj_name="laptop", obj_id=0, action="pinch", hand_name="right")
     return next(c.object_axis for c in cons if c.name == "pinch along the attach axis")
 

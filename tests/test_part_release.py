@@ -18,18 +18,17 @@ import pytest
 
 from humanoidgen.objects.describe import openness
 from humanoidgen.planning.recoveries import part_release
-from humanoidgen.planning.planner import HumanoidMotionPlanner
 from humanoidgen.planning.snapshot import restore_snapshot, take_snapshot
 from humanoidgen.tasks.registry import load_task
 from humanoidgen.tasks.scene import build_scene
-from plan_runs import run_plan
+from plan_runs import run_plan, task_planner
 
 
 @pytest.fixture
 def laptop_scene():
     _, env = build_scene(load_task("close_laptop_easy"), 0)
     steps: list[np.ndarray] = []
-    planner = HumanoidMotionPlanner(env, on_step=steps.append)
+    planner = task_planner(env, on_step=steps.append)
     return env, planner, env.scene.object("laptop", 0), steps
 
 
@@ -155,7 +154,7 @@ def test_a_trial_leaves_no_trace():
     """A snapshot restored mid-grip steps on bit for bit as the original did (it holds the contact solver's warm
     start too: without it a pinched cube stepped on a hair off, and a trial would change the rest of the run)."""
     _, env = build_scene(load_task("block_stack_single"), 0)
-    planner = HumanoidMotionPlanner(env)
+    planner = task_planner(env)
     planner.hand_pre_pinch("right")
     c = planner.generate_constraints("cube", 0, "pinch", "right")
     _, pose = planner.generate_end_effector_pose(c, "right")

@@ -9,9 +9,11 @@ from humanoidgen.objects.library import add_object
 from humanoidgen.objects.describe import openness
 from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env
 from humanoidgen.planning.constraints import Constraint
-from humanoidgen.planning.planner import HumanoidMotionPlanner, PlanningError
+from humanoidgen.planning.planner import PlanningError
 from humanoidgen.sim.env import HumanoidEnv
 from humanoidgen.sim.scene import SceneBuilder
+
+from plan_runs import task_planner  # noqa: E402
 
 
 def pick_and_place(planner):
@@ -44,7 +46,7 @@ def test_pick_and_place_succeeds_on_randomized_placements():
         add_object(b, "cube", 0, pos=(rng.uniform(-0.37, -0.31), rng.uniform(-0.24, -0.14)))
         add_object(b, "cube", 1, pos=(rng.uniform(-0.33, -0.29), rng.uniform(-0.06, 0.0)))
         env = HumanoidEnv(b.build())
-        planner = HumanoidMotionPlanner(env, seed=trial)
+        planner = task_planner(env, seed=trial)
         try:
             pick_and_place(planner)
             ok = cube_on_cube(env)
@@ -66,7 +68,7 @@ def two_cubes():
 
 def test_held_cube_keeps_its_pose_in_the_hand_and_is_placed_by_its_centre(two_cubes):
     env = HumanoidEnv(two_cubes)
-    planner = HumanoidMotionPlanner(env)
+    planner = task_planner(env)
     planner.hand_pre_pinch("right")
     _, pose = planner.generate_end_effector_pose(
         planner.generate_constraints("cube", 0, "pinch", "right"), "right")
@@ -90,7 +92,7 @@ def test_pulling_the_drawer_to_openness_one():
     b = SceneBuilder()
     add_object(b, "drawer", 0, pos=(-0.18, 0.20))
     env = HumanoidEnv(b.build())
-    planner = HumanoidMotionPlanner(env)
+    planner = task_planner(env)
     drawer = env.scene.object("drawer", 0)
     planner.hand_pre_grasp("left")
     _, pose = planner.generate_end_effector_pose(planner.generate_constraints("drawer", 0, "grasp", "left"), "left")
@@ -114,7 +116,7 @@ def _arm_arm_contacts(env) -> int:
 def test_both_arms_move_at_once_without_touching(empty_scene):
     env = HumanoidEnv(empty_scene)
     contacts = []
-    planner = HumanoidMotionPlanner(env, on_step=lambda a: contacts.append(_arm_arm_contacts(env)))
+    planner = task_planner(env, on_step=lambda a: contacts.append(_arm_arm_contacts(env)))
     poses = []
     for side, y in (("left", 0.15), ("right", -0.15)):
         c = [Constraint(planner.env, "point2point", f"{side[0]}_hand_base_link",
@@ -141,7 +143,7 @@ def test_blocked_straight_motion_is_replaced_by_a_sampled_path():
         m, d = env.model, env.data
         touched.append(any(wall_id in (m.geom_bodyid[c.geom1], m.geom_bodyid[c.geom2]) for c in d.contact[: d.ncon]))
 
-    planner = HumanoidMotionPlanner(env, on_step=watch)
+    planner = task_planner(env, on_step=watch)
     c = [Constraint(planner.env, "point2point", "r_hand_base_link",
                     hand_key_point=get_point_in_env(planner.env, "grasp_point_base_right_hand"),
                     object_key_point=[-0.40, -0.45, 0.20])]
@@ -153,7 +155,7 @@ def test_blocked_straight_motion_is_replaced_by_a_sampled_path():
 
 def test_failures_are_reported_as_data(two_cubes):
     env = HumanoidEnv(two_cubes)
-    planner = HumanoidMotionPlanner(env)
+    planner = task_planner(env)
     c = [Constraint(planner.env, "point2point", "r_hand_base_link",
                     hand_key_point=get_point_in_env(planner.env, "grasp_point_base_right_hand"),
                     object_key_point=[0.4, -0.2, 0.1], name="reach far")]
@@ -172,7 +174,7 @@ def test_failures_are_reported_as_data(two_cubes):
 
 def test_collision_ignore_list(two_cubes):
     env = HumanoidEnv(two_cubes)
-    planner = HumanoidMotionPlanner(env)
+    planner = task_planner(env)
     cube = env.model.body("cube_1").id
     planner.ignore_collision("cube", 1)
     assert cube in planner.ctx.collisions.ignored_bodies
@@ -183,7 +185,7 @@ def test_collision_ignore_list(two_cubes):
 def test_path_constraints_hold_along_the_motion(empty_scene):
     env = HumanoidEnv(empty_scene)
     palm_angles = []
-    planner = HumanoidMotionPlanner(env)
+    planner = task_planner(env)
 
     def palm_down():
         return Constraint(planner.env, "parallel", "r_hand_base_link",
@@ -207,7 +209,7 @@ def test_snapshot_restores_the_episode_exactly(two_cubes):
     from humanoidgen.planning.snapshot import Snapshot, restore_snapshot, take_snapshot
 
     env = HumanoidEnv(two_cubes)
-    planner = HumanoidMotionPlanner(env)
+    planner = task_planner(env)
     planner.hand_pre_pinch("right")
     _, pose = planner.generate_end_effector_pose(planner.generate_constraints("cube", 0, "pinch", "right"), "right")
     planner.move_to_pose_with_screw(pose, "right")
@@ -232,7 +234,7 @@ def test_a_trial_records_nothing_and_leaves_the_planner_where_it_was_even_when_i
 
     env = HumanoidEnv(cube_scene)
     recorded = []
-    planner = HumanoidMotionPlanner(env, on_step=recorded.append)
+    planner = task_planner(env, on_step=recorded.append)
     planner.ctx.settle(0.2)
     hook, qpos, events = planner.on_step, env.data.qpos.copy(), list(planner.events)
     with pytest.raises(RuntimeError), trial(planner.ctx):
@@ -245,7 +247,7 @@ def test_a_trial_records_nothing_and_leaves_the_planner_where_it_was_even_when_i
 
 def test_grip_alternatives_and_choosing_an_annotated_point(two_cubes):
     env = HumanoidEnv(two_cubes)
-    planner = HumanoidMotionPlanner(env)
+    planner = task_planner(env)
     c = planner.generate_constraints("cube", 0, "grasp", "right")
     # The most natural grip comes first; the other ways to take it wait as alternatives.
     assert c[0].meta.alternatives and all(alt.constraints for alt in c[0].meta.alternatives)
@@ -257,7 +259,7 @@ def test_grip_alternatives_and_choosing_an_annotated_point(two_cubes):
 
 def test_finger_offset_moves_the_grip_point_along_the_fingers(two_cubes):
     env = HumanoidEnv(two_cubes)
-    planner = HumanoidMotionPlanner(env)
+    planner = task_planner(env)
     fingers = get_axis_in_env(env, "right_grasp_wrist_2_palm_axis")
     base = planner.generate_constraints("cube", 0, "pinch", "right")[0]
     out = planner.generate_constraints("cube", 0, "pinch", "right", finger_offset=0.02)[0]
@@ -271,7 +273,7 @@ def test_pushing_a_part_to_an_openness_rides_with_the_part():
     b = SceneBuilder()
     add_object(b, "drawer", 0, pos=(-0.08, 0.17))
     env = HumanoidEnv(b.build())
-    planner = HumanoidMotionPlanner(env)
+    planner = task_planner(env)
     reach = planner.generate_constraints("drawer", 0, "target1", "left")[0].meta
     push = planner.generate_constraints("drawer", 0, "target1", "left", openness=0)[0].meta
     assert reach.follow is None and reach.approach_axis is not None  # come in straight to the front
@@ -285,7 +287,7 @@ def test_a_wrap_approach_that_would_push_the_body_over_is_refused():
     b = SceneBuilder()
     add_object(b, "bottle", 1, pos=(-0.34, -0.20))
     env = HumanoidEnv(b.build())
-    planner = HumanoidMotionPlanner(env)
+    planner = task_planner(env)
     planner.hand_pre_grasp("right")
     for offset, fits in [(0.0, True), (-0.035, False)]:  # 3.5 cm deeper: the opposed thumb goes through the bottle
         c = planner.generate_constraints("bottle", 0, "grasp", "right", point="side_right", finger_offset=offset)

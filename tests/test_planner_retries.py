@@ -28,12 +28,12 @@ from humanoidgen.objects.hands import HAND_POSTURES
 from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env
 from humanoidgen.planning import goal_search
 from humanoidgen.planning.constraints import Constraint
-from humanoidgen.planning.planner import HumanoidMotionPlanner, PlanningError
+from humanoidgen.planning.planner import PlanningError
 from humanoidgen.sim.env import HumanoidEnv
 from humanoidgen.sim.scene import SceneBuilder
 from humanoidgen.tasks.registry import load_task
 from humanoidgen.tasks.scene import build_scene
-from plan_runs import run_plan
+from plan_runs import run_plan, task_planner
 
 
 def without_push(tmp_path, task: str) -> str:
@@ -209,7 +209,7 @@ def test_a_hand_stopped_short_names_what_it_presses_against(tmp_path):
 # -- in-process checks of the mechanisms ------------------------------------------------------------------
 def test_scratch_hand_posture_matches_the_simulated_fingers():
     env = HumanoidEnv(SceneBuilder().build())
-    planner = HumanoidMotionPlanner(env)
+    planner = task_planner(env)
     planner.hand_pre_grasp("left")
     planner.ctx.settle(0.3)
     kin, m = planner.ctx.kin, env.model
@@ -235,7 +235,7 @@ def test_fingers_that_would_strike_the_door_as_they_open_come_in_as_they_are():
     slid in dragging them, 41 mm short, where the thumb missed the fin (the corpus's knob plans failed there)."""
     spec = load_task("rotate_safe_knob")
     _, env = build_scene(spec, 9)
-    planner = HumanoidMotionPlanner(env, seed=9)
+    planner = task_planner(env, seed=9)
     planner.hand_pre_pinch("right")
     _, pose = planner.generate_end_effector_pose(planner.generate_constraints("safe", 0, "pinch", "right"), "right")
     home = planner.ctx.kin.arm_q("right")
@@ -254,7 +254,7 @@ def test_fingers_that_would_strike_the_door_as_they_open_come_in_as_they_are():
 
 def test_fingers_may_come_near_the_table_when_the_goal_needs_it_and_say_so():
     env = HumanoidEnv(SceneBuilder().build())
-    planner = HumanoidMotionPlanner(env)
+    planner = task_planner(env)
     planner.hand_press("right")
     _, pose = _fingertip_goal(planner, env, 0.004)  # the index within ~2 mm of the table, not the usual 5 mm
     assert pose.finger_table_slack > 0
@@ -268,7 +268,7 @@ def test_out_of_range_goal_names_the_range_and_the_other_hand():
     b = SceneBuilder()
     add_object(b, "cube", 0, pos=(-0.33, 0.28))
     env = HumanoidEnv(b.build())
-    planner = HumanoidMotionPlanner(env)
+    planner = task_planner(env)
     planner.hand_pre_pinch("right")
     c = planner.generate_constraints("cube", 0, "pinch", "right")
     with pytest.raises(PlanningError) as err:
@@ -282,7 +282,7 @@ def test_an_upright_screen_edge_at_the_end_of_reach_is_pinched_with_the_wrist_ti
     """close_laptop_hard, seed 4: the raised screen's edge (laptop turned 24 deg) is 139 mm out of the right hand's
     reach for a pinch from straight above and out of a 15 deg cone too; the wider cone takes it."""
     _, env = build_scene(load_task("close_laptop_hard"), 4)
-    planner = HumanoidMotionPlanner(env, seed=4)
+    planner = task_planner(env, seed=4)
     c = planner.generate_constraints("laptop", 0, "pinch", "right")
     _, pose = planner.generate_end_effector_pose(c, "right")
     turned = [e for e in planner.events if "wrist turned" in e]

@@ -15,11 +15,10 @@ import numpy as np
 import pytest
 
 from humanoidgen.objects.describe import describe_scene
-from humanoidgen.planning.planner import HumanoidMotionPlanner
 from humanoidgen.planning.push_actions import contact_point, stages
 from humanoidgen.tasks.registry import load_task, parse_task
 from humanoidgen.tasks.scene import build_scene
-from plan_runs import run_plan
+from plan_runs import run_plan, task_planner
 
 ARTICULATED_TASKS = ("open_box_easy", "open_box_hard", "close_box_easy", "close_box_hard", "open_laptop_easy",
                      "open_laptop_hard", "close_laptop_easy", "close_laptop_hard", "close_drawer",
@@ -97,7 +96,7 @@ def test_describe_scene_shows_the_push_targets():
 def test_target1_is_off_the_part_and_target2_starts_on_it():
     spec = load_task("close_box_easy")
     _, env = build_scene(spec, 0)
-    planner = HumanoidMotionPlanner(env, seed=0)
+    planner = task_planner(env, seed=0)
     box = env.scene.object("box", 0)
     push = spec.targets[0].push
     t1 = planner.generate_constraints("box", 0, "target1", "right")
@@ -115,7 +114,7 @@ def test_without_a_push_target_the_annotated_push_points_are_used_and_said():
     raw = box_task(GOOD)
     raw.pop("targets")
     _, env = build_scene(parse_task(raw), 0)
-    planner = HumanoidMotionPlanner(env, seed=0)
+    planner = task_planner(env, seed=0)
     c = planner.generate_constraints("box", 0, "target2", "right")
     assert c[0].name == "fingertip on box lid_top"
     assert any("defines no push for box 0" in e for e in planner.events)

@@ -22,11 +22,12 @@ from humanoidgen.episodes.replay import CHANGED, OverTime, Replay  # noqa: E402
 from humanoidgen.episodes.replay_twin import TwinReplay  # noqa: E402
 from humanoidgen.episodes.replay_judge import ReplayJudge  # noqa: E402
 from humanoidgen.episodes.task_episode import EpisodeRequest, run_task_episode  # noqa: E402
-from humanoidgen.planning.planner import HumanoidMotionPlanner  # noqa: E402
 from humanoidgen.planning.snapshot import trial  # noqa: E402
 from humanoidgen.sim.fingerprint import fingerprint  # noqa: E402
 from humanoidgen.tasks.registry import load_task  # noqa: E402
 from humanoidgen.tasks.scene import build_scene  # noqa: E402
+
+from plan_runs import task_planner  # noqa: E402
 
 TASK = "block_stack_single"
 
@@ -36,7 +37,7 @@ def _run(seed: int = 0):
     spec = load_task(TASK)
     _, env = build_scene(spec, seed)
     log = ActionLog(env.data)
-    return spec, env, log, HumanoidMotionPlanner(env, seed=seed, on_step=log)
+    return spec, env, log, task_planner(env, seed=seed, on_step=log)
 
 
 def _replayed(spec, log: ActionLog, seed: int = 0, **kw) -> Replay:

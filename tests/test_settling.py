@@ -7,11 +7,12 @@ import numpy as np
 import pytest
 
 from humanoidgen.objects.library import add_object
-from humanoidgen.planning.planner import HumanoidMotionPlanner
 from humanoidgen.planning.settling import MAX_REST_WAIT_S, wait_until_still
 from humanoidgen.sim.env import HumanoidEnv
 from humanoidgen.sim.rest import moving_objects, object_dofs
 from humanoidgen.sim.scene import SceneBuilder
+
+from plan_runs import task_planner  # noqa: E402
 
 
 @pytest.fixture(scope="module")
@@ -58,7 +59,7 @@ def test_moving_means_fast_or_accelerating(cube_and_laptop):
 def _planner_with_counter(scene):
     env = HumanoidEnv(scene)
     steps = []
-    planner = HumanoidMotionPlanner(env, on_step=steps.append)
+    planner = task_planner(env, on_step=steps.append)
     return env, planner, steps
 
 

@@ -10,9 +10,10 @@ import pytest
 
 from humanoidgen.objects.articulated import set_openness
 from humanoidgen.planning.motion import MOTION_CLEARANCE, plan_arm_motion, touched_at
-from humanoidgen.planning.planner import HumanoidMotionPlanner
 from humanoidgen.tasks.registry import load_task
 from humanoidgen.tasks.scene import build_scene
+
+from plan_runs import task_planner  # noqa: E402
 
 
 @pytest.fixture(scope="module")
@@ -20,7 +21,7 @@ def home_in_the_drawer():
     _, env = build_scene(load_task("handover_and_storage"), 4)
     drawer = env.scene.object("drawer", 0)
     set_openness(env.model, env.data, drawer.body, drawer.annotations, 0.85)
-    planner = HumanoidMotionPlanner(env, seed=4)
+    planner = task_planner(env, seed=4)
     return env, planner, env.model.body(drawer.body).id
 
 

@@ -62,7 +62,7 @@ class EpisodeSetup:
 
         spec = parse_task(self.spec_data, "<task>")
         dressing = SceneDressing.from_dict(self.dressing) if self.dressing else None
-        _, env = build_scene(spec, self.seed, dressing=dressing)
+        scene, env = build_scene(spec, self.seed, dressing=dressing)
         if self.control_hz != env.control_hz:
             env = HumanoidEnv(env.scene, control_hz=self.control_hz)
         twin = twin_main(spec, env, self.recorder)  # the replay, forked with this scene before the lockdown
@@ -72,7 +72,8 @@ class EpisodeSetup:
         log = ActionLog(env.data, send=stream if runner._channel is not None else None)
         frames = _FrameStream(env, self.video) if self.video is not None else None
         hooks = [h for h in (log, frames) if h is not None]
-        planner = HumanoidMotionPlanner(env, seed=self.seed or 0, on_step=lambda a: [h(a) for h in hooks])
+        planner = HumanoidMotionPlanner(env, seed=self.seed or 0, on_step=lambda a: [h(a) for h in hooks],
+                                        targets=scene.targets)
         clock = [time.perf_counter()]
         said = [0]  # events already handed to the parent
 

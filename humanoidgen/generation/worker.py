@@ -67,9 +67,10 @@ def setup() -> dict[str, Any]:
     def reset(spec_data: dict, seed: int | None) -> dict:
         """Build the task's scene for `seed` and a fresh planner; return the scene as the prompt shows it."""
         spec = parse_task(spec_data, "<generated>")
-        _, env = build_scene(spec, seed)
+        scene, env = build_scene(spec, seed)
         actions: list[np.ndarray] = []  # the robot's commands since the reset, for the parent's replay
-        planner = HumanoidMotionPlanner(env, seed=seed or 0, on_step=lambda a: actions.append(np.array(a, float)))
+        planner = HumanoidMotionPlanner(env, seed=seed or 0, on_step=lambda a: actions.append(np.array(a, float)),
+                                        targets=scene.targets)
         handle._bind(planner)
         state.update(spec=spec, env=env, planner=planner, actions=actions)
         hands = {s: {"p": _round(p.p), "q": _round(p.q)}

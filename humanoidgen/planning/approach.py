@@ -1,5 +1,6 @@
 """How a hand comes in to a grip or a push: straight along the operation's axis over the last few centimetres,
-after getting to a pre-approach pose any collision-free way. A mixin of HumanoidMotionPlanner (through ArmMoves).
+after getting to a pre-approach pose any collision-free way. Stage (approach): functions of a PlanningContext, used by
+the transit stage (arm_moves).
 
 Ways to come in, tried in order (the first whose transit can also be planned wins):
 

@@ -1,5 +1,6 @@
 """How the planner moves an arm: plans (screw motion, straight approach, sampled detour, part following),
-timing, and the check that two arms moving at once keep apart. A mixin of HumanoidMotionPlanner."""
+timing, and the check that two arms moving at once keep apart. Stage (transit): functions of a PlanningContext; where
+no plain move exists it asks the pipeline (`ctx.recover("transit", LegRequest, failure)`)."""
 
 from __future__ import annotations
 

@@ -16,6 +16,7 @@ Types:
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+import weakref
 from typing import Any
 
 import numpy as np
@@ -64,6 +65,9 @@ class Constraint:
     side: Side = field(init=False)
     local_point: np.ndarray | None = field(init=False, default=None)
     local_axis: np.ndarray | None = field(init=False, default=None)
+    # What generated it (constraint_gen.Generated: the approach axis, the part to follow, the grip's ways), set by
+    # the planner on constraints it made; None on a plan's own.
+    meta: Any = field(init=False, default=None, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         if self.type not in TYPES:
@@ -193,10 +197,21 @@ def _skew(v: np.ndarray) -> np.ndarray:
     return np.array([[0, -v[2], v[1]], [v[2], 0, -v[0]], [-v[1], v[0], 0]])
 
 
+# The planner's kinematics for each simulation a planning context works on, by the env's id: kept by planning, not
+# written onto the env. An entry lives as long as its Kinematics (the context holds it, and holds the env, so an id
+# cannot be reused while its entry lives).
+_KINEMATICS: weakref.WeakValueDictionary[int, Kinematics] = weakref.WeakValueDictionary()
+
+
+def use_kinematics(env: Any, kin: Kinematics) -> None:
+    """Constraints on `env` anchor hand points with `kin` (the planning context's kinematics: its held objects)."""
+    _KINEMATICS[id(env)] = kin
+
+
 def _kinematics_of(env: Any) -> Kinematics:
-    """The planner's kinematics synced to the simulation now (envs carry one; bare envs get a fresh one)."""
-    kin = getattr(env, "kinematics", None)
-    if kin is None:
+    """The planner's kinematics synced to the simulation now (a fresh one where no planner works on `env`)."""
+    kin = _KINEMATICS.get(id(env))
+    if kin is None or kin.model is not env.model:
         kin = Kinematics(env.model)
     kin.sync(env.data.qpos)
     return kin

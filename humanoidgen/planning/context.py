@@ -20,11 +20,13 @@ import numpy as np
 from humanoidgen.objects.hands import HAND_POSTURES
 from humanoidgen.planning import shared_hold
 from humanoidgen.planning.collision import CollisionWorld
+from humanoidgen.planning.constraints import use_kinematics
 from humanoidgen.planning.goal_solver import GoalResult, GoalSolver
 from humanoidgen.planning.hand_ops import contents, finger_contacts, is_held
 from humanoidgen.planning.hand_state import HandState
 from humanoidgen.planning.kinematics import Kinematics
 from humanoidgen.planning.poses import Pose
+from humanoidgen.planning.push_spec import TaskTargets
 from humanoidgen.sim.action import ARM_SLICE, HAND_SLICE
 from humanoidgen.sim.env import HumanoidEnv
 from humanoidgen.sim.layout import SIDES, Side
@@ -50,7 +52,7 @@ class PlanningContext:
     env: HumanoidEnv
     seed: int = 0
     on_step: Callable[[np.ndarray], None] | None = None  # called after every control step with the action
-    targets: Any = None  # the task's targets and pushes (push_spec.TaskTargets-like), or None
+    targets: TaskTargets | None = None  # the task's target poses and pushes (None: the task defines none)
     events: list[str] = field(default_factory=list)
     log: list[CallRecord] = field(default_factory=list)
     plan_seconds: list[float] = field(default_factory=list)  # motion-planning time of each arm move
@@ -61,7 +63,7 @@ class PlanningContext:
 
     def __post_init__(self) -> None:
         self.kin = Kinematics(self.env.model)
-        self.env.kinematics = self.kin  # constraints anchor hand points with the planner's kinematics
+        use_kinematics(self.env, self.kin)  # constraints anchor hand points with the planner's kinematics
         self.collisions = CollisionWorld(self.kin)
         self.solver = GoalSolver(self.kin, self.collisions, seed=self.seed)
         self.action = self.env.joint_positions()

@@ -158,11 +158,11 @@ def room_for(ctx: PlanningContext, side: Side, posture: str, obstacle_geoms, cle
             ctx.run_arm_samples({side: timed(ctx, path.waypoints)})
             how = f"moved {dist * 100:.0f} cm away"
             if come_back:
-                how += come_back(ctx, side, posture, path.waypoints[::-1])
+                how += change_on_the_way_back(ctx, side, posture, path.waypoints[::-1])
             return how
     return None
 
-def come_back(ctx: PlanningContext, side: Side, posture: str, way_back: np.ndarray) -> str:
+def change_on_the_way_back(ctx: PlanningContext, side: Side, posture: str, way_back: np.ndarray) -> str:
     """Change posture where the hand made room, then return along `way_back` if that is clear with the new
     posture; says which."""
     ctx.move_fingers((side,), posture)

@@ -62,8 +62,8 @@ def pushes_toward(ctx: PlanningContext, side: Side, obj, wanted: float, skip_poi
     out = []
     for action in ("target1", "target2"):
         try:
-            other = skills.generate(ctx.env, ctx.holding, obj.type_name, obj.obj_id, action, side, wanted)
-            start = skills.generate(ctx.env, ctx.holding, obj.type_name, obj.obj_id, action, side, None)
+            other = skills.generate(ctx.env, ctx.holding, obj.type_name, obj.obj_id, action, side, wanted, targets=ctx.targets)
+            start = skills.generate(ctx.env, ctx.holding, obj.type_name, obj.obj_id, action, side, None, targets=ctx.targets)
         except (ValueError, KeyError):
             continue
         if other.follow is None or other.follow["part_point"] == skip_point or push_cos(ctx, other) < PUSH_MIN_COS:

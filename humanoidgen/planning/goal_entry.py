@@ -13,7 +13,7 @@ from humanoidgen.sim.layout import Side
 def generate(ctx: PlanningContext, request: tuple) -> constraint_gen.Generated:
     """Constraints for a verb on an object (`constraint_gen.generate`), tagged with what made them."""
     ctx.kin.sync(ctx.env.data.qpos)
-    gen = skills.generate(ctx.env, ctx.holding, *request)
+    gen = skills.generate(ctx.env, ctx.holding, *request, targets=ctx.targets)
     gen.request = request  # to generate them again where the scene changes before the solve (part_ajar)
     ctx.events.extend(gen.notes)  # fallbacks and mappings are feedback for the plan's author
     for c in gen.constraints:
@@ -35,7 +35,7 @@ def solve_grip_or_goal(ctx: PlanningContext, constraints: list, side: Side) -> t
         result, pose = goal_search.solve_goal(ctx, list(intent.first.constraints), side)
     finally:  # the plan's Constraint objects stay as the plan made them (it may use them again)
         for c in mine.values():
-            c.__dict__.pop("meta", None)
+            c.meta = None
     if (dz := intent.raised_by(result)) > 0.002:
         ctx.events.append(f"the {intent.operation} of {intent.obj.type_name} {intent.obj.obj_id} is taken "
                           f"{dz * 1000:.0f} mm higher than asked, at its annotated {intent.operation} height: at "

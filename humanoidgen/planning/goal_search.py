@@ -1,4 +1,4 @@
-"""How the planner looks for a goal pose before it says there is none: a mixin of HumanoidMotionPlanner behind
+"""How the planner looks for a goal pose before it says there is none (stage: goal, functions of a PlanningContext) behind
 `generate_end_effector_pose`.
 
 In order, each rung tried only when the ones before found nothing (so a goal found before is found the same way):

@@ -7,7 +7,7 @@ limited (per grip, the follow's "roll_deg") and costlier than the joints' own mo
 arm alone does not keep up; the arm then keeps its reach over more of the part's arc (an arm stretched toward a
 drawer's closed position runs out of wrist range long before it runs out of reach).
 
-`PartFollowing` (a mixin of the planner) builds the part's path, tracks it, and scores a grasp posture by how
+This stage (follow a part; functions of a PlanningContext) builds the part's path, tracks it, and scores a grasp posture by how
 much of the part's arc it can reach (`_arc_span`, used when choosing among grasp postures).
 """
 
@@ -240,8 +240,6 @@ def stop_short_of_shut(ctx: PlanningContext, side: Side, target: Pose) -> None:
     shut in under it (a thumb between screen and base; every way of letting go then dragged it open again, to
     0.28-0.48). Where the task has a fingertip push that shuts it, the hand takes it to STOP_SHORT_OF_SHUT,
     lets go there and the part falls or is pushed shut (regrip.go_on)."""
-    from humanoidgen.planning.push_spec import scene_targets
-
     f = target.follow
     if target.regrip is not None or ctx.regrips_left <= 0 or ctx.hands[side].held is None:
         return
@@ -251,7 +249,7 @@ def stop_short_of_shut(ctx: PlanningContext, side: Side, target: Pose) -> None:
     art = follow_articulation(ctx.env, f)
     wanted, now = art.openness_of(f["q_target"]), follow_openness(ctx.env, f)
     obj = ctx.env.scene.object(*f["obj"])
-    targets = scene_targets(ctx.env)
+    targets = ctx.targets
     push = targets.push(obj.type_name, obj.obj_id) if targets is not None else None
     if wanted > SHUT or now <= STOP_SHORT_OF_SHUT or push is None or push.spec.push.to > SHUT:
         return

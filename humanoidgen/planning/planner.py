@@ -30,6 +30,7 @@ from humanoidgen.planning.errors import PlanningError
 from humanoidgen.planning.goal_solver import GoalResult
 from humanoidgen.planning.pipeline import Pipeline
 from humanoidgen.planning.poses import Pose
+from humanoidgen.planning.push_spec import TaskTargets
 from humanoidgen.planning.recovery import GoalRequest
 from humanoidgen.sim.env import HumanoidEnv
 from humanoidgen.sim.layout import SIDES, Side
@@ -83,12 +84,14 @@ def _logged(fn: Callable) -> Callable:
 
 class HumanoidMotionPlanner:
     """The paper's planner API on one episode's simulation. `on_step(action)` is called after every control
-    step (the recording); `targets`: the task's targets and pushes (planning.push_spec.TaskTargets), where the
-    task defines any."""
+    step (the recording); `targets`: the task's target poses and pushes (`push_spec.TaskTargets`: a task's scene
+    has them as `scene.targets`), None where the task defines none; `wider_search=False` leaves out the goal
+    search's last rungs (to compare)."""
 
     def __init__(self, env: HumanoidEnv, seed: int = 0, on_step: Callable[[np.ndarray], None] | None = None,
-                 targets=None) -> None:
-        self.ctx = PlanningContext(env, seed=seed, on_step=on_step, targets=targets, pipeline=Pipeline())
+                 targets: TaskTargets | None = None, wider_search: bool = True) -> None:
+        self.ctx = PlanningContext(env, seed=seed, on_step=on_step, targets=targets, wider_search=wider_search,
+                                   pipeline=Pipeline())
         self.left_hand_init_pose = self.ctx.init_poses["left"]
         self.right_hand_init_pose = self.ctx.init_poses["right"]
 

@@ -23,6 +23,12 @@ class FingertipPush(Protocol):
         """The contact's inset (m along axes[0]) with the part at `openness`."""
 
 
-def scene_targets(env):
-    """The task's targets (tasks.targets.SceneTargets), or None for a scene built without a task."""
-    return getattr(env.scene, "targets", None)
+class TaskTargets(Protocol):
+    """A task's named target poses and pushes, as planning asks them (`tasks.targets.SceneTargets` provides them):
+    handed to the planner API as `targets=` by whoever built the task's scene."""
+
+    def find(self, type_name: str, obj_id: int, name: str, side: str): ...
+
+    def push(self, type_name: str, obj_id: int): ...
+
+    def names(self, type_name: str, obj_id: int, side: str) -> list[str]: ...

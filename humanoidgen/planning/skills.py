@@ -20,12 +20,15 @@ from humanoidgen.planning.constraint_gen import (
     ride_with_part,
 )
 from humanoidgen.planning.constraints import Const, Constraint
+from humanoidgen.planning.push_spec import TaskTargets
 from humanoidgen.sim.layout import HAND_BASE_FRAME, Side
 
 
 def generate(env, holding: dict, obj_name: str, obj_id: int, action: str, side: Side, openness: float | None = None,
              relative_obj_name: str | None = None, relative_obj_id: int | None = None,
-             relative_p: np.ndarray | None = None, point: str | None = None, finger_offset: float = 0.0) -> Generated:
+             relative_p: np.ndarray | None = None, point: str | None = None, finger_offset: float = 0.0,
+             targets: TaskTargets | None = None) -> Generated:
+    """`targets`: the task's target poses and pushes (None: the task defines none)."""
     ta = target_actions
     if action not in ACTIONS + PUSH_ACTIONS:
         raise ConstraintGenerationError(f"unknown action {action!r}; use one of {', '.join(ACTIONS)}")
@@ -50,14 +53,14 @@ def generate(env, holding: dict, obj_name: str, obj_id: int, action: str, side: 
         return gen
     articulated = obj.annotations is not None and obj.annotations.articulation is not None
     if action in ta.TARGET_ACTIONS and not (articulated and action != "target"
-                                            and not ta.has_task_target(env, obj, action, side)):
-        return ta.to_target(env, holding, obj, action, side)
+                                            and not ta.has_task_target(targets, obj, action, side)):
+        return ta.to_target(env, holding, targets, obj, action, side)
     if action in ("target1", "target2") + PUSH_ACTIONS:
         if not articulated:
             raise ConstraintGenerationError(f"{obj_name} has no push/flip/press annotation; actions for it: "
                                             f"{', '.join(ta.actions_of(obj))}")
         # The task's push (pre-push pose, then the staged push to its openness), where it defines one.
-        if (gen := ta.task_push(env, holding, obj, action, side, openness)) is not None:
+        if (gen := ta.task_push(env, holding, targets, obj, action, side, openness)) is not None:
             return gen
         k, note = ta.push_index(obj, action)
         gen = _push(env, side, obj_name, obj_id, k, openness)

@@ -21,7 +21,7 @@ from humanoidgen.planning import push_actions
 from humanoidgen.planning import placing
 from humanoidgen.planning.constraint_gen import LIFT, ConstraintGenerationError, Generated, keep_orientation
 from humanoidgen.planning.constraints import Const, Constraint
-from humanoidgen.planning.push_spec import scene_targets
+from humanoidgen.planning.push_spec import TaskTargets
 from humanoidgen.sim.layout import HAND_BASE_FRAME, OTHER_SIDE, Side
 from humanoidgen.sim.scene import SceneObject
 
@@ -46,17 +46,15 @@ def _label(obj: SceneObject) -> str:
     return f"{obj.type_name} {obj.obj_id}"
 
 
-def has_task_target(env, obj: SceneObject, name: str, side: Side) -> bool:
+def has_task_target(targets: TaskTargets | None, obj: SceneObject, name: str, side: Side) -> bool:
     """A target pose for the held object (a push target is not one: the fingertip pushes the part)."""
-    targets = scene_targets(env)
     t = targets.find(obj.type_name, obj.obj_id, name, side) if targets is not None else None
     return t is not None and t.spec.push is None
 
 
-def task_push(env, holding: dict, obj: SceneObject, action: str, side: Side,
+def task_push(env, holding: dict, targets: TaskTargets | None, obj: SceneObject, action: str, side: Side,
               openness: float | None) -> Generated | None:
     """target1/target2 on an articulated object as the task defines its push (None where it defines none)."""
-    targets = scene_targets(env)
     push = targets.push(obj.type_name, obj.obj_id) if targets is not None else None
     if push is None or action not in ("target1", "target2"):
         return None
@@ -88,10 +86,9 @@ def require_held(holding: dict, obj: SceneObject, side: Side, action: str) -> Sc
         f"hand_name={side!r}), move there, then hand_pinch/hand_grasp; then ask for {action!r}")
 
 
-def to_target(env, holding: dict, obj: SceneObject, action: str, side: Side) -> Generated:
+def to_target(env, holding: dict, targets: TaskTargets | None, obj: SceneObject, action: str, side: Side) -> Generated:
     """Constraints bringing the held object to its task target `action` (see the module docstring)."""
     art = obj.annotations.articulation if obj.annotations is not None else None
-    targets = scene_targets(env)
     target = targets.find(obj.type_name, obj.obj_id, action, side) if targets is not None else None
     defined = targets.names(obj.type_name, obj.obj_id, side) if targets is not None else []
     has = f"; its targets here: {', '.join(defined)}" if defined else ""

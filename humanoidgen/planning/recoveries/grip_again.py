@@ -117,9 +117,7 @@ def _pushed_on(ctx: PlanningContext, planner: Any, side: Side, obj, regrip: Regr
     for the fingers, and the grip came off at 0.20). A part to be shut is pushed on even where it stayed; one asked
     within NEAR_END of where the task's push ends is pushed to that end. False where there is no such push or it
     fails (then the part is gripped again)."""
-    from humanoidgen.planning.push_spec import scene_targets
-
-    targets = scene_targets(ctx.env)
+    targets = ctx.targets
     push = targets.push(obj.type_name, obj.obj_id) if targets is not None else None
     wanted = regrip.openness
     if push is None or (push.spec.push.to - now) * (wanted - now) <= 0:
