@@ -32,7 +32,6 @@ from humanoidgen.planning.feedback import push_advice
 from humanoidgen.planning.goal_solver import GoalResult
 from humanoidgen.planning.goal_targets import AxisWithin
 from humanoidgen.planning.motion import track_poses
-from humanoidgen.planning.near_goal import joint_turn, nearer_goal
 from humanoidgen.planning.part_joint import part_stays, follow_articulation, follow_openness, grip_joint
 from humanoidgen.planning import regrip_request as regrip
 from humanoidgen.planning.poses import Pose
@@ -40,6 +39,7 @@ from humanoidgen.sim.layout import HAND_PREFIX, Side
 from humanoidgen.planning import approach
 from humanoidgen.planning import part_grip
 from humanoidgen.planning.context import PlanningContext
+from humanoidgen.planning.recovery import GoalFound
 from humanoidgen.planning.goal_checks import check_push_direction, goal_failure, pushes_toward, use_ignores
 
 FINGER_TABLE_CLEARANCE = 0.0015  # m: fingers meant to touch may come this close to the table
@@ -90,15 +90,12 @@ def solve_goal(ctx: PlanningContext, constraints: list, side: Side) -> tuple[Goa
             result, gen, slack = wider_goal(ctx, side, gen, tried, ignored_before, result)
         if result.success and not riding and getattr(gen, "grip_part", None) is not None:
             result, gen = prefer_arc(ctx, side, gen, result, ignored_before)
-        if result.success and not riding and ctx.carries(side):
+        if result.success and not riding:
             # The constraints as passed (a plan may add its own to generated ones), or the other grip taken.
             cons = constraints if gen is None or gen is getattr(constraints[0], "meta", None) else gen.constraints
-            near = nearer_goal(ctx.solver, side, cons, q_now, result, ctx.seed)
-            if near is not None:
-                ctx.events.append(f"the {side} arm takes a goal near its posture: the first found turned a joint "
-                                   f"{np.degrees(joint_turn(q_now, result.q)):.0f} deg, swinging {held.type_name} "
-                                   f"{held.obj_id} through a wide arc")
-                result = near
+            found = GoalFound(side, cons, q_now, result)
+            ctx.after("goal", found)  # e.g. a carried object's goal taken nearer the arm's posture
+            result = found.result
     finally:
         ctx.collisions.ignored_bodies = ignored_before
         ctx.kin.sync(ctx.env.data.qpos)

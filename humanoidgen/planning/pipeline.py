@@ -21,6 +21,7 @@ from humanoidgen.planning.recoveries.ajar_before_grip import AjarBeforeGrip
 from humanoidgen.planning.recoveries.carry_into import CarryInto
 from humanoidgen.planning.recoveries.grip_again import GripAgain
 from humanoidgen.planning.recoveries.hand_over import HandOverTrial
+from humanoidgen.planning.recoveries.near_posture import NearPosture
 from humanoidgen.planning.recoveries.part_release import PartRelease
 from humanoidgen.planning.recoveries.pinch_instead import PinchInstead
 from humanoidgen.planning.recoveries.rise_first import RiseFirst
@@ -29,6 +30,7 @@ from humanoidgen.planning.recoveries.rise_first import RiseFirst
 RECOVERIES: tuple[Recovery, ...] = (
     AjarBeforeGrip(),
     PinchInstead(),
+    NearPosture(),
     CarryInto(),
     RiseFirst(),
     GripAgain(),

@@ -33,6 +33,17 @@ class GoalRequest:
 
 
 @dataclass
+class GoalFound:
+    """A goal the search found for one hand (`result`), from the arm at `q_now`; an "after" recovery may replace
+    `result` with a better one for the same constraints."""
+
+    side: Side
+    constraints: list
+    q_now: np.ndarray
+    result: Any
+
+
+@dataclass
 class LegRequest:
     """One arm's plain move from `q0` to `target` (no approach axis, no part to follow)."""
 
