@@ -128,3 +128,15 @@ def test_no_circle_of_imports_between_modules():
 
 def test_the_cycle_finder_finds_a_circle():
     assert _cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == [["a", "b", "c"]]
+
+
+def test_no_module_is_over_400_lines():
+    """A module over ~400 lines is a sign to split it (the house's rule); each says its one job in a docstring."""
+    long = {p.relative_to(ROOT).as_posix(): n for p in ROOT.rglob("*.py")
+            if not p.relative_to(ROOT).as_posix().startswith(NOT_MODULES)
+            and (n := len(p.read_text(encoding="utf-8").splitlines())) > 400}
+    assert not long, f"modules over 400 lines: {long}"
+    silent = [p.relative_to(ROOT).as_posix() for p in ROOT.rglob("*.py")
+              if not p.relative_to(ROOT).as_posix().startswith(NOT_MODULES) and p.read_text(encoding="utf-8").strip()
+              and not ast.get_docstring(ast.parse(p.read_text(encoding="utf-8")))]
+    assert not silent, f"modules without a docstring: {silent}"

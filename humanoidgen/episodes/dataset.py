@@ -29,32 +29,30 @@ import logging
 import os
 import re
 import shutil
-import zipfile
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
 
 import numpy as np
 
 from humanoidgen.episodes.depth_units import decode_depth
-from humanoidgen.episodes.npy_zstd import SUFFIX as ZSTD_SUFFIX
-from humanoidgen.episodes.npy_zstd import NpyZstdStream, compress_stack, read_member, write_member
+from humanoidgen.episodes.episode_file import (  # noqa: F401 (the dataset's names, re-exported)
+    DEFLATE_LEVEL,
+    DatasetError,
+    _atomic_write,
+    _check_episode,
+    _is_stored_depth,
+    _read_episode,
+    _reason,
+    read_episode,
+    write_episode,
+    write_episode_file,
+)
 
 # 3: image stacks Zstandard-compressed; 2: depth in uint16 millimetres; 1: float32 metres (all are read)
 FORMAT_VERSION = 3
-# Chosen by measurement on a 124-frame, six-camera 320x240 episode (287 MB of arrays; bench/episode_compression.py,
-# bench/results/collection_compression.json): with image stacks time-fastest, level 1 writes 15.8 MB in 1.4 s,
-# 3 writes 14.9 MB in 1.4 s, 6 writes 12.5 MB in 3.2 s, 9 writes 12.0 MB in 6.2 s (row-major: 34.4 MB at level 3);
-# lzma and bzip2 (--slow) write 4-8 MB but take about 40 s, longer than the episode.
-DEFLATE_LEVEL = 3
-_IMAGE_PREFIXES = ("rgb/", "depth/")  # frame stacks, stored Zstandard-compressed (npy_zstd)
 _EPISODE_FILE = re.compile(r"^episode_(\d+)\.npz$")
 
 log = logging.getLogger(__name__)
-
-
-class DatasetError(RuntimeError):
-    pass
 
 
 @dataclass
@@ -274,125 +272,6 @@ def _next_episode(records: list[dict]) -> int:
     episode's slot is never reused by a file a reader could mistake for it."""
     used = [r[k] for r in records for k in ("episode", "dropped_episode") if isinstance(r.get(k), int)]
     return max(used, default=-1) + 1
-
-
-def write_episode_file(path: Path, arrays: dict[str, np.ndarray]) -> None:
-    """An episode file at `path`, written to a temporary name, synced and renamed: never seen half-written."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(path.name + ".tmp.npz")
-    with open(tmp, "wb") as f:
-        write_episode(f, arrays)
-        f.flush()
-        os.fsync(f.fileno())  # the rename must never publish a file whose bytes are not on disk
-    os.replace(tmp, path)
-
-
-def write_episode(f, arrays: dict) -> None:
-    """An episode file: state arrays as deflated `.npy` members (`DEFLATE_LEVEL`), image stacks as
-    Zstandard-compressed ones (`npy_zstd`). Arrays holding an `ImageJob` under `PENDING_IMAGES` have their
-    images rendered now, frame by frame, each frame compressed as it comes: no stack is ever held whole."""
-    from humanoidgen.episodes.image_job import PENDING_IMAGES
-
-    job = arrays.get(PENDING_IMAGES)
-    with zipfile.ZipFile(f, "w", compression=zipfile.ZIP_DEFLATED, compresslevel=DEFLATE_LEVEL) as zf:
-        for key, value in arrays.items():
-            if key == PENDING_IMAGES:
-                continue
-            value = np.asarray(value)
-            if _is_image_stack(key, value):
-                write_member(zf, key, compress_stack(value))
-            else:
-                _write_npy(zf, key, value)
-        if job is not None:
-            _write_rendered(zf, job)
-
-
-def _write_rendered(zf: zipfile.ZipFile, job) -> None:
-    layout = job.layout()
-    stacks = {k: NpyZstdStream((job.frames, *shape), dtype) for k, (shape, dtype) in layout.items()
-              if k.startswith(_IMAGE_PREFIXES)}
-    small = {k: np.empty((job.frames, *shape), dtype) for k, (shape, dtype) in layout.items() if k not in stacks}
-    for t, frame in job.iter_frames():
-        for key, value in frame.items():
-            if key in stacks:
-                stacks[key].write(value)
-            else:
-                small[key][t] = value
-    for key, stream in stacks.items():
-        write_member(zf, key, stream.finish())
-    for key, value in small.items():
-        _write_npy(zf, key, value)
-
-
-def _write_npy(zf: zipfile.ZipFile, key: str, value: np.ndarray) -> None:
-    with zf.open(key.replace("/", "__") + ".npy", "w", force_zip64=True) as member:
-        np.lib.format.write_array(member, value, allow_pickle=False)
-
-
-def _is_image_stack(key: str, value: np.ndarray) -> bool:
-    return key.startswith(_IMAGE_PREFIXES) and value.ndim >= 3
-
-
-def _is_stored_depth(key: str, value: np.ndarray) -> bool:
-    return key.startswith("depth/") and value.dtype == np.uint16
-
-
-def _read_episode(path: Path) -> dict[str, np.ndarray]:
-    try:
-        return read_episode(path)
-    except Exception as exc:  # noqa: BLE001 - any failure to decode the bytes means the file is damaged
-        raise DatasetError(f"{path} is damaged ({_reason(exc)}); continue the collection with --resume "
-                           "to collect it again") from None
-
-
-def read_episode(path: Path) -> dict[str, np.ndarray]:
-    """Every array of an episode file as stored (depth in uint16 millimetres): `.npy` members (format 1 and
-    2 files hold only those) and Zstandard-compressed `.npy.zst` image stacks. Reading a member checks its
-    CRC (and a stack's zstd checksum)."""
-    out = {}
-    with zipfile.ZipFile(path) as zf:
-        for name in zf.namelist():
-            with zf.open(name) as member:
-                if name.endswith(ZSTD_SUFFIX):
-                    out[name[: -len(ZSTD_SUFFIX)].replace("__", "/")] = read_member(member)
-                elif name.endswith(".npy"):
-                    out[name[: -len(".npy")].replace("__", "/")] = np.lib.format.read_array(member,
-                                                                                        allow_pickle=False)
-                else:
-                    raise ValueError(f"unexpected member {name}")
-    return out
-
-
-def _check_episode(path: Path, length: Any) -> str | None:
-    """Why the episode file at `path` is unusable, or None."""
-    if not path.exists():
-        return "file missing"
-    try:
-        arrays = read_episode(path)
-    except Exception as exc:  # noqa: BLE001
-        return _reason(exc)
-    if "action" not in arrays:
-        return "no action array"
-    if isinstance(length, int) and len(arrays["action"]) != length:
-        return f"{len(arrays['action'])} frames, the index says {length}"
-    return None
-
-
-def _reason(exc: Exception) -> str:
-    text = str(exc).split(". ")[0]  # numpy's pickle message goes on about trusting the file
-    if isinstance(exc, ValueError) and "pickled" in text:
-        text = "not an episode file"
-    return f"{type(exc).__name__}: {text}"[:200]
-
-
-def _atomic_write(path: Path, data: bytes) -> None:
-    tmp = path.with_name(path.name + ".tmp")
-    with open(tmp, "wb") as f:
-        f.write(data)
-        f.flush()
-        os.fsync(f.fileno())
-    os.replace(tmp, path)
 
 
 def export_zarr(store: EpisodeStore, out: Path, image_camera: str = "head") -> dict[str, tuple]:
