@@ -1,12 +1,15 @@
 """The goal stage's entry: constraints in, a goal pose out. Constraints the plan wrote that put a grip point on
-an object are solved as that grip (`grip_intent`); the goal search (`goal_search`) does the solving."""
+an object are solved as that grip (`grip_intent`); the goal search (`goal_search`) does the solving; where it finds
+none, the pipeline's goal recoveries answer (`ctx.recover("goal", ...)`)."""
 
 from __future__ import annotations
 
 from humanoidgen.planning import constraint_gen, goal_search, grip_intent, skills
 from humanoidgen.planning.context import PlanningContext
+from humanoidgen.planning.errors import PlanningError
 from humanoidgen.planning.goal_solver import GoalResult
 from humanoidgen.planning.poses import Pose
+from humanoidgen.planning.recovery import GoalRequest
 from humanoidgen.sim.layout import Side
 
 
@@ -41,3 +44,13 @@ def solve_grip_or_goal(ctx: PlanningContext, constraints: list, side: Side) -> t
                           f"{dz * 1000:.0f} mm higher than asked, at its annotated {intent.operation} height: at "
                           "the height asked the fingers would go into the table")
     return result, pose
+
+
+def goal(ctx: PlanningContext, side: Side, constraints: list) -> tuple[GoalResult, Pose, list]:
+    """(result, goal pose, the constraints it meets): the constraints as given, or those a recovery solved."""
+    try:
+        result, pose = solve_grip_or_goal(ctx, list(constraints), side)
+        return result, pose, constraints
+    except PlanningError as failure:
+        request = GoalRequest(side, list(constraints), getattr(constraints[0], "meta", None))
+        return ctx.recover("goal", request, failure)

@@ -31,7 +31,6 @@ from humanoidgen.planning.goal_solver import GoalResult
 from humanoidgen.planning.pipeline import Pipeline
 from humanoidgen.planning.poses import Pose
 from humanoidgen.planning.push_spec import TaskTargets
-from humanoidgen.planning.recovery import GoalRequest
 from humanoidgen.sim.env import HumanoidEnv
 from humanoidgen.sim.layout import SIDES, Side
 from humanoidgen.sim.scene import SceneObject
@@ -199,11 +198,7 @@ class HumanoidMotionPlanner:
         (side,) = _sides(hand_name)
         if not constraints:
             raise PlanningError("generate_end_effector_pose", "no constraints given")
-        try:
-            result, pose = goal_entry.solve_grip_or_goal(self.ctx, list(constraints), side)
-        except PlanningError as failure:
-            request = GoalRequest(side, list(constraints), getattr(constraints[0], "meta", None))
-            result, pose, constraints = self.ctx.recover("goal", request, failure)
+        result, pose, constraints = goal_entry.goal(self.ctx, side, constraints)
         push_actions.mark(pose, constraints)  # target1/target2 on a part: the move does the push
         return result, pose
 
