@@ -80,7 +80,7 @@ def test_a_hand_lets_go_of_a_handle_along_its_attach_axis(drawer_planner):
     planner.move_to_pose_with_screw(pose, "left", attach_obj=True, object_name="drawer", object_id=0)
     shut = openness(env.model, env.data, drawer)
     assert shut <= 0.05
-    assert planner.ctx.hands["left"].part_moved["unhook_axis"] == "down"  # a grip over the bar (handle_upper)
+    assert planner.ctx.hands["left"].part_moved.unhook_axis == "down"  # a grip over the bar (handle_upper)
     z0 = env.hand_pose("left")[0][2]
     planner.open_hand("left")
     assert openness(env.model, env.data, drawer) <= 0.05, planner.events

@@ -44,7 +44,7 @@ def test_a_held_handle_rolls_and_the_whole_drawer_path_is_tracked():
     env, planner = _planner("close_drawer", 0)
     _grasp(planner, "drawer", "left")
     gen = skills.generate(env, planner.holding, "drawer", 0, "grasp", "left", 0.0)
-    assert gen.follow["grip_axis"] == "left" and gen.follow["roll_deg"] > 0
+    assert gen.follow.grip_axis == "left" and gen.follow.roll_deg > 0
     kin = planner.ctx.kin
     kin.sync(env.data.qpos)
     arm = kin.arms["left"]
@@ -53,9 +53,9 @@ def test_a_held_handle_rolls_and_the_whole_drawer_path_is_tracked():
     rigid, reason = track_poses(kin, "left", q0, poses)
     assert reason and len(rigid) < 0.6 * len(poses)  # the wrist held at its grasp orientation runs out early
     path, rolls, reason = track_rolling(kin, "left", q0, poses, *part_grip.grip_roll_frames(planner.ctx, "left", gen.follow, q_steps),
-                                        limit_deg=gen.follow["roll_deg"])
+                                        limit_deg=gen.follow.roll_deg)
     assert not reason and len(path) == len(poses)
-    assert 5.0 < abs(np.degrees(rolls[-1])) <= gen.follow["roll_deg"]
+    assert 5.0 < abs(np.degrees(rolls[-1])) <= gen.follow.roll_deg
 
 
 CLOSE_BY_HANDLE = '''def step(planner):
@@ -84,7 +84,7 @@ def test_a_lid_grasp_takes_the_posture_that_reaches_its_arc():
     env, planner = _planner("close_box_hard", 1)
     planner.hand_pre_grasp("right")
     gen = skills.generate(env, planner.holding, "box", 0, "grasp", "right")
-    assert gen.grip_part is not None and gen.grip_part["grip_axis"] == "hinge"
+    assert gen.grip_part is not None and gen.grip_part.grip_axis == "hinge"
     c = planner.generate_constraints(obj_name="box", obj_id=0, action="grasp", hand_name="right")
     result, _ = planner.generate_end_effector_pose(c, "right")
     span = part_grip.arc_span(planner.ctx, "right", gen.grip_part, result.q)

@@ -277,7 +277,7 @@ def test_pushing_a_part_to_an_openness_rides_with_the_part():
     reach = planner.generate_constraints("drawer", 0, "target1", "left")[0].meta
     push = planner.generate_constraints("drawer", 0, "target1", "left", openness=0)[0].meta
     assert reach.follow is None and reach.approach_axis is not None  # come in straight to the front
-    assert push.follow is not None and push.follow["q_target"] == 0.0 and push.approach_axis is None
+    assert push.follow is not None and push.follow.q_target == 0.0 and push.approach_axis is None
     # The fingertip may lean off the push direction (a cone), preferring to be along it.
     kinds = [(type(c).__name__, c.type) for c in push.constraints]
     assert ("Constraint", "angle") in kinds and ("Const", "parallel") in kinds

@@ -209,19 +209,19 @@ def test_a_grip_on_the_knob_follows_the_knobs_own_joint(safe_env):
     assert point_articulation(obj, "handle") == obj.annotations.articulation
     pinch = skills.generate(env, {"left": None, "right": None}, "safe", 0, "pinch", "right", openness=0.75)
     f = pinch.follow
-    assert f["joint"] == f"{obj.body}_knob_hinge" and np.degrees(f["q_target"]) == pytest.approx(90.0)
+    assert f.joint == f"{obj.body}_knob_hinge" and np.degrees(f.q_target) == pytest.approx(90.0)
     assert follow_articulation(env, f).part == "knob" and follow_openness(env, f) == pytest.approx(0.25)
     grasp = skills.generate(env, {"left": None, "right": None}, "safe", 0, "grasp", "right", openness=1.0)
-    assert grasp.follow["joint"] == f"{obj.body}_hinge" and follow_openness(env, grasp.follow) == 0.0
-    assert np.degrees(grasp.follow["q_target"]) == pytest.approx(90.0)
+    assert grasp.follow.joint == f"{obj.body}_hinge" and follow_openness(env, grasp.follow) == 0.0
+    assert np.degrees(grasp.follow.q_target) == pytest.approx(90.0)
     # A roll about the knob's own axis only undoes its turn; a roll about the handle bar (off the door's hinge)
     # does not, nor does a roll about an axis across the knob.
     m, d = env.model, env.data
     knob_axis, centre = get_axis_in_env(env, "knob_axis", "safe", 0), get_point_in_env(env, "knob", "safe", 0)
-    assert rolls_about_joint(m, d, f["joint"], knob_axis, centre + 0.01 * get_axis_in_env(env, "fin_normal", "safe", 0))
-    assert not rolls_about_joint(m, d, f["joint"], get_axis_in_env(env, "fin_normal", "safe", 0), centre)
+    assert rolls_about_joint(m, d, f.joint, knob_axis, centre + 0.01 * get_axis_in_env(env, "fin_normal", "safe", 0))
+    assert not rolls_about_joint(m, d, f.joint, get_axis_in_env(env, "fin_normal", "safe", 0), centre)
     bar = get_point_in_env(env, "handle", "safe", 0)
-    assert not rolls_about_joint(m, d, grasp.follow["joint"], get_axis_in_env(env, "door_hinge", "safe", 0), bar)
+    assert not rolls_about_joint(m, d, grasp.follow.joint, get_axis_in_env(env, "door_hinge", "safe", 0), bar)
     _set_knob(env, obj, 0.0)
 
 

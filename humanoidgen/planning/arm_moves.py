@@ -245,8 +245,8 @@ def check_part_followed(ctx: PlanningContext, side: Side, target: Pose, start: f
     it stopped if it moved a good part of the way; a part that stays short is an error that says why (or an
     event, when it went most of the way)."""
     f = target.follow
-    obj = ctx.env.scene.object(*f["obj"])
-    wanted = follow_articulation(ctx.env, f).openness_of(f["q_target"])
+    obj = ctx.env.scene.object(*f.obj)
+    wanted = follow_articulation(ctx.env, f).openness_of(f.q_target)
     got = part_openness(ctx, target)
     way = wanted - start
     if abs(got - wanted) <= FOLLOW_TOL or abs(way) < 1e-6:

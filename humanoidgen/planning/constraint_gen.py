@@ -31,7 +31,7 @@ from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env, wrist
 from humanoidgen.objects.schema import OperationAnnotation
 from humanoidgen.planning import placing
 from humanoidgen.planning.constraints import Const, Constraint
-from humanoidgen.planning.part_joint import point_articulation
+from humanoidgen.planning.part_joint import PartFollow, point_articulation
 from humanoidgen.sim.geometry import axis_angle_mat
 from humanoidgen.sim.layout import HAND_BASE_FRAME, OTHER_SIDE, Side
 
@@ -78,7 +78,7 @@ class Generated:
     constraints: list
     approach_axis: np.ndarray | None = None
     approach_object: str | None = None
-    follow: dict | None = None
+    follow: PartFollow | None = None
     posture: str | None = None  # the finger posture the grip closes with (None: the operation's default)
     # Other ways to take the grip (other annotated points, the object's symmetric axes, the other sign), most
     # natural first: Generated objects the goal solver tries in turn when the first cannot be reached.
@@ -86,7 +86,7 @@ class Generated:
     notes: list[str] = field(default_factory=list)  # for the planner's events: a fallback or mapping that was made
     # A grip on an articulated part with no openness asked (yet): the part and the grip's roll axis, so that the
     # goal search can prefer the arm posture that keeps the most reach along the part's arc (the next move).
-    grip_part: dict | None = None
+    grip_part: PartFollow | None = None
     request: tuple | None = None  # the generate_constraints arguments that made it (set by the planner)
     fallback: Generated | None = None  # the grip to take where this one cannot be solved (a pinch for a grasp)
 
@@ -345,12 +345,12 @@ def ride_with_part(env, gen: Generated, obj_name: str, obj_id: int, point: str, 
     if art is None:
         return
     if openness is None:
-        gen.grip_part = {"body": obj.body, "joint": f"{obj.body}_{art.joint}", "obj": (obj_name, obj_id),
-                         "grip_axis": grip_axis, "roll_deg": roll_deg, "articulation": art}
+        gen.grip_part = PartFollow(obj.body, f"{obj.body}_{art.joint}", (obj_name, obj_id), art,
+                                   grip_axis=grip_axis, roll_deg=roll_deg)
         return
-    gen.follow = {"body": obj.body, "joint": f"{obj.body}_{art.joint}", "q_target": art.joint_position(openness),
-                  "part_point": point, "obj": (obj_name, obj_id), "grip_axis": grip_axis,
-                  "roll_deg": roll_deg, "articulation": art, "unhook_axis": unhook_axis}
+    gen.follow = PartFollow(obj.body, f"{obj.body}_{art.joint}", (obj_name, obj_id), art,
+                            q_target=art.joint_position(openness), part_point=point, grip_axis=grip_axis,
+                            roll_deg=roll_deg, unhook_axis=unhook_axis)
     gen.approach_axis = None
 
 

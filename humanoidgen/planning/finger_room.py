@@ -23,7 +23,7 @@ from humanoidgen.objects.queries import get_axis_in_env
 from humanoidgen.planning.collision import FAR, CollisionWorld
 from humanoidgen.planning.kinematics import Kinematics
 from humanoidgen.planning.motion import MotionError, first_collision, plan_arm_motion, time_dense_path
-from humanoidgen.planning.part_joint import follow_openness, point_motion
+from humanoidgen.planning.part_joint import PartFollow, follow_openness, point_motion
 from humanoidgen.sim.action import ARM_SLICE, HAND_SLICE
 from humanoidgen.sim.layout import Side
 from humanoidgen.sim.scene import SceneObject
@@ -190,15 +190,15 @@ def loosen_in_place(ctx: PlanningContext, side: Side) -> None:
 def timed(ctx: PlanningContext, waypoints: np.ndarray) -> np.ndarray:
     return time_dense_path(waypoints, 1.0 / ctx.env.control_hz, v_max=BACK_OFF_SPEED)
 
-def unhook(ctx: PlanningContext, side: Side, part: SceneObject, follow: dict | None) -> bool:
+def unhook(ctx: PlanningContext, side: Side, part: SceneObject, follow: PartFollow | None) -> bool:
     """Let go of a handle the hand moved its part by, along the grip's attach axis: the fingers open while the
     hand moves UNHOOK_M[0] along it, then it goes on UNHOOK_M[1] along it and UNHOOK_BACK_M back. Backing
     straight out instead, the fingertips behind the bar drag the part back (measured: a drawer just pushed
     shut by its handle came back to openness 0.67 as the open hand backed 10 cm out; along the attach axis it
     stayed at 0.00). False (nothing done) without an attach axis or a free way."""
-    if follow is None or not follow.get("unhook_axis") or ctx.env.scene.object(*follow["obj"]).body != part.body:
+    if follow is None or not follow.unhook_axis or ctx.env.scene.object(*follow.obj).body != part.body:
         return False
-    u = get_axis_in_env(ctx.env, follow["unhook_axis"], obj_type=part.type_name, obj_id=part.obj_id)
+    u = get_axis_in_env(ctx.env, follow.unhook_axis, obj_type=part.type_name, obj_id=part.obj_id)
     # Either way along the part's arc (only the angle to it counts): a step into the range it has.
     motion = point_motion(ctx.env, follow, 0.02 if follow_openness(ctx.env, follow) < 0.5 else -0.02)
     if abs(float(u @ motion)) > UNHOOK_MAX_COS:
@@ -234,5 +234,5 @@ def unhook(ctx: PlanningContext, side: Side, part: SceneObject, follow: dict | N
     ctx.run_arm_samples({side: timed(ctx, second.waypoints)})
     ctx.hands[side].last_approach = None
     ctx.events.append(f"the {side} hand let go of {part.type_name} {part.obj_id} along its grip's attach axis "
-                       f"({follow['unhook_axis']}), off the handle")
+                       f"({follow.unhook_axis}), off the handle")
     return True

@@ -30,8 +30,8 @@ def use_ignores(ctx: PlanningContext, side: Side, gen, ignored_before: set[int])
 def push_op(ctx: PlanningContext, gen):
     """The push/flip/press annotation a part-riding push was made from (by its point), or None."""
     f = gen.follow
-    ann = ctx.env.scene.object(*f["obj"]).annotations
-    return next((o for o in ann.operations if o.operation in ("push", "flip", "press") and o.point == f["part_point"]),
+    ann = ctx.env.scene.object(*f.obj).annotations
+    return next((o for o in ann.operations if o.operation in ("push", "flip", "press") and o.point == f.part_point),
                 None)
 
 def push_cos(ctx: PlanningContext, gen) -> float:
@@ -41,9 +41,9 @@ def push_cos(ctx: PlanningContext, gen) -> float:
     from humanoidgen.objects.queries import get_axis_in_env
 
     f = gen.follow
-    obj = ctx.env.scene.object(*f["obj"])
+    obj = ctx.env.scene.object(*f.obj)
     now = follow_openness(ctx.env, f)
-    wanted = follow_articulation(ctx.env, f).openness_of(f["q_target"])
+    wanted = follow_articulation(ctx.env, f).openness_of(f.q_target)
     step = float(np.clip(wanted - now, -0.05, 0.05))
     op = push_op(ctx, gen)
     if abs(step) < 1e-3 or op is None:
@@ -66,11 +66,11 @@ def pushes_toward(ctx: PlanningContext, side: Side, obj, wanted: float, skip_poi
             start = skills.generate(ctx.env, ctx.holding, obj.type_name, obj.obj_id, action, side, None, targets=ctx.targets)
         except (ValueError, KeyError):
             continue
-        if other.follow is None or other.follow["part_point"] == skip_point or push_cos(ctx, other) < PUSH_MIN_COS:
+        if other.follow is None or other.follow.part_point == skip_point or push_cos(ctx, other) < PUSH_MIN_COS:
             continue
         use_ignores(ctx, side, start, set(ctx.collisions.ignored_bodies))
         reach = ctx.solver.solve(side, list(start.constraints), ctx.kin.arm_q(side), ctx.nominal[side])
-        out.append(f"action='{action}' (at {other.follow['part_point']}"
+        out.append(f"action='{action}' (at {other.follow.part_point}"
                    + ("" if reach.success else f", out of the {side} hand's reach now") + ")")
     return out
 
@@ -82,18 +82,18 @@ def check_push_direction(ctx: PlanningContext, side: Side, gen) -> None:
     if cos >= PUSH_MIN_COS:
         return
     f = gen.follow
-    obj = ctx.env.scene.object(*f["obj"])
-    wanted = follow_articulation(ctx.env, f).openness_of(f["q_target"])
+    obj = ctx.env.scene.object(*f.obj)
+    wanted = follow_articulation(ctx.env, f).openness_of(f.q_target)
     ignored = set(ctx.collisions.ignored_bodies)
     try:
-        usable = pushes_toward(ctx, side, obj, wanted, skip_point=f["part_point"])
+        usable = pushes_toward(ctx, side, obj, wanted, skip_point=f.part_point)
     finally:
         ctx.collisions.ignored_bodies = ignored
         ctx.kin.sync(ctx.env.data.qpos)
     op = push_op(ctx, gen)
-    why = (f"a flip gets under {obj.type_name} {obj.obj_id} at {f['part_point']} and lifts it: it opens it, it "
+    why = (f"a flip gets under {obj.type_name} {obj.obj_id} at {f.part_point} and lifts it: it opens it, it "
            f"cannot bring it down to openness {wanted:g}" if op is not None and op.operation == "flip" else
-           f"a fingertip at {obj.type_name} {obj.obj_id} {f['part_point']} cannot move it to openness {wanted:g}: "
+           f"a fingertip at {obj.type_name} {obj.obj_id} {f.part_point} cannot move it to openness {wanted:g}: "
            f"the point moves {np.degrees(np.arccos(np.clip(cos, -1, 1))):.0f} deg away from the push direction, "
            f"so the finger would have to pull")
     raise PlanningError("generate_end_effector_pose",

@@ -22,6 +22,8 @@ A failure then says which constraint missed and by how much, or which bodies col
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import time
 from contextlib import nullcontext
 
@@ -32,7 +34,7 @@ from humanoidgen.planning.feedback import push_advice
 from humanoidgen.planning.goal_solver import GoalResult
 from humanoidgen.planning.goal_targets import AxisWithin
 from humanoidgen.planning.motion import track_poses
-from humanoidgen.planning.part_joint import part_stays, follow_articulation, follow_openness, grip_joint
+from humanoidgen.planning.part_joint import PartFollow, part_stays, follow_articulation, follow_openness, grip_joint
 from humanoidgen.planning import regrip_request as regrip
 from humanoidgen.planning.poses import Pose
 from humanoidgen.sim.layout import HAND_PREFIX, Side
@@ -70,7 +72,7 @@ def solve_goal(ctx: PlanningContext, constraints: list, side: Side) -> tuple[Goa
     gen = getattr(constraints[0], "meta", None)
     held = ctx.hands[side].held
     follow = getattr(gen, "follow", None) if gen is not None else None
-    holds_part = follow is not None and held is not None and held.body == follow["body"]
+    holds_part = follow is not None and held is not None and held.body == follow.body
     if follow is not None and not holds_part:
         check_push_direction(ctx, side, gen)
     # The hand rides with the part from where it is on it: holding it, or a fingertip already on the point.
@@ -115,10 +117,10 @@ def solve_goal(ctx: PlanningContext, constraints: list, side: Side) -> tuple[Goa
         pose.posture = gen.posture
     if partial is not None:
         q_reached, pose.regrip = partial
-        pose.follow = dict(gen.follow, q_target=q_reached)
+        pose.follow = replace(gen.follow, q_target=q_reached)
     return result, pose
 
-def partial_goal(ctx: PlanningContext, side: Side, follow: dict, failed: GoalResult) -> tuple[GoalResult, tuple[float, dict]]:
+def partial_goal(ctx: PlanningContext, side: Side, follow: PartFollow, failed: GoalResult) -> tuple[GoalResult, tuple[float, dict]]:
     """A held part the arm can move only partway: the goal as far as it gets, the part's joint value there, and
     what the move does after it (`Pose.regrip`): it lets go, grips the part again and takes it on to the
     openness asked (planning/regrip.py). Where the part went PARTIAL_ENOUGH of the way and stays where the hand
@@ -127,11 +129,11 @@ def partial_goal(ctx: PlanningContext, side: Side, follow: dict, failed: GoalRes
     q, q_reached = failed.partial
     art = follow_articulation(ctx.env, follow)  # the held part's own joint (a knob's, on a door)
     now, reached, wanted = (follow_openness(ctx.env, follow), art.openness_of(q_reached),
-                            art.openness_of(follow["q_target"]))
+                            art.openness_of(follow.q_target))
     share = (reached - now) / (wanted - now) if wanted != now else 1.0
     # A part already most of the way that stays put is worth going on with (a lid left at 0.88 of a task's
     # 0.9) but not worth failing the move for.
-    optional = share >= PARTIAL_ENOUGH and part_stays(ctx.env, follow["joint"], q_reached)
+    optional = share >= PARTIAL_ENOUGH and part_stays(ctx.env, follow.joint, q_reached)
     return goal_at(ctx, side, q, failed.solve_time), (
         q_reached, regrip.request(follow, wanted, ctx.hands[side].grip, reached, optional))
 
@@ -145,15 +147,15 @@ def goal_at(ctx: PlanningContext, side: Side, q: np.ndarray, solve_time: float) 
 
 # -- ignore lists ----------------------------------------------------------------------------------
 
-def on_push_point(ctx: PlanningContext, side: Side, follow: dict) -> bool:
+def on_push_point(ctx: PlanningContext, side: Side, follow: PartFollow) -> bool:
     from humanoidgen.objects.queries import get_point_in_env
 
-    obj = ctx.env.scene.object(*follow["obj"])
+    obj = ctx.env.scene.object(*follow.obj)
     tip = get_point_in_env(ctx.env, f"press_point_base_{side}_hand")
-    point = get_point_in_env(ctx.env, follow["part_point"], obj.type_name, obj.obj_id)
+    point = get_point_in_env(ctx.env, follow.part_point, obj.type_name, obj.obj_id)
     return float(np.linalg.norm(tip - point)) < ON_POINT
 
-def reaches_back(ctx: PlanningContext, side: Side, follow: dict, result: GoalResult) -> bool:
+def reaches_back(ctx: PlanningContext, side: Side, follow: PartFollow, result: GoalResult) -> bool:
     """Whether a freshly solved goal for a part the hand rides with can be used: the move then tracks the
     part's path back from it to where the hand is now (`ArmMoves._follow_part`'s fallback), so check that."""
     ctx.kin.sync(ctx.env.data.qpos)
@@ -163,28 +165,28 @@ def reaches_back(ctx: PlanningContext, side: Side, follow: dict, result: GoalRes
     back, reason = track_poses(ctx.kin, side, result.q, poses[-2::-1] + [ctx.kin.ee_pose(side)])
     return not reason and np.max(np.abs(back[-1] - q0)) < 0.15
 
-def riding_goal(ctx: PlanningContext, side: Side, follow: dict) -> GoalResult:
+def riding_goal(ctx: PlanningContext, side: Side, follow: PartFollow) -> GoalResult:
     t0 = time.perf_counter()
     use_ignores(ctx, side, None, set(ctx.collisions.ignored_bodies))
     arm = ctx.kin.arms[side]
     q0 = np.clip(ctx.kin.arm_q(side), arm.lo, arm.hi)
     path, q_steps, q_now, reason = part_grip.track_part(ctx, side, q0, follow)
-    way = abs(follow["q_target"] - q_now)
+    way = abs(follow.q_target - q_now)
     reached = abs(q_steps[len(path) - 1] - q_now) if len(path) else 0.0
     if not reason or (len(path) and reached >= part_grip.follow_enough(ctx, side) * way):
         return goal_at(ctx, side, path[-1], time.perf_counter() - t0)
-    obj = ctx.env.scene.object(*follow["obj"])
+    obj = ctx.env.scene.object(*follow.obj)
     held = ctx.hands[side].held is not None
     art = follow_articulation(ctx.env, follow)
     now = follow_openness(ctx.env, follow)
     got = art.openness_of(q_steps[len(path) - 1]) if len(path) else now
-    wanted = art.openness_of(follow["q_target"])
-    pushes = pushes_toward(ctx, side, obj, wanted, skip_point=None if held else follow["part_point"])
+    wanted = art.openness_of(follow.q_target)
+    pushes = pushes_toward(ctx, side, obj, wanted, skip_point=None if held else follow.part_point)
     ctx.kin.sync(ctx.env.data.qpos)
     partial = None
     if held and len(path) and reached >= REGRIP_MIN_SHARE * way:
         partial = (path[-1], float(q_steps[len(path) - 1]))
-    elif held and part_stays(ctx.env, follow["joint"], q_now):
+    elif held and part_stays(ctx.env, follow.joint, q_now):
         # Hardly any of the way from this grip (a screen lifted 0.3 -> 0.6 in one hold has the wrist turned so
         # far that it gets 0.6 -> 0.68 of a 0.85 asked): where the part stays put if let go, let go here and
         # grip it again in a posture that keeps its arc in reach (regrip.py; at most MAX_REGRIPS times).
@@ -252,7 +254,7 @@ def prefer_arc(ctx: PlanningContext, side: Side, gen, result: GoalResult, ignore
         if span > best_span + ARC_MARGIN:
             best_span, best = span, (retry, g)
     if best[0] is not result:
-        obj = "{} {}".format(*gen.grip_part["obj"])
+        obj = "{} {}".format(*gen.grip_part.obj)
         ctx.events.append(f"the {side} hand takes {obj} with the wrist turned a little, in an arm posture that "
                            f"can move it over {50 * best_span:.0f}% of its arc (the exact grip: "
                            f"{50 * first_span:.0f}%)")

@@ -13,13 +13,15 @@ much of the part's arc it can reach (`_arc_span`, used when choosing among grasp
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import mujoco
 import numpy as np
 
 from humanoidgen.objects.hands import hand_points
 from humanoidgen.planning.kinematics import Kinematics
 from humanoidgen.planning.motion import ROT_WEIGHT, MotionError, track_poses
-from humanoidgen.planning.part_joint import follow_articulation, follow_openness, rolls_about_joint
+from humanoidgen.planning.part_joint import PartFollow, follow_articulation, follow_openness, rolls_about_joint
 from humanoidgen.planning.poses import Pose
 from humanoidgen.planning.regrip_request import SHUT, STOP_SHORT_OF_SHUT, request
 from humanoidgen.sim.geometry import axis_angle_mat, rotation_error
@@ -91,15 +93,15 @@ def track_rolling(kin: Kinematics, side: Side, q_start: np.ndarray, poses: list,
 def follow_enough(ctx: PlanningContext, side: Side) -> float:
     return FOLLOW_ENOUGH_HELD if ctx.hands[side].held is not None else FOLLOW_ENOUGH
 
-def part_path_poses(ctx: PlanningContext, side: Side, f: dict, held: bool | None = None) -> tuple[list, np.ndarray, float]:
-    """The hand's poses along an articulated part's joint path to f["q_target"], keeping the hand where it
+def part_path_poses(ctx: PlanningContext, side: Side, f: PartFollow, held: bool | None = None) -> tuple[list, np.ndarray, float]:
+    """The hand's poses along an articulated part's joint path to f.q_target, keeping the hand where it
     is on the part now: (poses, joint values of the part at each, the part's joint value now).
 
     A hand holding the part turns with it. A fingertip pushing it (nothing held) only keeps its tip on the
     same spot of the part and its orientation as it is: it presses, it has no grip to turn with, and a
     wrist turned the whole way a lid swings soon runs out of its joint range."""
     m, d = ctx.env.model, ctx.kin.data
-    jid = m.joint(f["joint"]).id
+    jid = m.joint(f.joint).id
     adr = m.jnt_qposadr[jid]
     part_body = m.jnt_bodyid[jid]
     q_now = float(ctx.env.data.qpos[adr])
@@ -107,13 +109,13 @@ def part_path_poses(ctx: PlanningContext, side: Side, f: dict, held: bool | None
     # Aim a little past the target along the joint, even past its end stop: the arm lags a loaded part by
     # about that much, and the stop itself holds the part (forward kinematics ignores joint limits).
     overshoot = 0.01 if slide else 0.05
-    q_end = float(f["q_target"] + np.sign(f["q_target"] - q_now) * overshoot)
+    q_end = float(f.q_target + np.sign(f.q_target - q_now) * overshoot)
     p_hand, R_hand = ctx.kin.ee_pose(side)
     part_p, part_R = d.xpos[part_body].copy(), d.xmat[part_body].reshape(3, 3).copy()
     rel_p, rel_R = part_R.T @ (p_hand - part_p), part_R.T @ R_hand
     poses = []
     base = d.qpos.copy()
-    n = max(2, int(np.ceil(abs(f["q_target"] - q_now) / (0.01 if slide else 0.03))))
+    n = max(2, int(np.ceil(abs(f.q_target - q_now) / (0.01 if slide else 0.03))))
     q_steps = np.linspace(q_now, q_end, n + 1)[1:]
     pushing = ctx.hands[side].held is None if held is None else not held
     tip_local = hand_points(side)[f"press_point_base_{side}_hand"]  # in the wrist frame
@@ -133,25 +135,25 @@ def part_path_poses(ctx: PlanningContext, side: Side, f: dict, held: bool | None
     ctx.kin.forward()
     return poses, q_steps, q_now
 
-def grip_roll_frames(ctx: PlanningContext, side: Side, f: dict, q_steps: np.ndarray, held: bool | None = None,
+def grip_roll_frames(ctx: PlanningContext, side: Side, f: PartFollow, q_steps: np.ndarray, held: bool | None = None,
                       kind: str | None = None) -> tuple[list, list] | None:
-    """For a hand holding the part by a grip that may roll (f["grip_axis"]): the roll axis and its centre
+    """For a hand holding the part by a grip that may roll (f.grip_axis): the roll axis and its centre
     (the hand's grip point at the kinematic state now, carried with the part) at each joint value of the
     path; None otherwise."""
     holding = ctx.hands[side].held is not None if held is None else held
-    if not holding or not f.get("grip_axis") or not f.get("roll_deg"):
+    if not holding or not f.grip_axis or not f.roll_deg:
         return None
     from humanoidgen.objects.queries import get_axis_in_env
 
     m, d = ctx.env.model, ctx.kin.data
-    jid = m.joint(f["joint"]).id
+    jid = m.joint(f.joint).id
     adr, body = m.jnt_qposadr[jid], m.jnt_bodyid[jid]
-    obj = ctx.env.scene.object(*f["obj"])
+    obj = ctx.env.scene.object(*f.obj)
     kind = kind or ("pinch" if ctx.hands[side].grip == "pinch" else "grasp")
     wrist = ctx.kin.arms[side].wrist
     centre = d.xpos[wrist] + d.xmat[wrist].reshape(3, 3) @ hand_points(side)[f"{kind}_point_base_{side}_hand"]
-    axis = get_axis_in_env(ctx.env, f["grip_axis"], obj_type=obj.type_name, obj_id=obj.obj_id)
-    if rolls_about_joint(m, d, f["joint"], axis, centre):
+    axis = get_axis_in_env(ctx.env, f.grip_axis, obj_type=obj.type_name, obj_id=obj.obj_id)
+    if rolls_about_joint(m, d, f.joint, axis, centre):
         return None
     R0, p0 = d.xmat[body].reshape(3, 3).copy(), d.xpos[body].copy()
     c_local, a_local = R0.T @ (centre - p0), R0.T @ axis
@@ -167,7 +169,7 @@ def grip_roll_frames(ctx: PlanningContext, side: Side, f: dict, q_steps: np.ndar
     ctx.kin.forward()
     return axes, centres
 
-def track_part(ctx: PlanningContext, side: Side, q0: np.ndarray, f: dict, held: bool | None = None,
+def track_part(ctx: PlanningContext, side: Side, q0: np.ndarray, f: PartFollow, held: bool | None = None,
                 kind: str | None = None) -> tuple[np.ndarray, np.ndarray, float, str]:
     """The arm's path along the part's joint path from q0 (the kinematic state is at q0): (waypoints, the
     part's joint value at each pose, its value now, why the path stops short or ""). A holding grip may roll
@@ -178,10 +180,10 @@ def track_part(ctx: PlanningContext, side: Side, q0: np.ndarray, f: dict, held: 
     if rolling is None:
         path, reason = track_poses(ctx.kin, side, q0, poses)
     else:
-        path, _, reason = track_rolling(ctx.kin, side, q0, poses, *rolling, limit_deg=f.get("roll_deg"))
+        path, _, reason = track_rolling(ctx.kin, side, q0, poses, *rolling, limit_deg=f.roll_deg)
     return path, q_steps, q_now, reason
 
-def arc_span(ctx: PlanningContext, side: Side, part: dict, q: np.ndarray, kind: str = "grasp") -> float:
+def arc_span(ctx: PlanningContext, side: Side, part: PartFollow, q: np.ndarray, kind: str = "grasp") -> float:
     """How much of its openness range a part could be moved with the hand gripping it at arm posture q:
     the openness interval reachable toward closed and toward open, as a share of the way to each end,
     summed (2.0: the whole arc both ways). For choosing among grasp postures: a grasp of a part is nearly
@@ -197,12 +199,12 @@ def arc_span(ctx: PlanningContext, side: Side, part: dict, q: np.ndarray, kind: 
                 continue
             ctx.kin.set_arm(side, q)
             ctx.kin.forward()
-            f = dict(part, q_target=art.joint_position(end))
+            f = replace(part, q_target=art.joint_position(end))
             path, q_steps, q_now, reason = track_part(ctx, side, q, f, held=True, kind=kind)
             if not reason:
                 total += 1.0
             elif len(path):
-                total += abs(q_steps[len(path) - 1] - q_now) / abs(f["q_target"] - q_now)
+                total += abs(q_steps[len(path) - 1] - q_now) / abs(f.q_target - q_now)
     finally:
         ctx.kin.sync(ctx.env.data.qpos)
     return total
@@ -216,11 +218,11 @@ def follow_part(ctx: PlanningContext, side: Side, q0: np.ndarray, target: Pose) 
         return np.vstack([q0, path])
     # Where the arm's reach ends within the last tenth of the way, go that far and say so: whether that is
     # enough is for the task to judge.
-    way = abs(f["q_target"] - q_now)
+    way = abs(f.q_target - q_now)
     reached = abs(q_steps[len(path) - 1] - q_now) if len(path) else 0.0
     if len(path) and reached >= follow_enough(ctx, side) * way:
         if reached < 0.995 * way:
-            ctx.events.append(f"followed {f['obj'][0]} {f['obj'][1]} {100 * reached / way:.0f}% of the way: "
+            ctx.events.append(f"followed {f.obj[0]} {f.obj[1]} {100 * reached / way:.0f}% of the way: "
                                f"the {side} arm's reach ends there")
         return np.vstack([q0, path])
     if target.joint_q is not None:
@@ -233,7 +235,7 @@ def follow_part(ctx: PlanningContext, side: Side, q0: np.ndarray, target: Pose) 
             return np.vstack([q0, back[::-1][1:], target.joint_q])
     if regrip_from_here(ctx, side, target, float(q_steps[len(path) - 1]) if len(path) else float(q_now)):
         return np.vstack([q0, path]) if len(path) else np.vstack([q0, q0])
-    raise MotionError(f"following {f['body']}'s joint: {reason}")
+    raise MotionError(f"following {f.body}'s joint: {reason}")
 
 def stop_short_of_shut(ctx: PlanningContext, side: Side, target: Pose) -> None:
     """A hinged plate (a lid, a screen) held by its edge and to be shut: the fingers around the edge would end
@@ -244,11 +246,11 @@ def stop_short_of_shut(ctx: PlanningContext, side: Side, target: Pose) -> None:
     if target.regrip is not None or ctx.regrips_left <= 0 or ctx.hands[side].held is None:
         return
     m = ctx.env.model
-    if m.jnt_type[m.joint(f["joint"]).id] != mujoco.mjtJoint.mjJNT_HINGE:
+    if m.jnt_type[m.joint(f.joint).id] != mujoco.mjtJoint.mjJNT_HINGE:
         return  # a drawer's handle is outside it: nothing gets shut in
     art = follow_articulation(ctx.env, f)
-    wanted, now = art.openness_of(f["q_target"]), follow_openness(ctx.env, f)
-    obj = ctx.env.scene.object(*f["obj"])
+    wanted, now = art.openness_of(f.q_target), follow_openness(ctx.env, f)
+    obj = ctx.env.scene.object(*f.obj)
     targets = ctx.targets
     push = targets.push(obj.type_name, obj.obj_id) if targets is not None else None
     if wanted > SHUT or now <= STOP_SHORT_OF_SHUT or push is None or push.spec.push.to > SHUT:
@@ -256,7 +258,7 @@ def stop_short_of_shut(ctx: PlanningContext, side: Side, target: Pose) -> None:
     target.regrip = request(f, wanted, ctx.hands[side].grip, STOP_SHORT_OF_SHUT, optional=False,
                             why=f"{obj.type_name} {obj.obj_id} is to be shut: the {side} hand takes it to "
                                 f"openness {STOP_SHORT_OF_SHUT:g}, not shut in its fingers")
-    target.follow = dict(f, q_target=art.joint_position(STOP_SHORT_OF_SHUT))
+    target.follow = replace(f, q_target=art.joint_position(STOP_SHORT_OF_SHUT))
 
 def regrip_from_here(ctx: PlanningContext, side: Side, target: Pose, q_reached: float) -> bool:
     """Where following the part runs out of reach partway on a move planned to go all the way (the goal search
@@ -270,10 +272,10 @@ def regrip_from_here(ctx: PlanningContext, side: Side, target: Pose, q_reached: 
     art = follow_articulation(ctx.env, f)
     if target.regrip is not None:  # the move lets go and grips again after this anyway: from wherever it ends
         target.regrip.reached = art.openness_of(q_reached)
-    elif ctx.regrips_left <= 0 or ctx.hands[side].held is None or not part_stays(ctx.env, f["joint"], q_reached):
+    elif ctx.regrips_left <= 0 or ctx.hands[side].held is None or not part_stays(ctx.env, f.joint, q_reached):
         return False
     else:
-        target.regrip = request(f, art.openness_of(f["q_target"]), ctx.hands[side].grip, art.openness_of(q_reached),
+        target.regrip = request(f, art.openness_of(f.q_target), ctx.hands[side].grip, art.openness_of(q_reached),
                                 optional=False)
-    target.follow = dict(f, q_target=q_reached)
+    target.follow = replace(f, q_target=q_reached)
     return True

@@ -8,12 +8,33 @@ planner's follow records (`Generated.follow` / `grip_part`) carry that articulat
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import mujoco
 import numpy as np
 
 from humanoidgen.objects.queries import get_point_in_env
 from humanoidgen.objects.schema import Articulation
 from humanoidgen.sim.scene import SceneObject
+
+
+@dataclass
+class PartFollow:
+    """How a hand is on an articulated part: the part's body and the joint that moves it, the object, that
+    joint's articulation, and for a move the joint value to take it to (`q_target`) and the annotated point the
+    hand is on (`part_point`); the axis a holding grip may roll about on the way, how far (`roll_deg`), and the
+    axis the hand came onto a hooked handle along (`unhook_axis`). A grip not yet moving the part
+    (`Generated.grip_part`) has no `q_target`."""
+
+    body: str
+    joint: str
+    obj: tuple[str, int]
+    articulation: Articulation | None = None
+    q_target: float | None = None
+    part_point: str | None = None
+    grip_axis: str | None = None
+    roll_deg: float = 0.0
+    unhook_axis: str | None = None
 
 
 def point_articulation(obj: SceneObject, point: str) -> Articulation | None:
@@ -27,28 +48,28 @@ def point_articulation(obj: SceneObject, point: str) -> Articulation | None:
 def grip_joint(gen) -> str | None:
     """The joint of the articulated part a generated grip takes (its `grip_part` record), else None."""
     part = getattr(gen, "grip_part", None)
-    return part["joint"] if part else None
+    return part.joint if part else None
 
 
-def follow_articulation(env, follow: dict) -> Articulation:
+def follow_articulation(env, follow: PartFollow) -> Articulation:
     """The articulation a follow (or grip_part) record moves: its own, else the object's main one."""
-    art = follow.get("articulation")
-    return art if art is not None else env.scene.object(*follow["obj"]).annotations.articulation
+    art = follow.articulation
+    return art if art is not None else env.scene.object(*follow.obj).annotations.articulation
 
 
-def follow_openness(env, follow: dict, data: mujoco.MjData | None = None) -> float:
+def follow_openness(env, follow: PartFollow, data: mujoco.MjData | None = None) -> float:
     """That joint's openness now (in `data`, default the simulation's), clipped to [0, 1]."""
     d = env.data if data is None else data
-    q = float(d.qpos[env.model.jnt_qposadr[env.model.joint(follow["joint"]).id]])
+    q = float(d.qpos[env.model.jnt_qposadr[env.model.joint(follow.joint).id]])
     return follow_articulation(env, follow).openness_of(q)
 
 
-def point_motion(env, follow: dict, step: float) -> np.ndarray:
+def point_motion(env, follow: PartFollow, step: float) -> np.ndarray:
     """Unit direction the followed part point (`part_point`) moves in as its joint goes from its openness now by
     `step` (kept within [0, 1]); zeros where it does not move."""
-    obj = env.scene.object(*follow["obj"])
+    obj = env.scene.object(*follow.obj)
     now = follow_openness(env, follow)
-    p0, p1 = (get_point_in_env(env, follow["part_point"], obj.type_name, obj.obj_id, openness=float(np.clip(o, 0, 1)))
+    p0, p1 = (get_point_in_env(env, follow.part_point, obj.type_name, obj.obj_id, openness=float(np.clip(o, 0, 1)))
               for o in (now, now + step))
     v = p1 - p0
     n = float(np.linalg.norm(v))

@@ -10,6 +10,7 @@ import numpy as np
 from humanoidgen.sim.geometry import axis_angle_mat, mat_to_quat, quat_to_mat, rotation_error
 
 if TYPE_CHECKING:
+    from humanoidgen.planning.part_joint import PartFollow
     from humanoidgen.planning.regrip_request import RegripRequest
 
 
@@ -28,7 +29,7 @@ class Pose:
     approach_axis: np.ndarray | None = None  # world direction the hand approaches along (grasp, pinch)
     approach_object: str | None = None  # body the hand may touch at the end of the approach
     approach_part: str | None = None  # the joint of the articulated part it comes to grip (that part gives way)
-    follow: dict | None = field(default=None, repr=False)  # articulated part path: body, joint, q0, q1
+    follow: PartFollow | None = field(default=None, repr=False)  # articulated part path: body, joint, q0, q1
     posture: str | None = None  # finger posture for closing on the object there (e.g. "wrap")
     # The fingers may come this much closer to the table than the general clearance on the way to this pose
     # (a goal that needs a fingertip at a low edge; goal_search.FINGER_TABLE_CLEARANCE).

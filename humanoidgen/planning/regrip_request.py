@@ -4,6 +4,8 @@ Typed data the goal search and the part-following stage write and the recovery r
 
 from __future__ import annotations
 
+from humanoidgen.planning.part_joint import PartFollow
+
 from dataclasses import dataclass
 
 STOP_SHORT_OF_SHUT = 0.2  # a hinged part to be shut is let go here by a hand holding it by its edge (part_grip)
@@ -21,10 +23,10 @@ class RegripRequest:
     verb: str | None
     reached: float
     optional: bool
-    follow: dict
+    follow: PartFollow
     why: str | None = None
 
 
-def request(follow: dict, wanted: float, verb: str | None, reached: float, optional: bool,
+def request(follow: PartFollow, wanted: float, verb: str | None, reached: float, optional: bool,
             why: str | None = None) -> RegripRequest:
-    return RegripRequest(follow["obj"], wanted, verb, reached, optional, follow, why or None)
+    return RegripRequest(follow.obj, wanted, verb, reached, optional, follow, why or None)

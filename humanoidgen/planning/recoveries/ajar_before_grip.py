@@ -15,7 +15,7 @@ def shut_grip_part(ctx: PlanningContext, gen, side) -> SceneObject | None:
     request = getattr(gen, "request", None)
     if request is None or request[2] not in ("grasp", "pinch") or gen.grip_part is None:
         return None
-    obj = ctx.env.scene.object(*gen.grip_part["obj"])
+    obj = ctx.env.scene.object(*gen.grip_part.obj)
     return obj if ctx.hands[side].held is None and part_ajar.lies_shut(ctx.env, obj) else None
 
 

@@ -83,7 +83,7 @@ def _go_on(ctx: PlanningContext, planner: Any, side: Side, regrip: RegripRequest
         finally:
             ctx.regripping = False
         now = follow_openness(ctx.env, regrip.follow)
-        at_rest = _at_rest(ctx.env, regrip.follow["joint"])
+        at_rest = _at_rest(ctx.env, regrip.follow.joint)
         if arrived(now, regrip.openness) and at_rest:
             ctx.events.append(f"{label} went on to openness {now:.2f} by itself when let go (asked "
                                   f"{regrip.openness:g}): it is not gripped again")

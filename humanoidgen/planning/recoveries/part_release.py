@@ -36,7 +36,7 @@ from humanoidgen.planning.errors import PlanningError
 from humanoidgen.planning.hand_ops import finger_contacts
 from humanoidgen.planning.motion import MotionError, plan_arm_motion, time_dense_path
 from humanoidgen.planning.paths import time_parametrize
-from humanoidgen.planning.part_joint import follow_articulation, follow_openness, hinge_line, point_motion
+from humanoidgen.planning.part_joint import PartFollow, follow_articulation, follow_openness, hinge_line, point_motion
 from humanoidgen.planning.snapshot import take_snapshot, trial
 from humanoidgen.objects.hands import HAND_POSTURES
 from humanoidgen.sim.layout import Side
@@ -71,7 +71,7 @@ class PartRelease(Recovery):
         return True  # released: the usual way is not taken
 
 
-def let_go(planner: PlanningContext, side: Side, part: SceneObject, follow: dict | None) -> None:
+def let_go(planner: PlanningContext, side: Side, part: SceneObject, follow: PartFollow | None) -> None:
     """Open `side`'s hand on `part` (no longer in `planner.holding`) and move it off, the way that moves the part
     least (see the module's doc). Adds an event when the usual way was not the one taken."""
     measure = _openness_gauge(planner, part, follow)
@@ -134,14 +134,14 @@ def _leave(planner, side: Side) -> None:
     planner.settle(TRIAL_SETTLE_S)
 
 
-def _openness_gauge(planner, part: SceneObject, follow: dict | None) -> Callable[[], float | None]:
+def _openness_gauge(planner, part: SceneObject, follow: PartFollow | None) -> Callable[[], float | None]:
     env = planner.env
-    if follow is not None and env.scene.object(*follow["obj"]).body == part.body:
+    if follow is not None and env.scene.object(*follow.obj).body == part.body:
         return lambda: follow_openness(env, follow)
     return lambda: openness(env.model, env.data, part)
 
 
-def _ways_out(planner, side: Side, part: SceneObject, follow: dict | None) -> list[tuple[str, Callable[[], None]]]:
+def _ways_out(planner, side: Side, part: SceneObject, follow: PartFollow | None) -> list[tuple[str, Callable[[], None]]]:
     """(how, do it) for each way of letting go, the usual one first."""
     def usual() -> None:
         if not finger_room.unhook(planner, side, part, follow):
@@ -217,11 +217,11 @@ def _back_out(planner, side: Side, u: np.ndarray, sampled: bool = False,
     planner.run_arm_samples({side: samples})
 
 
-def _hinge_away(planner, side: Side, part: SceneObject, follow: dict | None) -> np.ndarray | None:
+def _hinge_away(planner, side: Side, part: SceneObject, follow: PartFollow | None) -> np.ndarray | None:
     """The hinge axis of the part the hand moved (a safe's knob, not its door), signed from the part toward the
     hand (moving along it cannot turn the part); None for a slide."""
     m, d = planner.env.model, planner.env.data
-    joint = follow["joint"] if follow is not None else f"{part.body}_{part.annotations.articulation.joint}"
+    joint = follow.joint if follow is not None else f"{part.body}_{part.annotations.articulation.joint}"
     line = hinge_line(m, d, joint)
     if line is None:
         return None
@@ -231,30 +231,30 @@ def _hinge_away(planner, side: Side, part: SceneObject, follow: dict | None) -> 
     return hinge if float((p - anchor) @ hinge) >= 0.0 else -hinge
 
 
-def _off_the_edge(planner, side: Side, follow: dict | None) -> np.ndarray | None:
+def _off_the_edge(planner, side: Side, follow: PartFollow | None) -> np.ndarray | None:
     """From the hinge axis of the part the hand moved out to the grip point, across the axis: the way off the
     part's edge (a thumb under a shut screen's edge, fingers around a knob's fin); None for a slide or without a
     hinge."""
     if follow is None:
         return None
-    line = hinge_line(planner.env.model, planner.env.data, follow["joint"])
+    line = hinge_line(planner.env.model, planner.env.data, follow.joint)
     if line is None:
         return None
     hinge, anchor = line
-    obj = planner.env.scene.object(*follow["obj"])
-    grip = get_point_in_env(planner.env, follow["part_point"], obj.type_name, obj.obj_id)
+    obj = planner.env.scene.object(*follow.obj)
+    grip = get_point_in_env(planner.env, follow.part_point, obj.type_name, obj.obj_id)
     out = grip - anchor
     out = out - (out @ hinge) * hinge
     n = float(np.linalg.norm(out))
     return out / n if n > 1e-3 else None
 
 
-def _opens(planner, follow: dict) -> bool:
+def _opens(planner, follow: PartFollow) -> bool:
     """Whether the hand's move opened the part: moves toward high openness open, toward low openness close."""
-    return follow_articulation(planner.env, follow).openness_of(follow["q_target"]) >= 0.5
+    return follow_articulation(planner.env, follow).openness_of(follow.q_target) >= 0.5
 
 
-def _part_onward(planner, follow: dict) -> np.ndarray | None:
+def _part_onward(planner, follow: PartFollow) -> np.ndarray | None:
     """The way the grip point went as the hand moved the part (toward the openness asked); at the part's end stop,
     on the same way (into the stop)."""
     step = 0.02 if _opens(planner, follow) else -0.02
