@@ -268,7 +268,7 @@ def check_part_followed(ctx: PlanningContext, side: Side, target: Pose, start: f
     if share >= 0.5:
         ctx.events.append(f"{label} reached openness {got:.2f} of the {wanted:g} asked")
         if to_shut:
-            # Short of shut, held: let go and push it shut where the task has a push (regrip.go_on), as
+            # Short of shut, held: let go and push it shut where the task has a push (recoveries/grip_again), as
             # where the arm's reach ends; where that fails it stays here, as before.
             target.regrip = regrip.request(f, wanted, ctx.hands[side].grip, got, optional=True,
                                            why=f"{label} stopped at openness {got:.2f} in the {side} hand")

@@ -339,7 +339,7 @@ def ride_with_part(env, gen: Generated, obj_name: str, obj_id: int, point: str, 
     where it touches it now (the solved goal is a fallback) and comes in along no approach axis. `grip_axis`:
     the part's axis a holding grip may roll about on the way, up to `roll_deg` (part_grip.track_rolling).
     `unhook_axis`: the part's axis along which the hand came onto a handle it hooks (a grasp's attach axis); the
-    hand lets go along it (finger_room.FingerRoom._unhook)."""
+    hand lets go along it (finger_room.unhook)."""
     obj = env.scene.object(obj_name, obj_id)
     art = point_articulation(obj, point)  # the joint that moves the point's part (a knob's own, on a door)
     if art is None:

@@ -10,7 +10,7 @@ over the top (then a little higher, DROP_HIGHER_M), so that letting go drops it 
 higher it was let go. The hand must be able to open fully there without touching the container (an open thumb
 that swings onto the drawer's wall top drags the drawer on the next move: measured, openness 0.89 to 0.64). Pure
 geometry here (the region is `objects.queries.storage_region`, as the `inside` check reads it); the planner's part
-is `ArmMoves._carry_into`.
+is the transit stage's recovery `recoveries/carry_into.py`.
 """
 
 from __future__ import annotations

@@ -61,7 +61,7 @@ ARC_GOOD = 1.8  # a grasp posture that can move its part this far (of 2: both wa
 ARC_MARGIN = 0.1  # another posture is taken only if it reaches this much more of the arc
 # A held part the arm can move at least this share of the way is moved that far, gripped again and moved on.
 REGRIP_MIN_SHARE = 0.25
-PARTIAL_ENOUGH = 0.5  # from this share of the way on, a part that stays put need not be gripped again (regrip.py)
+PARTIAL_ENOUGH = 0.5  # from this share of the way on, a part that stays put need not be gripped again (recoveries/grip_again.py)
 ON_POINT = 0.025  # a fingertip this near a push point is on it: a push from there rides with the part
 
 
@@ -123,7 +123,7 @@ def solve_goal(ctx: PlanningContext, constraints: list, side: Side) -> tuple[Goa
 def partial_goal(ctx: PlanningContext, side: Side, follow: PartFollow, failed: GoalResult) -> tuple[GoalResult, tuple[float, dict]]:
     """A held part the arm can move only partway: the goal as far as it gets, the part's joint value there, and
     what the move does after it (`Pose.regrip`): it lets go, grips the part again and takes it on to the
-    openness asked (planning/regrip.py). Where the part went PARTIAL_ENOUGH of the way and stays where the hand
+    openness asked (planning/recoveries/grip_again.py). Where the part went PARTIAL_ENOUGH of the way and stays where the hand
     leaves it, that second grip is optional: if it cannot be taken, the part stays there (an event says so: the
     plan's next steps may push it on); otherwise its failure is the move's."""
     q, q_reached = failed.partial
@@ -157,7 +157,7 @@ def on_push_point(ctx: PlanningContext, side: Side, follow: PartFollow) -> bool:
 
 def reaches_back(ctx: PlanningContext, side: Side, follow: PartFollow, result: GoalResult) -> bool:
     """Whether a freshly solved goal for a part the hand rides with can be used: the move then tracks the
-    part's path back from it to where the hand is now (`ArmMoves._follow_part`'s fallback), so check that."""
+    part's path back from it to where the hand is now (`part_grip.follow_part`'s fallback), so check that."""
     ctx.kin.sync(ctx.env.data.qpos)
     arm = ctx.kin.arms[side]
     q0 = np.clip(ctx.kin.arm_q(side), arm.lo, arm.hi)
@@ -233,7 +233,7 @@ def exact_goal(ctx: PlanningContext, side: Side, constraints: list, gen, ignored
 def prefer_arc(ctx: PlanningContext, side: Side, gen, result: GoalResult, ignored_before: set[int]) -> tuple[GoalResult, object]:
     """A grasp of a drawer handle or a lid's tab is nearly always followed by moving the part, and the arm
     cannot change its posture family while it holds it: where the solved posture reaches little of the
-    part's arc (`ArmMoves._arc_span`), try the grip with the wrist's freedom (CONE_DEG) and keep the posture
+    part's arc (`part_grip.arc_span`), try the grip with the wrist's freedom (CONE_DEG) and keep the posture
     that reaches the most (an event says so)."""
     t0 = time.perf_counter()
     kind = "pinch" if gen.posture == "pinch" else "grasp"

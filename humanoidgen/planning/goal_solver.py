@@ -49,7 +49,7 @@ class GoalResult:
     contacts: list[tuple[int, int, float]] = field(default_factory=list)
     miss: float | None = None  # on a failure: how far (m) the closest solution's hand points are from their targets
     # A held part followed only partway (the arm's reach ends): the arm configuration and the part's joint value
-    # there, for a move that goes that far and grips the part again to go on (planning/regrip.py).
+    # there, for a move that goes that far and grips the part again to go on (planning/recoveries/grip_again.py).
     partial: tuple[np.ndarray, float] | None = None
 
     def message(self) -> str:

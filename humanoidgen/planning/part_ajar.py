@@ -112,26 +112,26 @@ def _nearest_posture(action: np.ndarray) -> str:
     return min(HAND_POSTURES, key=lambda k: float(np.max(np.abs(np.array(HAND_POSTURES[k]) - action))))
 
 
-def lift_ajar(planner, side: Side, obj: SceneObject) -> float:
+def lift_ajar(ctx, side: Side, obj: SceneObject) -> float:
     """Lift `obj`'s shut part ajar with `side`'s index fingertip (see the module doc); returns its openness."""
-    env = planner.env
+    env = ctx.env
     op = flip_operation(obj)
     shut = edge_frame(env, obj, op)
     # The fingertip's aim and the palm's normal stay those of the shut part: the hand keeps its orientation.
     aim, normal = shut.along, shut.into
     t = half_thickness(env, obj, shut)
-    posture = _nearest_posture(planner.action[HAND_SLICE[side]])
+    posture = _nearest_posture(ctx.action[HAND_SLICE[side]])
     start = part_openness(env, obj)
-    ignored_before = set(planner.collisions.ignored_bodies)
-    planner.collisions.ignored_bodies.add(env.model.body(obj.body).id)  # the fingertip is meant to touch it
+    ignored_before = set(ctx.collisions.ignored_bodies)
+    ctx.collisions.ignored_bodies.add(env.model.body(obj.body).id)  # the fingertip is meant to touch it
 
     def go(openness: float | None, along: float, into: float, what: str, off: float = 0.0) -> None:
         f = edge_frame(env, obj, op, openness)
-        solve_and_go(planner, side, _tip_constraints(env, side, f.point + along * f.along + into * f.into
+        solve_and_go(ctx, side, _tip_constraints(env, side, f.point + along * f.along + into * f.into
                                                      - off * aim, aim, normal, what))
 
     try:
-        fingers_for_push(planner, side)
+        fingers_for_push(ctx, side)
         press_depth = 0.6 * t  # just below the edge's middle: pressing there lifts it, higher slips over
         go(None, PRESS_IN_M, press_depth, "in front of the edge", off=BACK_OFF_M)
         go(None, PRESS_IN_M, press_depth, "pressed into the edge")
@@ -149,7 +149,7 @@ def lift_ajar(planner, side: Side, obj: SceneObject) -> float:
             go(o, UNDER_IN_M + 0.005, under, f"lifting the part from under (openness {o:.2f})")
         go(None, -UNDER_IN_M, under, "out from under the edge", off=BACK_OFF_M)
     finally:
-        planner.collisions.ignored_bodies = ignored_before
+        ctx.collisions.ignored_bodies = ignored_before
     got = part_openness(env, obj)
     label = f"{obj.type_name} {obj.obj_id}"
     if got < AJAR_MIN:
@@ -157,7 +157,7 @@ def lift_ajar(planner, side: Side, obj: SceneObject) -> float:
                             f"{label} lies shut (openness {start:.2f}): no room for the fingers on its inner face, and "
                             f"lifting its edge with the {side} fingertip left it at {got:.2f}: lift it ajar first "
                             "(the fingertip under the edge, generate_constraints(..., action='target1'))")
-    planner.events.append(f"{label} lay shut (openness {start:.2f}): the {side} index fingertip lifted its edge to "
+    ctx.events.append(f"{label} lay shut (openness {start:.2f}): the {side} index fingertip lifted its edge to "
                           f"{got:.2f} first, to make room for the fingers on its inner face")
-    finger_room.posture_with_room(planner, (side,), posture)
+    finger_room.posture_with_room(ctx, (side,), posture)
     return got

@@ -8,7 +8,7 @@ arm alone does not keep up; the arm then keeps its reach over more of the part's
 drawer's closed position runs out of wrist range long before it runs out of reach).
 
 This stage (follow a part; functions of a PlanningContext) builds the part's path, tracks it, and scores a grasp posture by how
-much of the part's arc it can reach (`_arc_span`, used when choosing among grasp postures).
+much of the part's arc it can reach (`arc_span`, used when choosing among grasp postures).
 """
 
 from __future__ import annotations
@@ -241,7 +241,7 @@ def stop_short_of_shut(ctx: PlanningContext, side: Side, target: Pose) -> None:
     """A hinged plate (a lid, a screen) held by its edge and to be shut: the fingers around the edge would end
     shut in under it (a thumb between screen and base; every way of letting go then dragged it open again, to
     0.28-0.48). Where the task has a fingertip push that shuts it, the hand takes it to STOP_SHORT_OF_SHUT,
-    lets go there and the part falls or is pushed shut (regrip.go_on)."""
+    lets go there and the part falls or is pushed shut (recoveries/grip_again)."""
     f = target.follow
     if target.regrip is not None or ctx.regrips_left <= 0 or ctx.hands[side].held is None:
         return
@@ -264,7 +264,7 @@ def regrip_from_here(ctx: PlanningContext, side: Side, target: Pose, q_reached: 
     """Where following the part runs out of reach partway on a move planned to go all the way (the goal search
     tracks from the arm at solve time; the arm settled in the grip may run out sooner: open_laptop_hard's
     screen lifted in stages, at 50-75% of its last stage), make the move go as far as it gets and then let go
-    and grip the part again (regrip.py), as a goal found partial does. Only for a held part that stays where
+    and grip the part again (recoveries/grip_again.py), as a goal found partial does. Only for a held part that stays where
     it is let go, and while the move may still grip again; True where the target was changed so."""
     from humanoidgen.planning.part_joint import part_stays
 

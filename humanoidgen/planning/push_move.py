@@ -23,102 +23,102 @@ from humanoidgen.sim.layout import Side
 from humanoidgen.sim.scene import SceneObject
 
 
-def fingers_for_push(planner, side: Side) -> None:
+def fingers_for_push(ctx, side: Side) -> None:
     """Index extended, the others curled (hand_press), unless the plan set them so already."""
-    if np.max(np.abs(planner.action[HAND_SLICE[side]] - np.array(HAND_POSTURES["press"]))) > FINGERS_SET:
-        planner.move_fingers((side,), "press")
+    if np.max(np.abs(ctx.action[HAND_SLICE[side]] - np.array(HAND_POSTURES["press"]))) > FINGERS_SET:
+        ctx.move_fingers((side,), "press")
 
 
-def _go(planner, side: Side, pose, must_reach: bool, obj: SceneObject | None = None) -> None:
-    planner.run_arm_samples({side: arm_moves.plan_side(planner, side, pose)})
-    planner.settle(0.2)
-    err = float(np.linalg.norm(planner.current_pose(side).p - pose.p))
+def _go(ctx, side: Side, pose, must_reach: bool, obj: SceneObject | None = None) -> None:
+    ctx.run_arm_samples({side: arm_moves.plan_side(ctx, side, pose)})
+    ctx.settle(0.2)
+    err = float(np.linalg.norm(ctx.current_pose(side).p - pose.p))
     if not must_reach or err <= REACH_M:
         return
-    if obj is not None and err <= TOUCH_SHORT_M and finger_contacts(planner.env.model, planner.env.data, side, obj.body):
+    if obj is not None and err <= TOUCH_SHORT_M and finger_contacts(ctx.env.model, ctx.env.data, side, obj.body):
         # Curled fingers resting on the part short of the pre-push pose: the push starts from here as well.
-        planner.log[-1].message = f"stopped {err * 1000:.0f} mm short of the pre-push pose, touching {_label(obj)}"
+        ctx.log[-1].message = f"stopped {err * 1000:.0f} mm short of the pre-push pose, touching {_label(obj)}"
         return
-    raise PlanningError("move_to_pose_with_screw", stopped_short(planner, side, err))
+    raise PlanningError("move_to_pose_with_screw", stopped_short(ctx, side, err))
 
 
-def solve_and_go(planner, side: Side, cons: list, must_reach: bool = False, obj: SceneObject | None = None) -> None:
-    _, pose = goal_search.solve_goal(planner, cons, side)
-    _go(planner, side, pose, must_reach, obj)
+def solve_and_go(ctx, side: Side, cons: list, must_reach: bool = False, obj: SceneObject | None = None) -> None:
+    _, pose = goal_search.solve_goal(ctx, cons, side)
+    _go(ctx, side, pose, must_reach, obj)
 
 
-def _pre_push(planner, side: Side, obj: SceneObject, spec: FingertipPush, pose) -> None:
+def _pre_push(ctx, side: Side, obj: SceneObject, spec: FingertipPush, pose) -> None:
     """To the pre-push pose (`pose`, solved already, or solved here). Where the way there is blocked, e.g. behind
     a screen that stands nearly upright, from above its edge instead: out of the face and past the edge."""
-    env = planner.env
+    env = ctx.env
     try:
         if pose is None:
-            _, pose = goal_search.solve_goal(planner, stage_constraints(env, side, obj, spec, None, spec.standoff, "just off"), side)
-        _go(planner, side, pose, must_reach=True, obj=obj)
+            _, pose = goal_search.solve_goal(ctx, stage_constraints(env, side, obj, spec, None, spec.standoff, "just off"), side)
+        _go(ctx, side, pose, must_reach=True, obj=obj)
         return
     except PlanningError as exc:
         if spec.face != "outer":
             raise
         first = exc
     try:
-        solve_and_go(planner, side, stage_constraints(env, side, obj, spec, None, spec.standoff, "above the edge of",
+        solve_and_go(ctx, side, stage_constraints(env, side, obj, spec, None, spec.standoff, "above the edge of",
                                                        over_edge=True), True, obj)
     except PlanningError:
         raise first from None
-    planner.events.append(f"the {side} fingertip came to {_label(obj)}'s pre-push pose over its edge "
+    ctx.events.append(f"the {side} fingertip came to {_label(obj)}'s pre-push pose over its edge "
                           f"(straight off the face: {first.reason[:80]})")
 
 
-def _tip(planner, side: Side) -> np.ndarray:
-    planner.kin.sync(planner.env.data.qpos)
-    return get_point_in_env(planner.env, f"press_point_base_{side}_hand")
+def _tip(ctx, side: Side) -> np.ndarray:
+    ctx.kin.sync(ctx.env.data.qpos)
+    return get_point_in_env(ctx.env, f"press_point_base_{side}_hand")
 
 
-def execute(planner, side: Side, pose) -> None:
+def execute(ctx, side: Side, pose) -> None:
     """Move to a target1 pose (fingers set to press), or carry out a target2 push (see the module docstring)."""
     move: PushMove = pose.push
-    env, obj, spec = planner.env, move.obj, move.spec
-    fingers_for_push(planner, side)
+    env, obj, spec = ctx.env, move.obj, move.spec
+    fingers_for_push(ctx, side)
     if move.phase == "pre":
-        _pre_push(planner, side, obj, spec, pose)
+        _pre_push(ctx, side, obj, spec, pose)
         return
-    tip = _tip(planner, side)
+    tip = _tip(ctx, side)
     on = contact_point(env, obj, spec, None)
     off = on + spec.standoff * standoff_direction(env, obj, spec, None)
     over = off - spec.standoff * _axis(env, obj, spec.axes[0], None)  # the pre-push pose over the edge
     if min(np.linalg.norm(tip - p) for p in (on, off, over)) > AT_M:
         # Not at the push point yet (no target1 before): to the pre-push pose first, around the part.
-        _pre_push(planner, side, obj, spec, None)
-        planner.events.append(f"target2: the {side} fingertip went to {_label(obj)}'s pre-push pose (target1) first")
+        _pre_push(ctx, side, obj, spec, None)
+        ctx.events.append(f"target2: the {side} fingertip went to {_label(obj)}'s pre-push pose (target1) first")
         pose = None  # the part may have moved meanwhile: the first contact is solved again, where it is now
     start = part_openness(env, obj)
-    ignored_before = set(planner.collisions.ignored_bodies)
-    planner.collisions.ignored_bodies.add(env.model.body(obj.body).id)  # the fingertip is meant to touch it
+    ignored_before = set(ctx.collisions.ignored_bodies)
+    ctx.collisions.ignored_bodies.add(env.model.body(obj.body).id)  # the fingertip is meant to touch it
     skipped: list[str] = []
     try:
         if pose is None:
-            solve_and_go(planner, side, stage_constraints(env, side, obj, spec, None))
+            solve_and_go(ctx, side, stage_constraints(env, side, obj, spec, None))
         else:
-            _go(planner, side, pose, must_reach=False)  # onto the part (the goal solved for target2)
+            _go(ctx, side, pose, must_reach=False)  # onto the part (the goal solved for target2)
         for o in stages(start, move.to, spec.step):
             home = HOME_PRESS_M if o == move.to and move.to in (0.0, 1.0) else 0.0
             try:
-                solve_and_go(planner, side, stage_constraints(env, side, obj, spec, o, press=home))
+                solve_and_go(ctx, side, stage_constraints(env, side, obj, spec, o, press=home))
             except PlanningError as exc:  # out of reach there: the next stage may still be reached
                 skipped.append(f"{o:.2f} ({exc.reason[:80]})")
         try:  # the fingertip off the part again, at the openness it pushed it to
-            solve_and_go(planner, side, stage_constraints(env, side, obj, spec, part_openness(env, obj),
+            solve_and_go(ctx, side, stage_constraints(env, side, obj, spec, part_openness(env, obj),
                                                            spec.standoff, "off"))
         except PlanningError:
             skipped.append("taking the fingertip off the part")
     finally:
-        planner.collisions.ignored_bodies = ignored_before
+        ctx.collisions.ignored_bodies = ignored_before
     got = part_openness(env, obj)
     if skipped:
-        planner.events.append(f"push of {_label(obj)}: could not reach the stage(s) at openness {'; '.join(skipped)}")
+        ctx.events.append(f"push of {_label(obj)}: could not reach the stage(s) at openness {'; '.join(skipped)}")
     way = move.to - start
     share = (got - start) / way if abs(way) > 1e-6 else 1.0
-    planner.events.append(f"pushed {_label(obj)} from openness {start:.2f} to {got:.2f} (asked {move.to:g})")
+    ctx.events.append(f"pushed {_label(obj)} from openness {start:.2f} to {got:.2f} (asked {move.to:g})")
     if share < SHORT_SHARE and abs(got - move.to) > 0.05:
         raise PlanningError("move_to_pose_with_screw",
                             f"{_label(obj)} is at openness {got:.2f} after the push, not the {move.to:g} asked (from "

@@ -10,16 +10,16 @@ from humanoidgen.sim.rest import moving_objects, object_dofs
 MAX_REST_WAIT_S = 1.0
 
 
-def wait_until_still(planner: PlanningContext, max_s: float = MAX_REST_WAIT_S) -> list[str]:
+def wait_until_still(ctx: PlanningContext, max_s: float = MAX_REST_WAIT_S) -> list[str]:
     """Hold the robot's last command until no object moves (returns at once when none does, so a still scene
     gets no extra control steps), for at most `max_s`. The steps go through the planner, so a recording keeps
     them. Returns the objects still moving at the end (empty when all came to rest)."""
-    env = planner.env
+    env = ctx.env
     dofs = object_dofs(env.scene)
     moving = moving_objects(env.data.qvel, env.data.qacc, dofs)
     for _ in range(int(round(max_s * env.control_hz))):
         if not moving:
             break
-        planner.step()
+        ctx.step()
         moving = moving_objects(env.data.qvel, env.data.qacc, dofs)
     return moving

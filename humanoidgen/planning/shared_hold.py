@@ -2,7 +2,7 @@
 
 Each arm's motion is planned on its own with the object riding on that arm's hand. The other arm moves with the
 object, so it is no obstacle there (`CollisionWorld` leaves it out while both hands carry the same body); the
-arms are checked against each other at every step of the joint move instead (`ArmMoves._coordinate_arms`), and
+arms are checked against each other at every step of the joint move instead (`arm_moves.coordinate_arms`), and
 the object itself, held by both, is no contact between them. The two motions are then put in step: at every
 control step each hand has gone the same share of its way, so the object is not pulled between the hands (two
 straight moves of the same displacement keep the hands' offset all the way; timed on their own, one arm's

@@ -47,7 +47,7 @@ def generate(env, holding: dict, obj_name: str, obj_id: int, action: str, side: 
             gen.notes.append(note)
         elif operation == "grasp" and point is None and openness is None and obj.annotations.operations_of("pinch"):
             # A whole-hand grasp does not fit a small, low object (a 5 cm cube: the straight fingers or the thumb
-            # would go 3 cm into the table); its pinch is the planner's last resort (planner.py).
+            # would go 3 cm into the table); its pinch is the planner's last resort (recoveries/pinch_instead.py).
             gen.fallback = grasp_or_pinch(env, side, obj_name, obj_id, "pinch", None, None, finger_offset, holding)
             _close_as_pinch(gen.fallback)
         return gen

@@ -44,50 +44,50 @@ class Snapshot:
                    dict(d["last_approach"]), list(d["ignored_bodies"]), list(d["events"]), dict(d.get("closing") or {}))
 
 
-def take_snapshot(planner: PlanningContext) -> Snapshot:
-    env = planner.env
-    hands = planner.hands
+def take_snapshot(ctx: PlanningContext) -> Snapshot:
+    env = ctx.env
+    hands = ctx.hands
     size = mujoco.mj_stateSize(env.model, STATE_SPEC)
     physics = np.empty(size)
     mujoco.mj_getState(env.model, env.data, physics, STATE_SPEC)
     return Snapshot(
         physics=physics,
-        action=planner.action.copy(),
+        action=ctx.action.copy(),
         holding={s: (h.held.type_name, h.held.obj_id) if h.held is not None else None for s, h in hands.items()},
         grip={s: h.grip for s, h in hands.items() if h.grip is not None},
         last_approach={s: np.asarray(h.last_approach).tolist() for s, h in hands.items() if h.last_approach is not None},
-        ignored_bodies=sorted(planner.collisions.ignored_bodies),
-        events=list(planner.events),
+        ignored_bodies=sorted(ctx.collisions.ignored_bodies),
+        events=list(ctx.events),
         closing={s: h.closing for s, h in hands.items() if h.closing is not None},
     )
 
 
-def restore_snapshot(planner: PlanningContext, snap: Snapshot) -> None:
-    env = planner.env
+def restore_snapshot(ctx: PlanningContext, snap: Snapshot) -> None:
+    env = ctx.env
     mujoco.mj_setState(env.model, env.data, snap.physics, STATE_SPEC)
     mujoco.mj_forward(env.model, env.data)
-    planner.action[:] = snap.action
-    for s, h in planner.hands.items():
+    ctx.action[:] = snap.action
+    for s, h in ctx.hands.items():
         v, a = snap.holding.get(s), snap.last_approach.get(s)
         h.held = env.scene.object(*v) if v else None
         h.grip = snap.grip.get(s)
         h.last_approach = np.asarray(a) if a is not None else None
         h.closing = (snap.closing or {}).get(s)
-    planner.collisions.ignored_bodies = set(snap.ignored_bodies)
-    planner.events = list(snap.events)
-    planner.kin.sync(env.data.qpos)
-    for side in planner.hands:
-        planner.kin.detach(side)
+    ctx.collisions.ignored_bodies = set(snap.ignored_bodies)
+    ctx.events = list(snap.events)
+    ctx.kin.sync(env.data.qpos)
+    for side in ctx.hands:
+        ctx.kin.detach(side)
 
 
 @contextmanager
-def trial(planner: PlanningContext, start: Snapshot | None = None) -> Iterator[None]:
+def trial(ctx: PlanningContext, start: Snapshot | None = None) -> Iterator[None]:
     """Run the block as a trial in the simulation itself: nothing it does is recorded (the planner's step hook is
     off) and afterwards the planner is back at `start` (default: its state on entry), whatever the block did."""
-    snap = start if start is not None else take_snapshot(planner)
-    hook, planner.on_step = planner.on_step, None
+    snap = start if start is not None else take_snapshot(ctx)
+    hook, ctx.on_step = ctx.on_step, None
     try:
         yield
     finally:
-        planner.on_step = hook
-        restore_snapshot(planner, snap)
+        ctx.on_step = hook
+        restore_snapshot(ctx, snap)

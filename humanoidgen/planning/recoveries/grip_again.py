@@ -2,7 +2,7 @@
 
 A lid or screen swung far with one grip turns the wrist with it until the arm's reach or joint range ends (a
 screen that starts nearly upright and is to be closed to 0.3). A person lets go there and takes the part again
-from a posture that suits the rest of the way. The goal search (`GoalSearch._partial_goal`) returns the goal as
+from a posture that suits the rest of the way. The goal search (`goal_search.partial_goal`) returns the goal as
 far as the arm gets, with `Pose.regrip` saying where the plan asked to go; after that move, this recovery does the
 rest with the plan's own verb (grasp or pinch) through the planner's verbs (handed to it in the request, never
 imported), so every call is logged as the plan's are. The budget (`ctx.regrips_left`) is the pipeline's.

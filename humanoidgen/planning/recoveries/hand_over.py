@@ -51,77 +51,77 @@ class HandOverTrial(Recovery):
         return False  # the release itself goes on as usual
 
 
-def holds_alone(planner: PlanningContext, giver: Side, taker: Side, obj: SceneObject) -> bool:
+def holds_alone(ctx: PlanningContext, giver: Side, taker: Side, obj: SceneObject) -> bool:
     """Whether `taker` keeps `obj` once `giver` loosens its grip (tried from a snapshot; the state is restored)."""
-    env = planner.env
-    before = _in_hand(planner, taker, obj)
-    with trial(planner):
+    env = ctx.env
+    before = _in_hand(ctx, taker, obj)
+    with trial(ctx):
         # As open_hand lets go: loosen, back out the way it came in, open.
-        planner.move_fingers((giver,), f"pre_{planner.hands[giver].grip or 'pinch'}")
-        planner.hands[giver].held = None
-        planner.kin.detach(giver)
-        planner.settle(0.3)
-        arm_moves.retreat(planner, giver)
-        planner.move_fingers((giver,), "open")
-        planner.settle(TRIAL_S)
-        moved = float(np.linalg.norm(_in_hand(planner, taker, obj) - before))
+        ctx.move_fingers((giver,), f"pre_{ctx.hands[giver].grip or 'pinch'}")
+        ctx.hands[giver].held = None
+        ctx.kin.detach(giver)
+        ctx.settle(0.3)
+        arm_moves.retreat(ctx, giver)
+        ctx.move_fingers((giver,), "open")
+        ctx.settle(TRIAL_S)
+        moved = float(np.linalg.norm(_in_hand(ctx, taker, obj) - before))
         return moved <= DROP_M and is_held(finger_contacts(env.model, env.data, taker, obj.body))
 
 
-def secure_taker(planner: PlanningContext, giver: Side, obj: SceneObject) -> None:
+def secure_taker(ctx: PlanningContext, giver: Side, obj: SceneObject) -> None:
     """Before `giver` lets go of `obj` that the other hand also holds: make the other hand's grip one that holds
     it alone (see the module's doc)."""
     taker = OTHER_SIDE[giver]
-    if holds_alone(planner, giver, taker, obj):
+    if holds_alone(ctx, giver, taker, obj):
         return
-    axis = planner.hands[taker].last_approach
+    axis = ctx.hands[taker].last_approach
     if axis is None:
         return
-    posture = planner.hands[taker].grip or "pinch"
+    posture = ctx.hands[taker].grip or "pinch"
     axis = np.asarray(axis, float)
     for depth in REGRIP_DEPTHS:
         # A trial too (nothing recorded): a recording must not hold a grip that is then undone.
-        with trial(planner):
-            works = _close_deeper(planner, taker, obj, axis, depth, posture) and holds_alone(planner, giver, taker, obj)
+        with trial(ctx):
+            works = _close_deeper(ctx, taker, obj, axis, depth, posture) and holds_alone(ctx, giver, taker, obj)
         if works:
-            _close_deeper(planner, taker, obj, axis, depth, posture)  # the same, for real (the state is restored)
-            planner.events.append(f"the {taker} hand's {posture} would not hold {obj.type_name} {obj.obj_id} alone: "
+            _close_deeper(ctx, taker, obj, axis, depth, posture)  # the same, for real (the state is restored)
+            ctx.events.append(f"the {taker} hand's {posture} would not hold {obj.type_name} {obj.obj_id} alone: "
                                   f"it took it again {depth * 1000:.0f} mm deeper before the {giver} hand let go")
             return
-    planner.events.append(f"the {taker} hand's {posture} may not hold {obj.type_name} {obj.obj_id} alone when the "
+    ctx.events.append(f"the {taker} hand's {posture} may not hold {obj.type_name} {obj.obj_id} alone when the "
                           f"{giver} hand lets go (taking it deeper did not help)")
 
 
-def _in_hand(planner: PlanningContext, side: Side, obj: SceneObject) -> np.ndarray:
-    p_hand, R_hand = planner.env.hand_pose(side)
-    return R_hand.T @ (planner.env.object_pose(obj.body)[0] - p_hand)
+def _in_hand(ctx: PlanningContext, side: Side, obj: SceneObject) -> np.ndarray:
+    p_hand, R_hand = ctx.env.hand_pose(side)
+    return R_hand.T @ (ctx.env.object_pose(obj.body)[0] - p_hand)
 
 
-def _close_deeper(planner: PlanningContext, side: Side, obj: SceneObject, axis: np.ndarray, depth: float,
+def _close_deeper(ctx: PlanningContext, side: Side, obj: SceneObject, axis: np.ndarray, depth: float,
                   posture: str) -> bool:
     """Loosen `side`'s fingers, move the hand `depth` further along `axis` (its way in) and close again; False
     where that move cannot be planned."""
-    kin = planner.kin
-    body = planner.env.model.body(obj.body).id
-    ignored = set(planner.collisions.ignored_bodies)
-    planner.move_fingers((side,), f"pre_{posture}")
+    kin = ctx.kin
+    body = ctx.env.model.body(obj.body).id
+    ignored = set(ctx.collisions.ignored_bodies)
+    ctx.move_fingers((side,), f"pre_{posture}")
     try:
-        kin.sync(planner.env.data.qpos)
+        kin.sync(ctx.env.data.qpos)
         kin.set_hand(side, np.array(HAND_POSTURES[f"pre_{posture}"]))
         kin.forward()
-        planner.collisions.ignored_bodies.add(body)
+        ctx.collisions.ignored_bodies.add(body)
         p, R = kin.ee_pose(side)
         arm = kin.arms[side]
-        path = plan_arm_motion(kin, planner.collisions, side, np.clip(kin.arm_q(side), arm.lo, arm.hi),
+        path = plan_arm_motion(kin, ctx.collisions, side, np.clip(kin.arm_q(side), arm.lo, arm.hi),
                                (p + depth * axis, R), allow_sampling=False)
     except MotionError:
-        planner.move_fingers((side,), posture)
+        ctx.move_fingers((side,), posture)
         return False
     finally:
-        planner.collisions.ignored_bodies = ignored
-        kin.sync(planner.env.data.qpos)
-    planner.run_arm_samples({side: time_dense_path(path.waypoints, 1.0 / planner.env.control_hz,
+        ctx.collisions.ignored_bodies = ignored
+        kin.sync(ctx.env.data.qpos)
+    ctx.run_arm_samples({side: time_dense_path(path.waypoints, 1.0 / ctx.env.control_hz,
                                                     v_max=DEEPER_SPEED)})
-    planner.move_fingers((side,), posture)
-    planner.settle(0.3)
-    return is_held(finger_contacts(planner.env.model, planner.env.data, side, obj.body))
+    ctx.move_fingers((side,), posture)
+    ctx.settle(0.3)
+    return is_held(finger_contacts(ctx.env.model, ctx.env.data, side, obj.body))

@@ -71,30 +71,30 @@ class PartRelease(Recovery):
         return True  # released: the usual way is not taken
 
 
-def let_go(planner: PlanningContext, side: Side, part: SceneObject, follow: PartFollow | None) -> None:
-    """Open `side`'s hand on `part` (no longer in `planner.holding`) and move it off, the way that moves the part
+def let_go(ctx: PlanningContext, side: Side, part: SceneObject, follow: PartFollow | None) -> None:
+    """Open `side`'s hand on `part` (no longer in `ctx.hands[side].held`) and move it off, the way that moves the part
     least (see the module's doc). Adds an event when the usual way was not the one taken."""
-    measure = _openness_gauge(planner, part, follow)
+    measure = _openness_gauge(ctx, part, follow)
     before = measure()
-    ways = _ways_out(planner, side, part, follow)
+    ways = _ways_out(ctx, side, part, follow)
     if before is None:
         ways[0][1]()
         return
     # Only a part going back counts: one going on the way the hand moved it (a lid let go low falls shut, as a
     # plan may mean it to) is not undone.
-    onward = 0.0 if follow is None else 1.0 if _opens(planner, follow) else -1.0
-    start = take_snapshot(planner)
+    onward = 0.0 if follow is None else 1.0 if _opens(ctx, follow) else -1.0
+    start = take_snapshot(ctx)
     tried: list[tuple[bool, float, int]] = []
     first_drift = None
     chosen = None
     for k, (_, way) in enumerate(ways):
         try:
-            with trial(planner, start):  # nothing of it is recorded
+            with trial(ctx, start):  # nothing of it is recorded
                 way()
-                planner.settle(TRIAL_SETTLE_S)
-                touching = bool(finger_contacts(planner.env.model, planner.env.data, side, part.body))
-                if not planner.regripping:
-                    _leave(planner, side)  # judged once the hand has gone, as the plan's next move takes it
+                ctx.settle(TRIAL_SETTLE_S)
+                touching = bool(finger_contacts(ctx.env.model, ctx.env.data, side, part.body))
+                if not ctx.regripping:
+                    _leave(ctx, side)  # judged once the hand has gone, as the plan's next move takes it
                 drift = max(0.0, (before - measure()) * onward) if onward else abs(measure() - before)
         except (MotionError, PlanningError) as exc:
             log.debug("letting go %s: no way (%s)", ways[k][0], exc)
@@ -107,7 +107,7 @@ def let_go(planner: PlanningContext, side: Side, part: SceneObject, follow: Part
         # leave the hand on it: leaving a screen where the arm's reach ends, off it, let it rise 0.56 -> 0.72
         # before the second grip. Letting go for good, the hand must be off it: left on the safe's door, the
         # plan's next move started in contact and found no path.
-        if drift <= RELEASE_DRIFT and (not touching or (k == 0 and planner.regripping)):
+        if drift <= RELEASE_DRIFT and (not touching or (k == 0 and ctx.regripping)):
             chosen = tried[-1]
             break
     if not tried:
@@ -115,61 +115,61 @@ def let_go(planner: PlanningContext, side: Side, part: SceneObject, follow: Part
         return
     # Else, letting go for good, the least drift once the hand has gone home (a hand left on the part drags it
     # then: measured, a lid left pressed shut came back to 0.46); letting go to grip again, off the part first.
-    key = (lambda t: t) if planner.regripping else (lambda t: (t[1], t[0], t[2]))
+    key = (lambda t: t) if ctx.regripping else (lambda t: (t[1], t[0], t[2]))
     _, drift, k = chosen or min(tried, key=key)
     ways[k][1]()
     if k:
         usual = "" if first_drift is None else f" (backing out as usual: by {first_drift:.2f})"
-        planner.events.append(f"the {side} hand let go of {part.type_name} {part.obj_id} {ways[k][0]}, which let "
+        ctx.events.append(f"the {side} hand let go of {part.type_name} {part.obj_id} {ways[k][0]}, which let "
                               f"it go back by {drift:.2f} in openness{usual}")
 
 
-def _leave(planner, side: Side) -> None:
+def _leave(ctx, side: Side) -> None:
     """In a trial: the hand goes to its arm's init pose, as the paper's plans send a hand after letting go (any
     move away drags a part the fingers still rest on alike); where there is no way, it stays."""
     try:
-        planner.run_arm_samples({side: arm_moves.plan_side(planner, side, planner.init_poses[side])})
+        ctx.run_arm_samples({side: arm_moves.plan_side(ctx, side, ctx.init_poses[side])})
     except (MotionError, PlanningError):
         return
-    planner.settle(TRIAL_SETTLE_S)
+    ctx.settle(TRIAL_SETTLE_S)
 
 
-def _openness_gauge(planner, part: SceneObject, follow: PartFollow | None) -> Callable[[], float | None]:
-    env = planner.env
+def _openness_gauge(ctx, part: SceneObject, follow: PartFollow | None) -> Callable[[], float | None]:
+    env = ctx.env
     if follow is not None and env.scene.object(*follow.obj).body == part.body:
         return lambda: follow_openness(env, follow)
     return lambda: openness(env.model, env.data, part)
 
 
-def _ways_out(planner, side: Side, part: SceneObject, follow: PartFollow | None) -> list[tuple[str, Callable[[], None]]]:
+def _ways_out(ctx, side: Side, part: SceneObject, follow: PartFollow | None) -> list[tuple[str, Callable[[], None]]]:
     """(how, do it) for each way of letting go, the usual one first."""
     def usual() -> None:
-        if not finger_room.unhook(planner, side, part, follow):
-            arm_moves.retreat(planner, side, open_fingers=True)
+        if not finger_room.unhook(ctx, side, part, follow):
+            arm_moves.retreat(ctx, side, open_fingers=True)
 
     def loosened_then(posture: str, direction: Callable[[], np.ndarray | None],
                       sampled: bool = False) -> Callable[[], None]:
         def go() -> None:
-            finger_room.loosen_in_place(planner, side)
-            planner.move_fingers((side,), posture)
+            finger_room.loosen_in_place(ctx, side)
+            ctx.move_fingers((side,), posture)
             u = direction()
             if u is not None:
-                _back_out(planner, side, u, sampled)
+                _back_out(ctx, side, u, sampled)
             if posture != "open":
-                planner.move_fingers((side,), "open")
-            planner.hands[side].last_approach = None
+                ctx.move_fingers((side,), "open")
+            ctx.hands[side].last_approach = None
         return go
 
-    approach = planner.hands[side].last_approach
+    approach = ctx.hands[side].last_approach
     ways_back = {
         "backing out the way it came in": lambda: None if approach is None else -np.asarray(approach, float),
-        "sliding off the part's edge, away from its hinge": lambda: _off_the_edge(planner, side, follow),
-        "backing out along the part's hinge": lambda: _hinge_away(planner, side, part, follow),
+        "sliding off the part's edge, away from its hinge": lambda: _off_the_edge(ctx, side, follow),
+        "backing out along the part's hinge": lambda: _hinge_away(ctx, side, part, follow),
     }
     ways = [("as usual", usual)]
     # The grip's own "pre" posture first (a pinch: only thumb and index open; the curled fingers, straightening,
     # would push the part): it leaves the part without sweeping it; the hand opens fully once off it.
-    pre = f"pre_{planner.hands[side].grip or 'grasp'}"
+    pre = f"pre_{ctx.hands[side].grip or 'grasp'}"
     if pre in HAND_POSTURES:
         ways += [(f"loosening to {pre} first, then {how}", loosened_then(pre, way)) for how, way in ways_back.items()]
     ways += [(f"opening in place first, then {how}", loosened_then("open", way)) for how, way in ways_back.items()]
@@ -181,17 +181,17 @@ def _ways_out(planner, side: Side, part: SceneObject, follow: PartFollow | None)
               loosened_then("open", lambda: np.array([0.0, 0.0, 1.0]), sampled=True))]
     if follow is not None:
         ways.append(("opening in place first, then backing out the way the part went",
-                     loosened_then("open", lambda: _part_onward(planner, follow))))
+                     loosened_then("open", lambda: _part_onward(ctx, follow))))
     ways.append(("opening in place and staying there", loosened_then("open", lambda: None)))
     return ways
 
 
-def _back_out(planner, side: Side, u: np.ndarray, sampled: bool = False,
+def _back_out(ctx, side: Side, u: np.ndarray, sampled: bool = False,
               distances: tuple[float, ...] = (RETREAT_DISTANCE, RETREAT_DISTANCE / 2)) -> None:
     """Move the hand RETREAT_DISTANCE (else half that) along `u`, straight (`sampled`: by any free path to
     there); MotionError where neither is free."""
-    kin = planner.kin
-    kin.sync(planner.env.data.qpos)  # the fingers where they are: driven open against a door, the commanded
+    kin = ctx.kin
+    kin.sync(ctx.env.data.qpos)  # the fingers where they are: driven open against a door, the commanded
     # posture lies 2 cm inside it on the planner's model and every way out looked blocked (a turned knob, measured)
     try:
         p, R = kin.ee_pose(side)
@@ -200,65 +200,65 @@ def _back_out(planner, side: Side, u: np.ndarray, sampled: bool = False,
         path, last = None, None
         for dist in distances:
             try:
-                path = plan_arm_motion(kin, planner.collisions, side, q0, (p + dist * np.asarray(u, float), R),
-                                       allow_sampling=sampled, seed=planner.seed, time_limit=2.0)
+                path = plan_arm_motion(kin, ctx.collisions, side, q0, (p + dist * np.asarray(u, float), R),
+                                       allow_sampling=sampled, seed=ctx.seed, time_limit=2.0)
                 break
             except MotionError as exc:
                 last = exc
         if path is None:
             raise last
     finally:
-        kin.sync(planner.env.data.qpos)
-    dt = 1.0 / planner.env.control_hz
+        kin.sync(ctx.env.data.qpos)
+    dt = 1.0 / ctx.env.control_hz
     if path.method == "rrt_connect":
         samples = time_parametrize(path.waypoints, dt=dt, v_max=BACK_OUT_SPEED)[1]
     else:
         samples = time_dense_path(path.waypoints, dt, v_max=BACK_OUT_SPEED)
-    planner.run_arm_samples({side: samples})
+    ctx.run_arm_samples({side: samples})
 
 
-def _hinge_away(planner, side: Side, part: SceneObject, follow: PartFollow | None) -> np.ndarray | None:
+def _hinge_away(ctx, side: Side, part: SceneObject, follow: PartFollow | None) -> np.ndarray | None:
     """The hinge axis of the part the hand moved (a safe's knob, not its door), signed from the part toward the
     hand (moving along it cannot turn the part); None for a slide."""
-    m, d = planner.env.model, planner.env.data
+    m, d = ctx.env.model, ctx.env.data
     joint = follow.joint if follow is not None else f"{part.body}_{part.annotations.articulation.joint}"
     line = hinge_line(m, d, joint)
     if line is None:
         return None
     hinge, anchor = line
-    planner.kin.sync(d.qpos)
-    p, _ = planner.kin.ee_pose(side)
+    ctx.kin.sync(d.qpos)
+    p, _ = ctx.kin.ee_pose(side)
     return hinge if float((p - anchor) @ hinge) >= 0.0 else -hinge
 
 
-def _off_the_edge(planner, side: Side, follow: PartFollow | None) -> np.ndarray | None:
+def _off_the_edge(ctx, side: Side, follow: PartFollow | None) -> np.ndarray | None:
     """From the hinge axis of the part the hand moved out to the grip point, across the axis: the way off the
     part's edge (a thumb under a shut screen's edge, fingers around a knob's fin); None for a slide or without a
     hinge."""
     if follow is None:
         return None
-    line = hinge_line(planner.env.model, planner.env.data, follow.joint)
+    line = hinge_line(ctx.env.model, ctx.env.data, follow.joint)
     if line is None:
         return None
     hinge, anchor = line
-    obj = planner.env.scene.object(*follow.obj)
-    grip = get_point_in_env(planner.env, follow.part_point, obj.type_name, obj.obj_id)
+    obj = ctx.env.scene.object(*follow.obj)
+    grip = get_point_in_env(ctx.env, follow.part_point, obj.type_name, obj.obj_id)
     out = grip - anchor
     out = out - (out @ hinge) * hinge
     n = float(np.linalg.norm(out))
     return out / n if n > 1e-3 else None
 
 
-def _opens(planner, follow: PartFollow) -> bool:
+def _opens(ctx, follow: PartFollow) -> bool:
     """Whether the hand's move opened the part: moves toward high openness open, toward low openness close."""
-    return follow_articulation(planner.env, follow).openness_of(follow.q_target) >= 0.5
+    return follow_articulation(ctx.env, follow).openness_of(follow.q_target) >= 0.5
 
 
-def _part_onward(planner, follow: PartFollow) -> np.ndarray | None:
+def _part_onward(ctx, follow: PartFollow) -> np.ndarray | None:
     """The way the grip point went as the hand moved the part (toward the openness asked); at the part's end stop,
     on the same way (into the stop)."""
-    step = 0.02 if _opens(planner, follow) else -0.02
-    u = point_motion(planner.env, follow, step)
+    step = 0.02 if _opens(ctx, follow) else -0.02
+    u = point_motion(ctx.env, follow, step)
     if np.linalg.norm(u) == 0:
-        u = -point_motion(planner.env, follow, -step)
+        u = -point_motion(ctx.env, follow, -step)
     return u if np.linalg.norm(u) > 0 else None
