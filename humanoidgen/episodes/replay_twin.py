@@ -56,8 +56,8 @@ def _from_wire(d: Any) -> ReplayVerdict:
 
 
 class TwinReplay:
-    """The parent's side of an episode's replay: counts the commands against the task's time limit and
-    passes them on to the twin; `finish` gets the verdict."""
+    """The parent's side of an episode's replay: counts the commands against the plan's time budget
+    (`replay.step_budget`) and passes them on to the twin; `finish` gets the verdict."""
 
     def __init__(self, channel, spec, control_hz: float) -> None:
         self.channel = channel  # sandbox.twin.TwinChannel
@@ -67,7 +67,7 @@ class TwinReplay:
 
     def feed(self, payload: Any) -> None:
         """A chunk the worker streamed ({"actions": (k, 26), "qpos": (k, nq)}, k >= 1); raises OverTime past the
-        task's time limit. A chunk of any other form is not passed on: the episode is rejected at `finish`."""
+        plan's time budget. A chunk of any other form is not passed on: the episode is rejected at `finish`."""
         actions = payload.get("actions") if isinstance(payload, dict) else None
         qpos = payload.get("qpos") if isinstance(payload, dict) else None
         if not (isinstance(actions, np.ndarray) and actions.ndim == 2 and len(actions) >= 1
