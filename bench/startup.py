@@ -5,8 +5,10 @@ Each round runs, in fresh processes:
 - `hgen run TASK --seed S --json F`, timed from start to exit (`total_s`); `episode_s` is the worker's own
   wall time from the JSON; `beyond_episode_s` = total - episode;
 - a probe that times the phases one after the other: the CLI's imports in the parent, the fork server
-  coming up (its imports and warm-up: `sandbox.preload`), one worker's start (fork, the task's scene, the
-  twin's fork, lockdown), the episode, and the verdict after the last step.
+  coming up (its imports and warm-up: `sandbox.preload`; meanwhile the parent imports what runs an episode,
+  loads the task and reads the plan, `parent_set_up_s`, as `hgen run` does), one worker's start (fork, the
+  task's scene unless the server built it, the twin's fork, lockdown), the episode, and the verdict after the
+  last step.
 
     python bench/startup.py --rounds 3                     # block_stack_single seed 3
     python bench/startup.py --task open_drawer --seed 0 --json /tmp/startup.json
@@ -39,7 +41,6 @@ t0 = time.perf_counter()
 os.environ.setdefault("MUJOCO_GL", "egl")
 import humanoidgen.cli.main  # noqa: F401  (what `hgen` imports before any command)
 t_cli = time.perf_counter()
-from humanoidgen.sandbox import SandboxWorker
 import inspect
 from humanoidgen.sandbox.forkserver import prestart
 if "warm" in inspect.signature(prestart).parameters:  # as `hgen run` starts it
@@ -47,18 +48,23 @@ if "warm" in inspect.signature(prestart).parameters:  # as `hgen run` starts it
                    {"task": sys.argv[1], "seed": int(sys.argv[2]), "dressing": None}))
 else:
     prestart()
-with SandboxWorker(dict) as w:  # an empty worker: it can only fork once the server is up
-    w.start()
-t_server = time.perf_counter()
+# What `hgen run` does while the server comes up: its own imports, the task, the plan's text.
+from humanoidgen.sandbox import SandboxWorker
 from humanoidgen.episodes.task_episode import EpisodeRequest, load_spec, plan_file, read_plan_text, run_task_episode, worker_for
 req = EpisodeRequest(sys.argv[1], int(sys.argv[2]))
 spec = load_spec(req.task)
-worker = worker_for(req, spec, read_plan_text(plan_file(req.task, spec, None)))
+text = read_plan_text(plan_file(req.task, spec, None))
+t_parent = time.perf_counter()
+with SandboxWorker(dict) as w:  # an empty worker: it can only fork once the server is up
+    w.start()
+t_server = time.perf_counter()
+worker = worker_for(req, spec, text)
 worker.start()
 t_worker = time.perf_counter()
 result, _ = run_task_episode(req, worker=worker)
 t_end = time.perf_counter()
-print(json.dumps({"cli_imports_s": t_cli - t0, "fork_server_s": t_server - t_cli, "worker_start_s": t_worker - t_server,
+print(json.dumps({"cli_imports_s": t_cli - t0, "parent_set_up_s": t_parent - t_cli,
+                  "fork_server_s": t_server - t_cli, "worker_start_s": t_worker - t_server,
                   "episode_s": result.wall_seconds, "after_episode_s": t_end - t_worker - result.wall_seconds,
                   "success": result.success}))
 """

@@ -25,16 +25,20 @@ from humanoidgen.sandbox.forkserver import ENV_WARM  # in the server's environme
 
 os.environ.setdefault("MUJOCO_GL", "egl")
 
-# What the scene's compile needs: imported before its thread starts, so that the two threads do not import
-# the same modules at once.
+# What a task's scene needs (the object families `objects.library` imports when first asked, numpy's random
+# generators for the layout): imported before the scene's thread starts, so that the two threads do not
+# import the same modules at once.
 _FOR_THE_SCENE = (
-    "numpy", "mujoco", "humanoidgen.sim.scene", "humanoidgen.tasks.registry", "humanoidgen.tasks.scene",
+    "numpy", "numpy.random", "mujoco", "humanoidgen.sim.scene", "humanoidgen.tasks.registry",
+    "humanoidgen.tasks.scene", "humanoidgen.tasks.targets", "humanoidgen.objects.library",
+    "humanoidgen.objects.articulated", "humanoidgen.objects.barrier", "humanoidgen.objects.rigid",
+    "humanoidgen.objects.safe", "humanoidgen.objects.hands", "humanoidgen.objects.queries",
     "humanoidgen.scenes.dressing", "humanoidgen.episodes.episode_worker",
 )
 _THE_REST = (
     "pyseccomp", "landlock",  # pyseccomp finds libseccomp through ldconfig: not once locked
     "pydrake.solvers", "ompl",
-    "humanoidgen.planning.planner", "humanoidgen.tasks.targets",
+    "humanoidgen.planning.planner",
     "humanoidgen.episodes.recorder", "humanoidgen.episodes.plans", "humanoidgen.episodes.runner",
     "humanoidgen.episodes.task_episode", "humanoidgen.episodes.replay_twin", "humanoidgen.episodes.action_log",
     "humanoidgen.sim.cameras", "humanoidgen.generation.worker", "humanoidgen.planning.snapshot",
