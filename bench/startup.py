@@ -127,6 +127,16 @@ def _median(xs: list) -> float | None:
     return round(statistics.median(xs), 3) if xs else None
 
 
+def _machine() -> str:
+    model = ""
+    try:
+        model = next((line.split(":", 1)[1].strip() for line in Path("/proc/cpuinfo").read_text().splitlines()
+                      if line.startswith("model name")), "")
+    except OSError:
+        pass
+    return f"{os.uname().machine}, {os.cpu_count()} CPUs" + (f" ({model})" if model else "")
+
+
 def _commit(code: Path) -> str:
     return subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=code, capture_output=True,
                           text=True).stdout.strip()
@@ -137,7 +147,7 @@ def _summary(task: str, seed: int, code: Path, rows: list[dict], turns: str | No
     beyond = [r["cli"]["beyond_episode_s"] for r in rows]
     result = {"what": f"hgen run {task} --seed {seed}: wall time from start to exit minus the episode's "
                       "own wall time, and the phases of the same path timed one by one",
-              "commit": commit, "machine": f"{os.uname().machine}, {os.cpu_count()} CPUs"}
+              "commit": commit, "machine": _machine()}
     if turns:
         result["taking_turns_with"] = turns
     result.update({"rounds": rows, "median_beyond_episode_s": round(statistics.median(beyond), 3),
