@@ -1,5 +1,6 @@
 """An episode's replay in its plan worker's twin (`sandbox.twin`): the process forked from the worker right
-after the worker built the task's scene, before the worker locked itself down and before any plan code ran.
+after the worker's set-up got the task's scene (built there, or by the fork server before it forked anyone:
+`episode_worker.prebuild`), before the worker locked itself down and before any plan code ran.
 
 The twin holds the very scene the plan got (the same memory image, so the same model and start to the last
 bit) in an address space the plan cannot reach, and the scene is built once for both. The parent forwards
