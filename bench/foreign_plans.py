@@ -122,6 +122,7 @@ def failure_message(result) -> str:
 
 
 CAUSES = (  # (cause, substrings of the message), first match wins
+    ("ran past the plan's time budget", ("ran past its time budget", "ran past the task's time limit")),
     ("object name not in the scene", ("no object ",)),
     ("API meaning differs: action/annotation the object lacks", ("no target2", "no target1", "has no 'grasp'",
                                                                 "has no 'pinch'", "annotation(s); no ",

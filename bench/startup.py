@@ -5,11 +5,20 @@ Each round runs, in fresh processes:
 - `hgen run TASK --seed S --json F`, timed from start to exit (`total_s`); `episode_s` is the worker's own
   wall time from the JSON; `beyond_episode_s` = total - episode;
 - a probe that times the phases one after the other: the CLI's imports in the parent, the fork server
-  coming up (its imports and warm-up: `sandbox.preload`), one worker's start (fork, the task's scene, the
-  twin's fork, lockdown), the episode, and the verdict after the last step.
+  coming up (its imports and warm-up: `sandbox.preload`; meanwhile the parent imports what runs an episode,
+  loads the task and reads the plan, `parent_set_up_s`, as `hgen run` does), one worker's start (fork, the
+  task's scene unless the server built it, the twin's fork, lockdown), the episode, and the verdict after the
+  last step.
 
     python bench/startup.py --rounds 3                     # block_stack_single seed 3
     python bench/startup.py --task open_drawer --seed 0 --json /tmp/startup.json
+    python bench/startup.py --rounds 3 --against /work/old   # taking turns with another checkout, round by
+                                                            # round: its results go to --before-json
+
+The probe starts the server as `hgen run` does: told which episode to build while it warms up
+(`forkserver.prestart(warm=...)`), where the checkout's `prestart` takes that. Where `perf` can count,
+`cpu_s` is the CPU time of `hgen run`'s whole process tree (server, worker and twin included; the episode's
+own CPU too): on a machine other jobs share, it moves less than the wall times do.
 """
 
 from __future__ import annotations
@@ -17,6 +26,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import shutil
 import statistics
 import subprocess
 import sys
@@ -31,21 +41,30 @@ t0 = time.perf_counter()
 os.environ.setdefault("MUJOCO_GL", "egl")
 import humanoidgen.cli.main  # noqa: F401  (what `hgen` imports before any command)
 t_cli = time.perf_counter()
-from humanoidgen.sandbox import SandboxWorker
+import inspect
 from humanoidgen.sandbox.forkserver import prestart
-prestart()
-with SandboxWorker(dict) as w:  # an empty worker: it can only fork once the server is up
-    w.start()
-t_server = time.perf_counter()
+if "warm" in inspect.signature(prestart).parameters:  # as `hgen run` starts it
+    prestart(warm=("humanoidgen.episodes.episode_worker:prebuild",
+                   {"task": sys.argv[1], "seed": int(sys.argv[2]), "dressing": None}))
+else:
+    prestart()
+# What `hgen run` does while the server comes up: its own imports, the task, the plan's text.
+from humanoidgen.sandbox import SandboxWorker
 from humanoidgen.episodes.task_episode import EpisodeRequest, load_spec, plan_file, read_plan_text, run_task_episode, worker_for
 req = EpisodeRequest(sys.argv[1], int(sys.argv[2]))
 spec = load_spec(req.task)
-worker = worker_for(req, spec, read_plan_text(plan_file(req.task, spec, None)))
+text = read_plan_text(plan_file(req.task, spec, None))
+t_parent = time.perf_counter()
+with SandboxWorker(dict) as w:  # an empty worker: it can only fork once the server is up
+    w.start()
+t_server = time.perf_counter()
+worker = worker_for(req, spec, text)
 worker.start()
 t_worker = time.perf_counter()
 result, _ = run_task_episode(req, worker=worker)
 t_end = time.perf_counter()
-print(json.dumps({"cli_imports_s": t_cli - t0, "fork_server_s": t_server - t_cli, "worker_start_s": t_worker - t_server,
+print(json.dumps({"cli_imports_s": t_cli - t0, "parent_set_up_s": t_parent - t_cli,
+                  "fork_server_s": t_server - t_cli, "worker_start_s": t_worker - t_server,
                   "episode_s": result.wall_seconds, "after_episode_s": t_end - t_worker - result.wall_seconds,
                   "success": result.success}))
 """
@@ -57,16 +76,32 @@ def _env(code: Path) -> dict:
 
 def run_cli(task: str, seed: int, code: Path = ROOT) -> dict:
     with tempfile.TemporaryDirectory() as tmp:
-        out = Path(tmp) / "run.json"
+        out, counted = Path(tmp) / "run.json", Path(tmp) / "perf.csv"
+        cmd = [sys.executable, "-m", "humanoidgen.cli.main", "run", task, "--seed", str(seed), "--json", str(out)]
+        perf = shutil.which("perf")
+        if perf:  # task-clock of the whole tree: children are counted wherever they are reaped
+            cmd = [perf, "stat", "-x", ",", "-e", "task-clock", "-o", str(counted), "--", *cmd]
         t0 = time.perf_counter()
-        r = subprocess.run([sys.executable, "-m", "humanoidgen.cli.main", "run", task, "--seed", str(seed),
-                            "--json", str(out)], cwd=code, env=_env(code), capture_output=True, text=True)
+        r = subprocess.run(cmd, cwd=code, env=_env(code), capture_output=True, text=True)
         total = time.perf_counter() - t0
         if not out.exists():
             raise SystemExit(f"hgen run failed: {(r.stderr or r.stdout).strip().splitlines()[-1:]}")
         d = json.loads(out.read_text())
+        cpu = _task_clock(counted)
     return {"total_s": round(total, 3), "episode_s": round(d["wall_seconds"], 3),
-            "beyond_episode_s": round(total - d["wall_seconds"], 3), "success": d["success"]}
+            "beyond_episode_s": round(total - d["wall_seconds"], 3), "cpu_s": cpu, "success": d["success"]}
+
+
+def _task_clock(path: Path) -> float | None:
+    """CPU seconds from `perf stat -x,` output, None where perf could not count."""
+    try:
+        for line in path.read_text().splitlines():
+            fields = line.split(",")
+            if len(fields) > 2 and fields[2] == "task-clock" and fields[1] == "msec":
+                return round(float(fields[0]) / 1000, 3)
+    except (OSError, ValueError):
+        pass
+    return None
 
 
 def run_probe(task: str, seed: int, code: Path = ROOT) -> dict:
@@ -80,6 +115,48 @@ def run_probe(task: str, seed: int, code: Path = ROOT) -> dict:
     return {k: round(v, 3) if isinstance(v, float) else v for k, v in d.items()}
 
 
+def _rounds(task: str, seed: int, code: Path, k: int) -> dict:
+    row = {"round": k, "load_average": round(os.getloadavg()[0], 2),
+           "cli": run_cli(task, seed, code), "phases": run_probe(task, seed, code)}
+    print(json.dumps({"code": str(code), **row}), flush=True)
+    return row
+
+
+def _median(xs: list) -> float | None:
+    xs = [x for x in xs if x is not None]
+    return round(statistics.median(xs), 3) if xs else None
+
+
+def _machine() -> str:
+    model = ""
+    try:
+        model = next((line.split(":", 1)[1].strip() for line in Path("/proc/cpuinfo").read_text().splitlines()
+                      if line.startswith("model name")), "")
+    except OSError:
+        pass
+    return f"{os.uname().machine}, {os.cpu_count()} CPUs" + (f" ({model})" if model else "")
+
+
+def _commit(code: Path) -> str:
+    return subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=code, capture_output=True,
+                          text=True).stdout.strip()
+
+
+def _summary(task: str, seed: int, code: Path, rows: list[dict], turns: str | None) -> dict:
+    commit = _commit(code)
+    beyond = [r["cli"]["beyond_episode_s"] for r in rows]
+    result = {"what": f"hgen run {task} --seed {seed}: wall time from start to exit minus the episode's "
+                      "own wall time, and the phases of the same path timed one by one",
+              "commit": commit, "machine": _machine()}
+    if turns:
+        result["taking_turns_with"] = turns
+    result.update({"rounds": rows, "median_beyond_episode_s": round(statistics.median(beyond), 3),
+                   "median_cpu_s": _median([r["cli"]["cpu_s"] for r in rows]),
+                   "median_phases": {key: round(statistics.median(r["phases"][key] for r in rows), 3)
+                                     for key in rows[0]["phases"] if key != "success"}})
+    return result
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--task", default="block_stack_single")
@@ -87,26 +164,26 @@ def main() -> None:
     ap.add_argument("--rounds", type=int, default=3)
     ap.add_argument("--code", type=Path, default=ROOT, help="a checkout to time (default: this one)")
     ap.add_argument("--json", type=Path, default=ROOT / "bench/results/startup.json")
+    ap.add_argument("--against", type=Path, default=None,
+                    help="another checkout, timed in turns with --code (it goes first in each round)")
+    ap.add_argument("--before-json", type=Path, default=ROOT / "bench/results/startup_before.json",
+                    help="where --against's results go")
     args = ap.parse_args()
-    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=args.code, capture_output=True,
-                            text=True).stdout.strip()
-    run_cli(args.task, args.seed, args.code)  # warm the OS file cache and numba's kernels
-    rows = []
+    codes = [args.code] if args.against is None else [args.against, args.code]
+    for code in codes:
+        run_cli(args.task, args.seed, code)  # warm the OS file cache and numba's kernels
+    rows: dict[Path, list[dict]] = {code: [] for code in codes}
     for k in range(args.rounds):
-        row = {"round": k, "load_average": round(os.getloadavg()[0], 2),
-               "cli": run_cli(args.task, args.seed, args.code), "phases": run_probe(args.task, args.seed, args.code)}
-        rows.append(row)
-        print(json.dumps(row), flush=True)
-    beyond = [r["cli"]["beyond_episode_s"] for r in rows]
-    result = {"what": f"hgen run {args.task} --seed {args.seed}: wall time from start to exit minus the episode's "
-                      "own wall time, and the phases of the same path timed one by one",
-              "commit": commit, "machine": f"{os.uname().machine}, {os.cpu_count()} CPUs", "rounds": rows,
-              "median_beyond_episode_s": round(statistics.median(beyond), 3),
-              "median_phases": {key: round(statistics.median(r["phases"][key] for r in rows), 3)
-                                for key in rows[0]["phases"] if key != "success"}}
-    args.json.write_text(json.dumps(result, indent=2) + "\n")
-    print(f"beyond the episode: median {result['median_beyond_episode_s']} s; phases {result['median_phases']}; "
-          f"wrote {args.json}")
+        for code in codes:
+            rows[code].append(_rounds(args.task, args.seed, code, k))
+    outs = [(args.code, args.json)] + ([(args.against, args.before_json)] if args.against is not None else [])
+    for code, path in outs:
+        other = next((f"{_commit(c)} (round by round, it first)" if c == args.against else f"{_commit(c)}"
+                      for c in codes if c != code), None)
+        result = _summary(args.task, args.seed, code, rows[code], other)
+        path.write_text(json.dumps(result, indent=2) + "\n")
+        print(f"{code} ({result['commit']}): beyond the episode median {result['median_beyond_episode_s']} s, "
+              f"CPU {result['median_cpu_s']} s; phases {result['median_phases']}; wrote {path}")
 
 
 if __name__ == "__main__":

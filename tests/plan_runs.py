@@ -9,8 +9,8 @@ from humanoidgen.episodes.task_episode import EpisodeRequest, run_task_episode
 
 
 def run_plan(tmp_path, task: str, seed: int, text: str, time_limit_s: float | None = None) -> EpisodeResult:
-    """`time_limit_s`: run the task with this time limit instead of its own (a test of a planner mechanism,
-    such as letting go and gripping again, whose plan is slower than the task allows; not of its pace)."""
+    """`time_limit_s`: run the task with this time limit instead of its own (a test of the plan's time budget,
+    which is a multiple of it: `episodes.replay.PLAN_TIME_FACTOR`)."""
     path = tmp_path / f"{task}_{seed}.py"
     path.write_text(text)
     if time_limit_s is not None:

@@ -77,8 +77,8 @@ def test_a_pinch_of_a_shut_screen_lifts_it_ajar_first_and_keeps_the_plans_postur
 
 @pytest.mark.slow
 def test_the_papers_plan_opens_a_shut_laptop(tmp_path):
-    # The screen's open-and-regrip takes 31-35 s of the task's 30 (corpus: open_laptop_hard/paper); the test is
-    # of lifting a shut screen ajar, not of the plan's pace.
-    result = run_plan(tmp_path, "open_laptop_hard", 0, PAPER_STYLE, time_limit_s=60)
+    # The screen's open-and-regrip takes 31-35 s (corpus: open_laptop_hard/paper): past the task's 30 s, within
+    # the plan's budget (episodes.replay.PLAN_TIME_FACTOR times it).
+    result = run_plan(tmp_path, "open_laptop_hard", 0, PAPER_STYLE)
     assert result.success, result.failed_step or result.checks
     assert any("lay shut" in e for e in result.events)

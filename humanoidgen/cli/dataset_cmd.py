@@ -5,7 +5,6 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
-import numpy as np
 import typer
 from rich.console import Console
 from rich.table import Table
@@ -49,7 +48,7 @@ def info(path: Path = typer.Argument(..., help="A dataset folder.")) -> None:
                   f"({100 * len(kept) / max(len(attempts), 1):.0f}% success)")
     if lengths:
         every, hz = meta.get("recorder", {}).get("every", "?"), meta.get("control_hz")
-        console.print(f"frames per episode: min {min(lengths)}, mean {np.mean(lengths):.0f}, max {max(lengths)} "
+        console.print(f"frames per episode: min {min(lengths)}, mean {sum(lengths) / len(lengths):.0f}, max {max(lengths)} "
                       f"(every {every} control steps at {hz if hz is None else f'{hz:.0f}'} Hz)")
         good = next(k["episode"] for k in kept if k["episode"] not in bad)
         table = Table("array", f"shape (episode {good})", "dtype")

@@ -75,9 +75,22 @@ def run(
     Example: hgen run blocks_stack_easy --seed 3 --video stack.mp4 --json stack.json
     """
     os.environ.setdefault("MUJOCO_GL", "egl")
+    dressing = None
+    if room is not None or randomize_visuals:
+        from humanoidgen.scenes.dressing import episode_dressing
+
+        try:
+            dressing = episode_dressing(room, randomize_visuals, seed)
+        except ValueError as exc:
+            _fail(str(exc))
+            return
     from humanoidgen.sandbox.forkserver import prestart
 
-    prestart()  # the workers' server imports and warms up while this process checks its arguments
+    # The workers' server imports, warms up and builds this episode's scene while this process checks its
+    # arguments (a task it cannot load only costs the server that build: the worker says what is wrong).
+    prestart(warm=("humanoidgen.episodes.episode_worker:prebuild",
+                   {"task": str(Path(task).resolve()) if Path(task).suffix in (".yaml", ".yml") else task,
+                    "seed": seed, "dressing": dressing}))
     from humanoidgen.assets.robot_files import AssetsError
     from humanoidgen.episodes.episode_worker import VideoSpec
     from humanoidgen.episodes.plans import PlanFormatError
@@ -90,13 +103,6 @@ def run(
     if video is not None and video_camera not in CAMERA_NAMES:
         _fail(f"unknown camera {video_camera!r}; cameras: {', '.join(CAMERA_NAMES)}")
     writer = VideoWriter(video, video_camera) if video is not None else None
-    from humanoidgen.scenes.dressing import episode_dressing
-
-    try:
-        dressing = episode_dressing(room, randomize_visuals, seed)
-    except ValueError as exc:
-        _fail(str(exc))
-        return
     req = EpisodeRequest(task, seed, str(script) if script else None, step_timeout_s=step_timeout,
                          video=VideoSpec(video_camera, writer.width, writer.height, writer.fps) if writer else None,
                          dressing=dressing)

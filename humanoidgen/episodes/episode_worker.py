@@ -13,6 +13,7 @@ state and model is only compared with that replay, to explain a rejection.
 
 from __future__ import annotations
 
+import json
 import os
 import time
 from dataclasses import dataclass
@@ -61,8 +62,10 @@ class EpisodeSetup:
         from humanoidgen.tasks.scene import build_scene
 
         spec = parse_task(self.spec_data, "<task>")
-        dressing = SceneDressing.from_dict(self.dressing) if self.dressing else None
-        scene, env = build_scene(spec, self.seed, dressing=dressing)
+        env = _PREBUILT.pop(scene_key(self.spec_data, self.seed, self.dressing), None)
+        if env is None:
+            dressing = SceneDressing.from_dict(self.dressing) if self.dressing else None
+            _, env = build_scene(spec, self.seed, dressing=dressing)
         if self.control_hz != env.control_hz:
             env = HumanoidEnv(env.scene, control_hz=self.control_hz)
         twin = twin_main(spec, env, self.recorder)  # the replay, forked with this scene before the lockdown
@@ -73,7 +76,7 @@ class EpisodeSetup:
         frames = _FrameStream(env, self.video) if self.video is not None else None
         hooks = [h for h in (log, frames) if h is not None]
         planner = HumanoidMotionPlanner(env, seed=self.seed or 0, on_step=lambda a: [h(a) for h in hooks],
-                                        targets=scene.targets)
+                                        targets=env.scene.targets)  # the task's scene carries them
         clock = [time.perf_counter()]
         said = [0]  # events already handed to the parent
 
@@ -107,6 +110,33 @@ class EpisodeSetup:
         ns = step_namespace(planner)
         ns[PLAN], ns[PROGRESS], ns[FINISH], ns[TWIN] = plan, progress, finish, twin
         return ns
+
+
+# The scene the fork server built for the episode it was started for (`prebuild`), by `scene_key`: the one
+# worker of that episode takes it instead of building it again (each forked worker has its own copy).
+_PREBUILT: dict[str, Any] = {}
+
+
+def scene_key(spec_data: dict, seed: int | None, dressing: dict | None) -> str:
+    """What a task's scene is built from: the task spec as data, the seed and the dressing."""
+    return json.dumps([spec_data, seed, dressing], sort_keys=True, separators=(",", ":"))
+
+
+def prebuild(hint: dict) -> None:
+    """In the plan workers' fork server, before any fork (`sandbox.preload`): build the scene of the episode
+    `hint` names ({"task": a name or a YAML path, "seed": ..., "dressing": ... as `EpisodeSetup` holds it}),
+    exactly as `EpisodeSetup` would, and keep it for the worker whose setup asks for the same scene. Trusted
+    data in a process that runs no plan code; a hint that matches no later setup costs only this build
+    (which fills MuJoCo's mesh cache all the same)."""
+    from humanoidgen.scenes.dressing import SceneDressing
+    from humanoidgen.tasks.registry import load_task, parse_task
+    from humanoidgen.tasks.scene import build_scene
+
+    seed, dressing = hint.get("seed"), hint.get("dressing")
+    spec_data = load_task(str(hint["task"])).model_dump(mode="json")
+    spec = parse_task(spec_data, "<task>")  # as the worker gets it: from data
+    _, env = build_scene(spec, seed, dressing=SceneDressing.from_dict(dressing) if dressing else None)
+    _PREBUILT[scene_key(spec_data, seed, dressing)] = env
 
 
 class _FrameStream:

@@ -1,5 +1,6 @@
 """An episode's replay in its plan worker's twin (`sandbox.twin`): the process forked from the worker right
-after the worker built the task's scene, before the worker locked itself down and before any plan code ran.
+after the worker's set-up got the task's scene (built there, or by the fork server before it forked anyone:
+`episode_worker.prebuild`), before the worker locked itself down and before any plan code ran.
 
 The twin holds the very scene the plan got (the same memory image, so the same model and start to the last
 bit) in an address space the plan cannot reach, and the scene is built once for both. The parent forwards
@@ -56,8 +57,8 @@ def _from_wire(d: Any) -> ReplayVerdict:
 
 
 class TwinReplay:
-    """The parent's side of an episode's replay: counts the commands against the task's time limit and
-    passes them on to the twin; `finish` gets the verdict."""
+    """The parent's side of an episode's replay: counts the commands against the plan's time budget
+    (`replay.step_budget`) and passes them on to the twin; `finish` gets the verdict."""
 
     def __init__(self, channel, spec, control_hz: float) -> None:
         self.channel = channel  # sandbox.twin.TwinChannel
@@ -67,7 +68,7 @@ class TwinReplay:
 
     def feed(self, payload: Any) -> None:
         """A chunk the worker streamed ({"actions": (k, 26), "qpos": (k, nq)}, k >= 1); raises OverTime past the
-        task's time limit. A chunk of any other form is not passed on: the episode is rejected at `finish`."""
+        plan's time budget. A chunk of any other form is not passed on: the episode is rejected at `finish`."""
         actions = payload.get("actions") if isinstance(payload, dict) else None
         qpos = payload.get("qpos") if isinstance(payload, dict) else None
         if not (isinstance(actions, np.ndarray) and actions.ndim == 2 and len(actions) >= 1

@@ -146,7 +146,7 @@ class _Streams:
         if not isinstance(payload, dict):
             return
         if self.key in payload:
-            self.replay.feed(payload[self.key])  # raises OverTime past the task's time limit
+            self.replay.feed(payload[self.key])  # raises OverTime past the plan's time budget
             return
         frame, video = payload.get("frame"), self.video
         if (self.on_frame is None or video is None or self.frames_left <= 0 or not isinstance(frame, np.ndarray)

@@ -16,6 +16,7 @@ target and setup are importable by name. A setup defined in a script's `__main__
 from __future__ import annotations
 
 import contextlib
+import json
 import multiprocessing as mp
 import multiprocessing.forkserver as mp_forkserver
 import multiprocessing.spawn as mp_spawn
@@ -28,6 +29,7 @@ from humanoidgen.sandbox.lockdown import scrubbed_environ
 
 # lifeline first: the server dies with its parent from the start, not after seconds of imports
 PRELOAD = ["humanoidgen.sandbox.lifeline", "humanoidgen.sandbox.preload"]
+ENV_WARM = "HGEN_SANDBOX_WARM"  # read (and taken out) by sandbox.preload
 WORKER_NAME = "humanoidgen-plan-worker"
 WORKER_NAME_MAIN = "humanoidgen-plan-worker-main"
 _lock = threading.Lock()
@@ -53,8 +55,11 @@ def _preparation_data(name: str, _original=mp_spawn.get_preparation_data) -> dic
 mp_spawn.get_preparation_data = _preparation_data
 
 
-def context() -> mp.context.BaseContext:
-    """The forkserver context, its server running with the scrubbed environment."""
+def context(warm: tuple[str, dict] | None = None) -> mp.context.BaseContext:
+    """The forkserver context, its server running with the scrubbed environment. `warm`: if this starts the
+    server, a function it calls while it warms up, by name ("package.module:function") with JSON data, to
+    build what its first worker will need (`hgen run`: `episode_worker.prebuild`, the episode's scene); passed
+    in the server's environment, trusted like the rest of it."""
     global _started_env
     ctx = mp.get_context("forkserver")
     with _lock:
@@ -64,16 +69,19 @@ def context() -> mp.context.BaseContext:
             # The server dies with the thread that starts it (lifeline): only the main thread lasts as long as
             # this process.
             env[ENV_PARENT] = str(os.getpid()) if threading.current_thread() is threading.main_thread() else "-"
+            if warm is not None:
+                env[ENV_WARM] = json.dumps({"call": warm[0], "data": warm[1]})
             with _environ(env):
                 mp_forkserver.ensure_running()
             _started_env = env
     return ctx
 
 
-def prestart() -> None:
+def prestart(warm: tuple[str, dict] | None = None) -> None:
     """Start the server now and return at once: it imports and warms up (`sandbox.preload`, seconds) while
-    this process goes on with its own imports and set-up, instead of when the first worker is asked for."""
-    context()
+    this process goes on with its own imports and set-up, instead of when the first worker is asked for.
+    `warm`: what the server builds for its first worker while it warms up (see `context`)."""
+    context(warm)
 
 
 def _server_alive() -> bool:

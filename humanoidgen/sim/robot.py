@@ -7,6 +7,7 @@ What changes against upstream, and why:
 - each hand's follower joints are tied to their driver by equality constraints read from the URDF's mimic tags;
 - arms and hands get gravity compensation, as the real robot's low-level controller provides it;
 - a site per hand marks the end-effector frame the planner API names (`l_hand_base_link`, `r_hand_base_link`).
+- visual geoms draw decimated copies of the meshes (`sim.meshes`); meshes no geom uses then are dropped.
 """
 
 from __future__ import annotations
@@ -211,6 +212,17 @@ def _split_visual_and_collision(spec: mujoco.MjSpec, robot_dir: Path, max_faces:
             geom.group = ROBOT_COLLISION_GROUP
 
 
+def _drop_unused_meshes(spec: mujoco.MjSpec) -> None:
+    """Delete the meshes no geom uses: the upstream meshes that only visual geoms used (they draw decimated
+    copies now), 16 meshes and 177k faces that every compile processed for nothing (about 0.25 s of the
+    first, cold compile of a process; 0.03 s of the later ones). Only the meshes' arrays and ids change; the
+    physics is the same to the bit (tests/test_startup.py)."""
+    used = {geom.meshname for geom in spec.geoms if geom.type == mujoco.mjtGeom.mjGEOM_MESH}
+    for mesh in list(spec.meshes):
+        if mesh.name not in used:
+            spec.delete(mesh)
+
+
 def cache_visual_meshes(assets_root: Path, max_faces: int) -> None:
     """Decimate (and cache on disk) the robot's visual meshes at `max_faces`, so that a process that cannot
     write, the locked plan worker, later finds them there instead of decimating them in memory each time."""
@@ -238,6 +250,7 @@ def build_robot_spec(assets_root: Path, visual_max_faces: int = DEFAULT_MAX_FACE
     _enable_gravity_compensation(spec)
     _exclude_finger_self_contacts(spec)
     _split_visual_and_collision(spec, robot_dir, visual_max_faces)
+    _drop_unused_meshes(spec)
     return spec
 
 

@@ -165,6 +165,8 @@ class TaskSpec(_Strict):
     objects: list[ObjectSpec] = Field(min_length=1)
     randomization: Randomization = Field(default_factory=Randomization)
     success: list[Annotated[Predicate, AfterValidator(_check_predicate)]] = Field(min_length=1)  # all must hold
+    # The episode's horizon: where a policy's episode is cut (`envs`). A plan's commands get a budget of
+    # episodes.replay.PLAN_TIME_FACTOR times it (demonstrations are slower than the horizon asks of a policy).
     time_limit_s: float = Field(default=30.0, gt=0, le=MAX_TIME_LIMIT_S)
     # control steps; None: time_limit_s at the control rate
     max_steps: int | None = Field(default=None, gt=0, le=round(MAX_TIME_LIMIT_S * 50))
