@@ -2,10 +2,11 @@
 
 For each (plan, seed) this runs the real entry point (`run_task_episode`, camera-less recording) and keeps the
 verdict and a SHA-256 of the replay's recorded arrays (the commanded actions and the states the replay
-simulated from them) and of the planner's events. Two runs of the same planner on the same machine give the same
-fingerprints (the planner is seeded; the physics is deterministic), so a refactoring that claims to change no
-behaviour is checked episode by episode: `--compare BEFORE AFTER` lists every episode whose commands, events or
-verdict differ, and the success counts of both.
+simulated from them) and of the planner's events. The planner is seeded and the physics deterministic, so two
+runs of the same planner give the same fingerprints for nearly every episode (searches bounded in seconds can end
+elsewhere on a loaded machine: rerun a differing episode on both checkouts before blaming the change), and a
+refactoring that claims to change no behaviour is checked episode by episode: `--compare BEFORE AFTER` lists
+every episode whose commands, events or verdict differ, and the success counts of both.
 
     python bench/plan_trace.py --reference --seeds 100-104 --json /tmp/before_ref.json
     python bench/plan_trace.py --corpus bench/foreign_plans --seeds 0-2 --json /tmp/before_corpus.json
