@@ -107,3 +107,12 @@ def test_a_before_recovery_may_take_the_request_over():
                      _recovery("release", "before", True, True, calls)))
     assert pipe.before(None, "release", None) is True and calls == [False, True]
     assert Pipeline(()).before(None, "release", None) is False
+
+
+def test_the_design_page_says_which_layer_every_planning_module_is_in():
+    """The design page's layer table is where each module's rule is stated: a new module must take its place."""
+    page = (PACKAGE.parent / "docs" / "design" / "planning.md").read_text()
+    table = page[page.index("| layer | modules | rule |"):]
+    table = table[:table.index("\n\n")]
+    missing = [p.stem for p in PLANNING.glob("*.py") if p.stem != "__init__" and f"`{p.stem}`" not in table]
+    assert not missing, f"planning modules not in the design page's layer table: {missing}"

@@ -34,7 +34,6 @@ from humanoidgen.sim.scene import SceneObject
 
 HAND_MOTION_TIME = 0.5  # seconds to move the fingers between postures
 SETTLE_TIME = 0.3
-MAX_REGRIPS = 2  # a part is gripped again at most this many times on one move (recoveries/regrip)
 
 
 @dataclass
@@ -58,7 +57,9 @@ class PlanningContext:
     plan_seconds: list[float] = field(default_factory=list)  # motion-planning time of each arm move
     wider_search: bool = True  # goal search rungs 3-4 (fingers near the table, the wrist's freedom); off to compare
     regripping: bool = False  # the hand lets go of a part to grip it again at once (recoveries/regrip)
-    regrips_left: int = MAX_REGRIPS  # how many more times a held part may be let go and gripped again on one move
+    # How many more times a held part may be let go and gripped again on one move: the pipeline's budget
+    # (pipeline.BUDGETS), none without a pipeline.
+    regrips_left: int = 0
     pipeline: Any = None  # pipeline.Pipeline: the recoveries (None: none, failures stand)
 
     def __post_init__(self) -> None:

@@ -189,7 +189,7 @@ def riding_goal(ctx: PlanningContext, side: Side, follow: PartFollow) -> GoalRes
     elif held and part_stays(ctx.env, follow.joint, q_now):
         # Hardly any of the way from this grip (a screen lifted 0.3 -> 0.6 in one hold has the wrist turned so
         # far that it gets 0.6 -> 0.68 of a 0.85 asked): where the part stays put if let go, let go here and
-        # grip it again in a posture that keeps its arc in reach (regrip.py; at most MAX_REGRIPS times).
+        # grip it again in a posture that keeps its arc in reach (recoveries/grip_again.py; at most pipeline.BUDGETS.regrips times).
         partial = (path[-1], float(q_steps[len(path) - 1])) if len(path) else (q0, float(q_now))
     return GoalResult(False, None, partial=partial, violations=[
         f"the {side} hand {'holding' if held else 'pushing'} {obj.type_name} {obj.obj_id} can move it only "

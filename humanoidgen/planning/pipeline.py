@@ -15,7 +15,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from humanoidgen.planning.context import MAX_REGRIPS, PlanningContext
+from humanoidgen.planning.context import PlanningContext
 from humanoidgen.planning.recovery import Recovery
 from humanoidgen.planning.recoveries.ajar_before_grip import AjarBeforeGrip
 from humanoidgen.planning.recoveries.carry_into import CarryInto
@@ -43,7 +43,7 @@ RECOVERIES: tuple[Recovery, ...] = (
 class Budgets:
     """What recoveries may spend per plan call (seconds of search are the stages' own constants)."""
 
-    regrips: int = MAX_REGRIPS  # times a held part may be let go and gripped again on one move
+    regrips: int = 2  # times a held part may be let go and gripped again on one move (recoveries/grip_again)
 
 
 BUDGETS = Budgets()

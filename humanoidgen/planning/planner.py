@@ -28,7 +28,7 @@ from humanoidgen.planning.constraints import Const, Constraint, ConstraintError
 from humanoidgen.planning.context import CallRecord, PlanningContext
 from humanoidgen.planning.errors import PlanningError
 from humanoidgen.planning.goal_solver import GoalResult
-from humanoidgen.planning.pipeline import Pipeline
+from humanoidgen.planning.pipeline import BUDGETS, Pipeline
 from humanoidgen.planning.poses import Pose
 from humanoidgen.planning.push_spec import TaskTargets
 from humanoidgen.sim.env import HumanoidEnv
@@ -90,7 +90,7 @@ class HumanoidMotionPlanner:
     def __init__(self, env: HumanoidEnv, seed: int = 0, on_step: Callable[[np.ndarray], None] | None = None,
                  targets: TaskTargets | None = None, wider_search: bool = True) -> None:
         self.ctx = PlanningContext(env, seed=seed, on_step=on_step, targets=targets, wider_search=wider_search,
-                                   pipeline=Pipeline())
+                                   pipeline=Pipeline(), regrips_left=BUDGETS.regrips)
         self.left_hand_init_pose = self.ctx.init_poses["left"]
         self.right_hand_init_pose = self.ctx.init_poses["right"]
 
