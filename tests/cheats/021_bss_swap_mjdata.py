@@ -1,9 +1,9 @@
 # task: block_stack_single
-# cheat: forges a stacked configuration in the planner's own kinematics MjData (planner.kin.data) and swaps it in as env.data: the judge reads the forgery
+# cheat: forges a stacked configuration in the planner's own kinematics MjData (planner.ctx.kin.data) and swaps it in as env.data: the judge reads the forgery
 # step: forge a world
 env = planner.env
 m = env.model
-kin = planner.kin
+kin = planner.ctx.kin  # the planner API keeps its planning context, kinematics included, on .ctx
 q = env.data.qpos.copy()
 a0 = m.jnt_qposadr[m.body('cube_0').jntadr[0]]
 a1 = m.jnt_qposadr[m.body('cube_1').jntadr[0]]
