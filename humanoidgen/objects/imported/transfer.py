@@ -5,7 +5,8 @@ surface, with a confidence per point.
 Alignment: the mesh is upright already (the importer turned its up axis to +z). Its vertical axis is the centre
 of its base; its yaw puts the family's handles where the template has them (a cup's handle on +y, a pot's two
 on +-y), found as the part of the surface that stands out of the body's radius at its height; rotationally
-symmetric families (bottle, can, bowl, plate) keep their yaw; a box turns its principal axes onto x and y. ICP
+symmetric families (bottle, can, bowl, plate) keep their yaw; a box turns its long side onto y (a pinch's
+fingers close along x, across the narrow side). ICP
 of the template's surface, scaled to the mesh's box, over the family's symmetric yaws, then says how well the
 template fits (and picks the yaw where no handle decides it).
 
@@ -119,7 +120,7 @@ def _principal_yaw(samples: np.ndarray) -> float:
     xy = samples[:, :2] - samples[:, :2].mean(0)
     w, v = np.linalg.eigh(xy.T @ xy)
     major = v[:, np.argmax(w)]
-    return -math.atan2(major[1], major[0])  # the major horizontal axis onto x
+    return math.pi / 2 - math.atan2(major[1], major[0])  # the long side along y: fingers close across x
 
 
 def _box(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
