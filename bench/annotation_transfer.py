@@ -31,7 +31,7 @@ from scipy.spatial import cKDTree
 from humanoidgen.objects.imported.geometry import Units
 from humanoidgen.objects.imported.importer import ImportRequest, upright_mesh
 from humanoidgen.objects.imported.template import ray_hits, template_mesh
-from humanoidgen.objects.imported.transfer import HANDLED, SYMMETRIC, transfer
+from humanoidgen.objects.imported.transfer import SYMMETRIC, transfer
 from humanoidgen.objects.rigid import RIGID_FAMILIES
 
 FAMILIES = ["cup", "bowl", "bottle", "can", "plate", "pot", "cube"]
@@ -197,7 +197,8 @@ def main() -> None:
     print(f"{'family':<8} {'variants pts':>12} {'axes':>6} {'ms':>6} | {'library n':>9} {'pts':>6} {'ms':>6}")
     for f in FAMILIES:
         v, lib = result["variants"][f], result["library"].get(f)
-        line = f"{f:<8} {100 * v['point_success']:>11.1f}% {100 * v['axis_success']:>5.0f}% {1000 * v['seconds_mean']:>6.0f}"
+        line = (f"{f:<8} {100 * v['point_success']:>11.1f}% {100 * v['axis_success']:>5.0f}% "
+                f"{1000 * v['seconds_mean']:>6.0f}")
         if lib:
             line += f" | {lib['assets']:>9} {100 * lib['point_success']:>5.1f}% {1000 * lib['seconds_mean']:>6.0f}"
         print(line)

@@ -31,11 +31,14 @@ def build_imported(spec: mujoco.MjSpec, body: mujoco.MjsBody, model: ImportedMod
             j = link.joint
             b.add_joint(name=f"{body.name}_{j.name}", type=mujoco.mjtJoint.mjJNT_SLIDE if j.kind == "slide"
                         else mujoco.mjtJoint.mjJNT_HINGE, axis=list(j.axis), range=list(j.range),
-                        limited=mujoco.mjtLimited.mjLIMITED_TRUE, damping=1.0, frictionloss=0.05, armature=0.005)
+                        limited=mujoco.mjtLimited.mjLIMITED_TRUE, damping=j.damping, frictionloss=j.frictionloss,
+                        armature=0.005)
         vis = f"{body.name}_{link.name}_vis"
         kw = {}
         if link.textured and f"{link.name}_uv" in arrays:
-            kw["usertexcoord"] = arrays[f"{link.name}_uv"].ravel().tolist()
+            uv = arrays[f"{link.name}_uv"].astype(float)
+            # MuJoCo's image rows run top down; a mesh file's v runs bottom up (as MuJoCo's own OBJ reader flips)
+            kw["usertexcoord"] = np.column_stack([uv[:, 0], 1.0 - uv[:, 1]]).ravel().tolist()
         spec.add_mesh(name=vis, uservert=arrays[f"{link.name}_v"].ravel().tolist(),
                       userface=arrays[f"{link.name}_f"].ravel().tolist(), **kw)
         vkw = {"material": mat} if (mat and link.textured) else {"rgba": list(info.rgba)}

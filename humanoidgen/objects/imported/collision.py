@@ -64,19 +64,50 @@ def convex_parts(mesh: trimesh.Trimesh, settings: Decomposition = Decomposition(
 
 
 def _decompose(mesh: trimesh.Trimesh, settings: Decomposition) -> list[trimesh.Trimesh]:
+    """CoACD in a child process (an assertion in its C++ aborts the process that runs it): once as set, once with
+    its manifold pre-processing; if both fail, hulls of the mesh's vertices split into clusters."""
+    import multiprocessing as mp
+    from concurrent.futures import ProcessPoolExecutor
+    from concurrent.futures.process import BrokenProcessPool
+
+    v, f = np.asarray(mesh.vertices, float), np.asarray(mesh.faces, int)
+    for preprocess in ("auto", "on"):
+        try:
+            with ProcessPoolExecutor(1, mp_context=mp.get_context("fork")) as pool:
+                result = pool.submit(_coacd, v, f, settings, preprocess).result()
+        except BrokenProcessPool:
+            continue
+        parts = [p for p in (trimesh.Trimesh(pv, pf, process=True).convex_hull for pv, pf in result)
+                 if p.volume > 1e-9]
+        if parts:
+            return parts
+    return _cluster_hulls(mesh, settings.max_parts)
+
+
+def _cluster_hulls(mesh: trimesh.Trimesh, k: int) -> list[trimesh.Trimesh]:
+    from scipy.cluster.vq import kmeans2
+
+    pts = np.asarray(trimesh.sample.sample_surface(mesh, 4000, seed=0)[0])
+    _, label = kmeans2(pts, min(k, 8), seed=0, minit="++")
+    parts = []
+    for c in np.unique(label):
+        sel = pts[label == c]
+        if len(sel) >= 4:
+            try:
+                parts.append(trimesh.convex.convex_hull(sel))
+            except Exception:  # a flat cluster has no hull
+                continue
+    return [p for p in parts if p.volume > 1e-9] or [mesh.convex_hull]
+
+
+def _coacd(v: np.ndarray, f: np.ndarray, settings: Decomposition, preprocess: str):
     import coacd
 
     coacd.set_log_level("error")
-    result = coacd.run_coacd(coacd.Mesh(np.asarray(mesh.vertices, float), np.asarray(mesh.faces, int)),
-                             threshold=settings.threshold, max_convex_hull=settings.max_parts,
-                             preprocess_resolution=30, resolution=settings.resolution, mcts_iterations=60,
-                             mcts_max_depth=2, mcts_nodes=12, seed=0)
-    parts = []
-    for verts, faces in result:
-        part = trimesh.Trimesh(verts, faces, process=True).convex_hull
-        if part.volume > 1e-9:
-            parts.append(part)
-    return parts or [mesh.convex_hull]
+    result = coacd.run_coacd(coacd.Mesh(v, f), threshold=settings.threshold, max_convex_hull=settings.max_parts,
+                             preprocess_mode=preprocess, preprocess_resolution=30, resolution=settings.resolution,
+                             mcts_iterations=60, mcts_max_depth=2, mcts_nodes=12, seed=0)
+    return [(np.asarray(pv), np.asarray(pf)) for pv, pf in result]
 
 
 def _read(path: Path) -> list[trimesh.Trimesh]:

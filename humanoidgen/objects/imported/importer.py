@@ -42,6 +42,7 @@ class ImportRequest:
     preview: bool = True  # render preview.png (hgen assets show's picture) into the folder
     package: str | None = None  # for the library: where the file came from, and under what licence
     licence: str | None = None
+    sha256: str | None = None  # the library's digest of the files (default: the file's own sha256)
 
 
 @dataclass
@@ -171,7 +172,8 @@ def _import_rigid(src: SourceModel, req: ImportRequest, name: str, type_id: int,
                                                           np.asarray(p.faces, np.int32))
     info = mf.ImportedModelFile(
         family=req.family, name=name, type_id=type_id, description=description,
-        source=mf.SourceInfo(file=path.name, sha256=_sha256(path), format=path.suffix.lower().lstrip("."),
+        source=mf.SourceInfo(file=path.name, sha256=req.sha256 or _sha256(path),
+                             format=path.suffix.lower().lstrip("."),
                              package=req.package, licence=req.licence),
         scale=factor, up=up, material=template["material"], rgba=_rgba(mesh, template["rgba"], textured),
         links=[mf.LinkFile(name="base", mass=mass, collision_parts=len(parts), textured=textured)])

@@ -28,7 +28,7 @@ class MjcfFormat:
         for b in range(1, model.nbody):
             mesh = _body_mesh(model, b)
             jnt = [j for j in range(model.njnt) if model.jnt_bodyid[j] == b
-                   and model.jnt_type[j] in (mujoco.mjtJoint.mjJNT_HINGE, mujoco.mjtJoint.mjJNT_SLIDE)]
+                   and int(model.jnt_type[j]) in (int(mujoco.mjtJoint.mjJNT_HINGE), int(mujoco.mjtJoint.mjJNT_SLIDE))]
             parent = int(model.body_parentid[b])
             pname = names.get(parent)
             if not jnt and pname is not None:  # welded: part of its parent's link
@@ -42,7 +42,7 @@ class MjcfFormat:
             joint = None
             if jnt:
                 j = jnt[0]
-                kind = "hinge" if model.jnt_type[j] == mujoco.mjtJoint.mjJNT_HINGE else "slide"
+                kind = "hinge" if int(model.jnt_type[j]) == int(mujoco.mjtJoint.mjJNT_HINGE) else "slide"
                 lo, hi = model.jnt_range[j] if model.jnt_limited[j] else (0.0, 1.57 if kind == "hinge" else 0.2)
                 joint = SourceJoint(model.joint(j).name or f"joint{j}", kind, tuple(model.jnt_axis[j]), float(lo),
                                     float(hi))
@@ -66,9 +66,13 @@ def _rel(model, data, parent: int, b: int) -> np.ndarray:
 
 
 def _body_mesh(model: mujoco.MjModel, b: int) -> trimesh.Trimesh:
+    """The body's look: its visual geoms (no contacts) where it has some, else every visible geom."""
+    mine = [g for g in range(model.ngeom) if model.geom_bodyid[g] == b]
+    visual = [g for g in mine if model.geom_contype[g] == 0 and model.geom_conaffinity[g] == 0
+              and int(model.geom_type[g]) == int(mujoco.mjtGeom.mjGEOM_MESH)]
     parts = []
-    for g in range(model.ngeom):
-        if model.geom_bodyid[g] != b or model.geom_rgba[g][3] == 0:
+    for g in visual or mine:
+        if model.geom_rgba[g][3] == 0 and not visual:
             continue
         T = np.eye(4)
         q = model.geom_quat[g]
@@ -77,18 +81,19 @@ def _body_mesh(model: mujoco.MjModel, b: int) -> trimesh.Trimesh:
         T[:3, :3] = mat.reshape(3, 3)
         T[:3, 3] = model.geom_pos[g]
         t, s = model.geom_type[g], model.geom_size[g]
-        if t == mujoco.mjtGeom.mjGEOM_MESH:
+        t = int(t)
+        if t == int(mujoco.mjtGeom.mjGEOM_MESH):
             mid = model.geom_dataid[g]
             va, vn = model.mesh_vertadr[mid], model.mesh_vertnum[mid]
             fa, fn = model.mesh_faceadr[mid], model.mesh_facenum[mid]
             m = trimesh.Trimesh(model.mesh_vert[va:va + vn].copy(), model.mesh_face[fa:fa + fn].copy(), process=False)
-        elif t == mujoco.mjtGeom.mjGEOM_BOX:
+        elif t == int(mujoco.mjtGeom.mjGEOM_BOX):
             m = trimesh.creation.box(extents=2 * s)
-        elif t == mujoco.mjtGeom.mjGEOM_CYLINDER:
+        elif t == int(mujoco.mjtGeom.mjGEOM_CYLINDER):
             m = trimesh.creation.cylinder(radius=s[0], height=2 * s[1], sections=32)
-        elif t == mujoco.mjtGeom.mjGEOM_CAPSULE:
+        elif t == int(mujoco.mjtGeom.mjGEOM_CAPSULE):
             m = trimesh.creation.capsule(radius=s[0], height=2 * s[1])
-        elif t == mujoco.mjtGeom.mjGEOM_SPHERE:
+        elif t == int(mujoco.mjtGeom.mjGEOM_SPHERE):
             m = trimesh.creation.icosphere(radius=s[0], subdivisions=2)
         else:
             continue

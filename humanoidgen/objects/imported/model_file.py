@@ -42,6 +42,8 @@ class JointFile(_Strict):
     kind: Literal["slide", "hinge"]
     axis: Vec3
     range: tuple[float, float]
+    damping: float = Field(default=1.0, ge=0.0)
+    frictionloss: float = Field(default=0.05, ge=0.0)
 
 
 class LinkFile(_Strict):
