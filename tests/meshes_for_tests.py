@@ -28,8 +28,9 @@ def bottle(radius: float = 0.035, height: float = 0.22) -> trimesh.Trimesh:
     return trimesh.creation.revolve(profile, sections=48)
 
 
-def drawer_urdf(folder: Path) -> Path:
-    """A case (open at +x... no: open toward -x, the robot's side) and a drawer sliding out along -x."""
+def drawer_urdf(folder: Path, slide_axis: str = "-1 0 0") -> Path:
+    """A case open toward -x and a drawer (with a bar handle) sliding out along -x; with `slide_axis`
+    "0 1 0" the whole model is turned so that it slides out along +y."""
     folder.mkdir(parents=True, exist_ok=True)
     case = trimesh.util.concatenate([_box((0.30, 0.02, 0.20), (0, -0.14, 0)), _box((0.30, 0.02, 0.20), (0, 0.14, 0)),
                                      _box((0.30, 0.30, 0.02), (0, 0, 0.09)), _box((0.30, 0.30, 0.02), (0, 0, -0.09)),
@@ -37,15 +38,19 @@ def drawer_urdf(folder: Path) -> Path:
     drawer = trimesh.util.concatenate([_box((0.26, 0.25, 0.01), (0, 0, -0.07)),
                                        _box((0.02, 0.25, 0.15), (-0.135, 0, 0)),
                                        _box((0.02, 0.08, 0.02), (-0.16, 0, 0.02))])
+    if slide_axis == "0 1 0":  # turned by -90 deg about z: -x becomes +y
+        turn = trimesh.transformations.rotation_matrix(-np.pi / 2, [0, 0, 1])
+        case.apply_transform(turn)
+        drawer.apply_transform(turn)
     case.export(folder / "case.obj")
     drawer.export(folder / "drawer.obj")
-    (folder / "mobility.urdf").write_text("""<?xml version="1.0"?>
+    (folder / "mobility.urdf").write_text(f"""<?xml version="1.0"?>
 <robot name="drawer">
   <link name="base"><visual><geometry><mesh filename="case.obj"/></geometry></visual></link>
   <link name="drawer_link"><visual><geometry><mesh filename="drawer.obj"/></geometry></visual></link>
   <joint name="slide" type="prismatic">
     <parent link="base"/><child link="drawer_link"/>
-    <origin xyz="0 0 0" rpy="0 0 0"/><axis xyz="-1 0 0"/><limit lower="0" upper="0.2"/>
+    <origin xyz="0 0 0" rpy="0 0 0"/><axis xyz="{slide_axis}"/><limit lower="0" upper="0.2"/>
   </joint>
 </robot>
 """)

@@ -170,3 +170,61 @@ def test_a_bad_input_gets_one_line_and_leaves_nothing(tmp_path, collision_cache,
     lines = [line for line in r.output.splitlines() if line.strip()]
     assert len(lines) == 1 and message in lines[0], r.output
     assert not out.exists(), sorted(out.rglob("*"))
+
+
+def test_a_urdf_drawer_imports_with_its_prismatic_joint_and_opens(tmp_path, collision_cache, monkeypatch):
+    """A two-link URDF (case + drawer on a prismatic joint, as PartNet-Mobility ships them), sliding out along
+    +y in the file: the import turns it to slide toward the robot (-x), and the drawer's points move with it."""
+    from humanoidgen.objects import library
+    from humanoidgen.objects.articulated import set_openness
+    from humanoidgen.objects.queries import get_point_in_env
+    from humanoidgen.sim.env import HumanoidEnv
+    from humanoidgen.sim.scene import SceneBuilder
+    from meshes_for_tests import drawer_urdf
+
+    urdf = drawer_urdf(tmp_path / "src", slide_axis="0 1 0")
+    r = runner.invoke(app, ["assets", "import", str(urdf), "--family", "drawer", "--name", "made_drawer", "--out",
+                            str(tmp_path / "models"), "--no-preview"])
+    assert r.exit_code == 0, r.output
+    monkeypatch.setenv(ENV_FAMILIES_PATH, str(tmp_path / "models"))
+    m = library.model_named("drawer", "made_drawer")
+    ann = library.annotations("drawer", m.type_id)
+    assert ann.articulation is not None and ann.articulation.open == pytest.approx(0.2)
+    assert ann.point("handle").part == "drawer"
+    b = SceneBuilder()
+    obj = library.add_object(b, "drawer", type_id=m.type_id, pos=(-0.05, 0.30))
+    env = HumanoidEnv(b.build())
+    closed = get_point_in_env(env, "handle", "drawer", 0)
+    set_openness(env.model, env.data, obj.body, obj.annotations, 1.0)
+    opened = get_point_in_env(env, "handle", "drawer", 0)
+    assert opened[0] - closed[0] == pytest.approx(-0.2, abs=1e-3)  # out toward the robot
+    assert abs(opened[1] - closed[1]) < 1e-3
+    # the handle point is on the handle: the frontmost part of the drawer, 2 cm above its front's middle
+    assert closed[0] == pytest.approx(env.data.xpos[env.model.body(obj.body).id][0] + ann.bbox_min[0] + 0.005,
+                                      abs=0.006)
+
+
+def test_a_task_runs_on_a_chosen_model_and_each_seed_draws_its_own(imported_mug, monkeypatch):
+    """--model FAMILY=MODEL pins the task's objects of that family to a model; --randomize-models draws one per
+    episode from the imported models, the same for the same seed."""
+    from humanoidgen.tasks.models import ModelChoiceError, parse_models, with_models
+    from humanoidgen.tasks.registry import load_task
+
+    monkeypatch.setenv(ENV_FAMILIES_PATH, str(imported_mug))
+    spec = load_task("empty_cup_place")
+    pinned = with_models(spec, parse_models(["cup=my_mug"]), randomize=False)
+    assert [o.type_id for o in pinned.objects if o.type == "cup"] == [100]
+    assert [o.type_id for o in pinned.sample_layout(3) if o.type == "cup"] == [100]
+    drawn = with_models(spec, {}, randomize=True)
+    assert drawn.randomize_models == ["cup"]  # the plate family has no imported model here
+    layouts = [drawn.sample_layout(s) for s in (1, 2, 1)]
+    assert [o.type_id for o in layouts[0] if o.type == "cup"] == [100]
+    assert layouts[0] == layouts[2]
+    # the poses are those the task draws without the option
+    assert [o.pos for o in layouts[1]] == [o.pos for o in spec.sample_layout(2)]
+    with pytest.raises(ModelChoiceError, match="has no model 'nope'"):
+        with_models(spec, {"cup": "nope"}, randomize=False)
+    with pytest.raises(ModelChoiceError, match="has no drawer"):
+        with_models(spec, {"drawer": "x"}, randomize=False)
+    r = runner.invoke(app, ["run", "empty_cup_place", "--model", "cup=nope"])
+    assert r.exit_code == 1 and "cup has no model 'nope'" in r.output

@@ -75,7 +75,7 @@ def import_model(req: ImportRequest) -> ImportReport:
         want = "an articulated model (URDF/MJCF with a joint)" if articulated else "a rigid mesh"
         raise ImportError_(f"{path}: family {req.family} needs {want}; the file has "
                            f"{'joints' if src.articulated else 'no joint'}")
-    type_id = req.type_id if req.type_id is not None else _type_id(req.family, name)
+    type_id = req.type_id if req.type_id is not None else _type_id(req.family, name, root)
     made = [d for d in (root, root / req.family) if not d.exists()]
     tmp = Path(tempfile.mkdtemp(prefix=f".{name}.", suffix=".importing", dir=_mkdir(root / req.family)))
     try:
@@ -115,11 +115,20 @@ def _preview(folder: Path, warnings: list[str]) -> None:
         warnings.append(f"no picture ({type(exc).__name__}: {' '.join(str(exc).split())[:100]})")
 
 
-def _type_id(family: str, name: str) -> int:
+def _type_id(family: str, name: str, root: Path) -> int:
+    """A re-import keeps its type_id; a new model takes the next free one, here and in the search path."""
+    here = {}
+    for f in sorted((root / family).glob(f"*/{mf.MODEL_FILE}")):
+        try:
+            here[f.parent.name] = mf.read_model(f.parent).info.type_id
+        except (mf.ModelFolderError, ValueError):
+            continue
+    if name in here:
+        return here[name]
     for m in mf.imported_models(family):
         if m.info.name == name:
-            return m.info.type_id  # a re-import keeps its type_id
-    return mf.next_type_id(family)
+            return m.info.type_id
+    return mf.next_type_id(family, set(here.values()))
 
 
 def _mkdir(p: Path) -> Path:

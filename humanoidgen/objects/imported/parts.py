@@ -189,7 +189,8 @@ def _points(family: str, links: list[_Link], main: _Link, pm: trimesh.Trimesh, l
     if family == "drawer":
         front = s[s[:, 0] < plo[0] + 0.3 * (phi[0] - plo[0])]
         hist, edges = np.histogram(front[:, 0], bins=max(4, int(np.ptp(front[:, 0]) / 0.002) + 1))
-        x_panel = float(edges[np.argmax(hist)] + (edges[1] - edges[0]) / 2)
+        strong = np.flatnonzero(hist >= 0.5 * hist.max())  # the panel's faces (front and back): the front one
+        x_panel = float(edges[strong[0]] + (edges[1] - edges[0]) / 2)
         handle = s[s[:, 0] < x_panel - 0.006]
         if len(handle) >= 15:
             bar = handle[handle[:, 0] <= np.percentile(handle[:, 0], 50)]
