@@ -116,7 +116,7 @@ def check_point(name: str, p: np.ndarray, mesh: trimesh.Trimesh, tree: cKDTree) 
         up = ray_hits(mesh.triangles, p, np.array([0.0, 0.0, 1.0]))
         down = ray_hits(mesh.triangles, p, np.array([0.0, 0.0, -1.0]))
         top = mesh.bounds[1][2]
-        return len(up) == 0 and len(down) > 0 and down[0] <= 0.02 and p[2] < top
+        return bool(len(up) == 0 and len(down) > 0 and down[0] <= 0.02 and p[2] < top)
     d, _ = tree.query(p)
     return bool(d <= 0.01)
 
