@@ -26,6 +26,11 @@ def build_imported(spec: mujoco.MjSpec, body: mujoco.MjsBody, model: ImportedMod
         else:
             b = bodies[link.parent].add_body(name=f"{body.name}_{link.name}", pos=list(link.pos),
                                              quat=list(link.quat))
+            # The object's parts never touch each other: their convex parts overlap where the meshes are concave
+            # (a drawer in its case, drawers side by side), and MuJoCo does not filter a child of a body fixed to
+            # the world by itself.
+            for other in bodies.values():
+                spec.add_exclude(bodyname1=other.name, bodyname2=b.name)
         bodies[link.name] = b
         if link.joint is not None:
             j = link.joint
