@@ -80,6 +80,11 @@ def run(
     Example: hgen run blocks_stack_easy --seed 3 --video stack.mp4 --json stack.json
     """
     os.environ.setdefault("MUJOCO_GL", "egl")
+    if model or randomize_models:  # before the server builds the episode's scene: the task on those models
+        import tempfile
+
+        task, script = _with_models(task, model, randomize_models, Path(tempfile.mkdtemp(prefix="hgen-task-")),
+                                    script)
     dressing = None
     if room is not None or randomize_visuals:
         from humanoidgen.scenes.dressing import episode_dressing
@@ -105,9 +110,6 @@ def run(
 
     check_output_path(video, "--video")
     check_output_path(json_out, "--json")
-    import tempfile
-
-    task, script = _with_models(task, model, randomize_models, Path(tempfile.mkdtemp(prefix="hgen-task-")), script)
     if video is not None and video_camera not in CAMERA_NAMES:
         _fail(f"unknown camera {video_camera!r}; cameras: {', '.join(CAMERA_NAMES)}")
     writer = VideoWriter(video, video_camera) if video is not None else None
@@ -214,8 +216,9 @@ def collect(
         _fail(str(exc))
         return
     check_output_path(out, "--out", kind="dir")
-    # the task with other models is kept beside the dataset: with the seeds it says which model each episode had
-    task, script = _with_models(task, model, randomize_models, out.resolve().parent / f".{out.name}.task", script)
+    if model or randomize_models:  # kept beside the dataset: with the seeds it says which model each episode had
+        task, script = _with_models(task, model, randomize_models, out.resolve().parent / f".{out.name}.task",
+                                    script)
     from humanoidgen.episodes.task_episode import load_spec
 
     try:

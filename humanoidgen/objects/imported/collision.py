@@ -14,6 +14,7 @@ import numpy as np
 import trimesh
 
 ENV_COLLISION_CACHE = "HGEN_COLLISION_CACHE"
+COACD_FACES = 4000
 
 
 @dataclass(frozen=True)
@@ -129,3 +130,15 @@ def _write(path: Path, parts: list[trimesh.Trimesh]) -> None:
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise
+
+
+def coarse(mesh: trimesh.Trimesh) -> trimesh.Trimesh:
+    """The mesh CoACD decomposes: merged, and decimated to COACD_FACES (the parts are hulls; detail is lost)."""
+    m = trimesh.Trimesh(mesh.vertices, mesh.faces, process=True)
+    if len(m.faces) > COACD_FACES:
+        import fast_simplification
+
+        v, f = fast_simplification.simplify(np.asarray(m.vertices, np.float32), np.asarray(m.faces, np.int64),
+                                            target_reduction=1.0 - COACD_FACES / len(m.faces))
+        m = trimesh.Trimesh(v, f, process=True)
+    return m

@@ -1,5 +1,5 @@
-"""What a model file is read into, and the registry of the formats that read one (the one place a format is
-registered): a `SourceModel` of links, each a mesh in the file's own units and frame, joined by joints."""
+"""What a model file is read into: a `SourceModel` of links, each a mesh in the file's own units and frame, joined
+by joints; and the small protocol a format implements (registered in registry.py)."""
 
 from __future__ import annotations
 
@@ -57,21 +57,3 @@ class ModelFormat(Protocol):
     suffixes: tuple[str, ...]
 
     def load(self, path: Path) -> SourceModel: ...
-
-
-def formats() -> list[ModelFormat]:
-    """Every format, in the order they are tried (the registry)."""
-    from humanoidgen.objects.imported.mesh_files import MESH_FORMATS
-    from humanoidgen.objects.imported.mjcf import MjcfFormat
-    from humanoidgen.objects.imported.urdf import UrdfFormat
-
-    return [*MESH_FORMATS, UrdfFormat(), MjcfFormat()]
-
-
-def format_for(path: Path) -> ModelFormat:
-    suffix = Path(path).suffix.lower()
-    for fmt in formats():
-        if suffix in fmt.suffixes:
-            return fmt
-    known = ", ".join(s for f in formats() for s in f.suffixes)
-    raise ImportError_(f"{path}: unknown file type {suffix or '(none)'!r}; known: {known}")

@@ -15,13 +15,13 @@ import trimesh
 import yaml
 
 from humanoidgen.objects.imported import model_file as mf
-from humanoidgen.objects.imported.collision import convex_parts
-from humanoidgen.objects.imported.formats import ImportError_, SourceModel, format_for
+from humanoidgen.objects.imported.collision import coarse, convex_parts
+from humanoidgen.objects.imported.formats import ImportError_, SourceModel
+from humanoidgen.objects.imported.registry import format_for
 from humanoidgen.objects.imported.geometry import UpAxis, Units, check_mesh, to_metres, up_rotation
 from humanoidgen.objects.imported.transfer import LOW_CONFIDENCE, TransferResult, transfer
 
 
-COACD_FACES = 4000
 MAX_TEXTURE = 1024
 
 
@@ -166,7 +166,7 @@ def _import_rigid(src: SourceModel, req: ImportRequest, name: str, type_id: int,
     description = req.description or f"{name.replace('_', ' ')} (imported {path.name})"
     tr = transfer(mesh, req.family, type_id, description)
     mesh.apply_transform(tr.transform)
-    parts = convex_parts(_coarse(mesh))
+    parts = convex_parts(coarse(mesh))
     template = RIGID_FAMILIES[req.family]._model(0).params
     mass = _mass(mesh, parts, req)
     arrays = {"base_v": np.asarray(mesh.vertices, np.float32), "base_f": np.asarray(mesh.faces, np.int32)}
@@ -189,18 +189,6 @@ def _import_rigid(src: SourceModel, req: ImportRequest, name: str, type_id: int,
     warnings = [f"{p.name}: confidence {p.confidence:.2f} ({p.rule}); check it, and fix it in "
                 f"{mf.OVERRIDE_FILE} if needed" for p in tr.low()] + tr.notes
     return info, tr.annotations, tr, arrays, warnings
-
-
-def _coarse(mesh: trimesh.Trimesh) -> trimesh.Trimesh:
-    """The mesh CoACD decomposes: merged, and decimated to COACD_FACES (the parts are hulls; detail is lost)."""
-    m = trimesh.Trimesh(mesh.vertices, mesh.faces, process=True)
-    if len(m.faces) > COACD_FACES:
-        import fast_simplification
-
-        v, f = fast_simplification.simplify(np.asarray(m.vertices, np.float32), np.asarray(m.faces, np.int64),
-                                            target_reduction=1.0 - COACD_FACES / len(m.faces))
-        m = trimesh.Trimesh(v, f, process=True)
-    return m
 
 
 def _mass(mesh: trimesh.Trimesh, parts, req: ImportRequest) -> float:

@@ -25,7 +25,7 @@ import numpy as np
 import trimesh
 
 from humanoidgen.objects.imported import model_file as mf
-from humanoidgen.objects.imported.collision import convex_parts
+from humanoidgen.objects.imported.collision import coarse, convex_parts
 from humanoidgen.objects.imported.formats import ImportError_, SourceModel
 from humanoidgen.objects.imported.geometry import to_metres, up_rotation
 from humanoidgen.objects.imported.template import ray_hits
@@ -267,8 +267,6 @@ def _dynamics(family: str) -> dict:
 
 
 def _meshes(links: list[_Link], main: _Link, main_range, family: str, mass: float | None):
-    from humanoidgen.objects.imported.importer import _coarse
-
     arrays, files = {}, []
     names = {l.name: PART[family] if l is main else f"l{k}" for k, l in enumerate(links)}
     dyn = _dynamics(family)
@@ -279,7 +277,7 @@ def _meshes(links: list[_Link], main: _Link, main_range, family: str, mass: floa
         if len(l.mesh.faces):
             local = l.mesh.copy()
             local.apply_translation(-l.anchor)
-            parts = convex_parts(_coarse(local))
+            parts = convex_parts(coarse(local))
             arrays[f"{key}_v"], arrays[f"{key}_f"] = (np.asarray(local.vertices, np.float32),
                                                       np.asarray(local.faces, np.int32))
         else:  # an empty link: a tiny hidden part so the body has mass
