@@ -228,3 +228,13 @@ def test_a_task_runs_on_a_chosen_model_and_each_seed_draws_its_own(imported_mug,
         with_models(spec, {"drawer": "x"}, randomize=False)
     r = runner.invoke(app, ["run", "empty_cup_place", "--model", "cup=nope"])
     assert r.exit_code == 1 and "cup has no model 'nope'" in r.output
+
+
+def test_a_mesh_on_its_side_is_flagged_with_a_hint_about_up(tmp_path, collision_cache):
+    """A glTF is y-up by its specification: a z-up file imported without --up lies on its side, and the import
+    says so instead of passing quietly."""
+    bottle().export(tmp_path / "b.glb")  # z up, as made
+    r = runner.invoke(app, ["assets", "import", str(tmp_path / "b.glb"), "--family", "bottle", "--out",
+                            str(tmp_path / "models"), "--no-preview"])
+    assert r.exit_code == 0, r.output
+    assert "most points are unsure: is the object upright? --up" in r.output

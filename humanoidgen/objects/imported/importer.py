@@ -188,6 +188,9 @@ def _import_rigid(src: SourceModel, req: ImportRequest, name: str, type_id: int,
         links=[mf.LinkFile(name="base", mass=mass, collision_parts=len(parts), textured=textured)])
     warnings = [f"{p.name}: confidence {p.confidence:.2f} ({p.rule}); check it, and fix it in "
                 f"{mf.OVERRIDE_FILE} if needed" for p in tr.low()] + tr.notes
+    if 2 * len(tr.low()) >= len(tr.points) - 1:
+        warnings.append(f"most points are unsure: is the object upright? --up names the file's up axis "
+                        f"(used: {up}; the default is z, y for glTF)")
     return info, tr.annotations, tr, arrays, warnings
 
 

@@ -33,6 +33,7 @@ from humanoidgen.objects.imported.template import ray_hits, template_mesh
 from humanoidgen.objects.schema import KeyPoint, ObjectAnnotations
 
 LOW_CONFIDENCE = 0.5
+ROUND_BASE = 0.6  # a round family's base narrower than this (short/long spread) is not standing on it
 N_SAMPLES = 4000
 HANDLED = {"cup": 1, "pot": 2}  # families whose yaw is set by their handles: how many
 SYMMETRIC = {"bottle", "can", "bowl", "plate"}
@@ -80,6 +81,16 @@ def _base_axis(samples: np.ndarray) -> np.ndarray:
     low = samples[samples[:, 2] <= z0 + 0.15 * (z1 - z0)]
     low = low if len(low) >= 20 else samples
     return (low[:, :2].min(0) + low[:, :2].max(0)) / 2
+
+
+def _base_roundness(samples: np.ndarray) -> float:
+    """How round the lowest 15% of the surface is: the ratio of its short to its long horizontal spread."""
+    z0, z1 = samples[:, 2].min(), samples[:, 2].max()
+    low = samples[samples[:, 2] <= z0 + 0.15 * (z1 - z0)][:, :2]
+    if len(low) < 20:
+        return 1.0
+    w = np.linalg.eigvalsh(np.cov((low - low.mean(0)).T))
+    return float(math.sqrt(max(w[0], 0.0) / max(w[1], 1e-12)))
 
 
 def _standing_out(samples: np.ndarray, axis: np.ndarray) -> np.ndarray:
@@ -182,6 +193,10 @@ def transfer(upright: trimesh.Trimesh, family: str, type_id: int, description: s
     samples = np.asarray(trimesh.sample.sample_surface(upright, N_SAMPLES, seed=0)[0])
     axis = _base_axis(samples)
     notes: list[str] = []
+    round_ = _base_roundness(samples) if family in SYMMETRIC or family in HANDLED else 1.0
+    if round_ < ROUND_BASE:
+        notes.append(f"its base is not round (aspect {round_:.2f}) as a {family}'s is: is it upright? "
+                     "(--up names the file's up axis)")
     handle_found = True
     if family in HANDLED:
         yaw0 = _handle_yaw(samples, axis, HANDLED[family])
@@ -218,7 +233,7 @@ def transfer(upright: trimesh.Trimesh, family: str, type_id: int, description: s
     lo, hi = _box(np.asarray(mesh.vertices))
     frame = _Frame(mesh, pts, cKDTree(pts), (A[:3, :3] @ np.array([*axis, 0.0]) + A[:3, 3])[:2], lo, hi)
     size = float(np.linalg.norm(hi - lo))
-    fit = math.exp(-(rms / (0.04 * size)) ** 2)
+    fit = math.exp(-(rms / (0.04 * size)) ** 2) * min(1.0, round_ / ROUND_BASE) ** 4
     tctr = (geo.bmin + geo.bmax) / 2
 
     def icp_mapped(p: np.ndarray) -> np.ndarray:
