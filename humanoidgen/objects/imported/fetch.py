@@ -133,7 +133,8 @@ def _present(out: Path, m: LibraryModel) -> bool:
         info = ImportedModelFile.model_validate(yaml.safe_load(f.read_text()))
     except Exception:
         return False
-    return info.source.sha256 == m.sha256 and info.type_id == m.type_id
+    return (info.source.sha256 == m.sha256 and info.type_id == m.type_id and info.up == m.up
+            and abs(info.scale - m.scale) <= 1e-9 * m.scale)
 
 
 def download(package: str, version: str, wheels: Path, log: Callable[[str], None]) -> Path:
