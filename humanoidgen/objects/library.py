@@ -1,4 +1,4 @@
-"""The asset library: every object family by name, rigid and articulated."""
+"""The asset library: every object family by name, rigid and articulated, with the models imported from files."""
 
 from __future__ import annotations
 
@@ -15,7 +15,11 @@ def families() -> dict[str, ObjectFamily]:
     from humanoidgen.objects.rigid import RIGID_FAMILIES
     from humanoidgen.objects.safe import SAFE_FAMILIES
 
-    return {**RIGID_FAMILIES, **ARTICULATED_FAMILIES, **SAFE_FAMILIES, **BARRIER_FAMILIES}
+    from humanoidgen.objects.imported.family_view import WithImported
+
+    base = {**RIGID_FAMILIES, **ARTICULATED_FAMILIES, **SAFE_FAMILIES, **BARRIER_FAMILIES}
+    # Barriers are fixed to the table; every other family also has the models imported from files.
+    return {name: fam if name in BARRIER_FAMILIES else WithImported(fam) for name, fam in base.items()}
 
 
 def family(name: str) -> ObjectFamily:
@@ -32,6 +36,16 @@ def model(name: str, type_id: int) -> ObjectModel:
         if m.type_id == type_id:
             return m
     raise KeyError(f"{name} has no type_id {type_id}; type_ids: {', '.join(str(m.type_id) for m in models)}")
+
+
+def model_named(family_name: str, model: str) -> ObjectModel:
+    """A model of a family by its type_id ("3") or, for an imported one, its name ("my_mug")."""
+    models = family(family_name).models()
+    for m in models:
+        if str(m.type_id) == model or m.params.get("name") == model:
+            return m
+    names = [m.params.get("name", str(m.type_id)) for m in models]
+    raise KeyError(f"{family_name} has no model {model!r}; models: {', '.join(names)}")
 
 
 def annotations(name: str, type_id: int) -> ObjectAnnotations:

@@ -83,9 +83,33 @@ def show_object(type_name: str, type_id: int = 0, width: int = 640, height: int 
     from humanoidgen.objects import library
 
     ann = library.annotations(type_name, type_id)
+    return _show(type_name, type_id, ann, lambda b: add_object(b, type_name, type_id, pos=(-0.25, 0.0)), width,
+                 height)
+
+
+def show_imported(model, width: int = 640, height: int = 480) -> Image.Image:
+    """An imported model (objects.imported.model_file.ImportedModel) from its folder, before it is in a search
+    path: the picture an import writes beside the model."""
+    from humanoidgen.objects.imported.build import build_imported
+    from humanoidgen.sim.geometry import yaw_quat
+    from humanoidgen.sim.layout import TABLE_TOP_Z
+
+    ann, fam = model.annotations, model.info.family
+
+    def add(builder: SceneBuilder):
+        pos = np.array([-0.25, 0.0, TABLE_TOP_Z - ann.bbox_min[2]])
+        obj, body = builder.add_object_body(fam, pos, yaw_quat(0.0), type_id=model.info.type_id,
+                                            free=ann.articulation is None, annotations=ann)
+        build_imported(builder.spec, body, model)
+        return obj
+
+    return _show(fam, model.info.type_id, ann, add, width, height)
+
+
+def _show(type_name: str, type_id: int, ann, add, width: int, height: int) -> Image.Image:
     size = float(np.max(np.subtract(ann.bbox_max, ann.bbox_min)))
     builder = SceneBuilder(msaa_samples=4)
-    obj = add_object(builder, type_name, type_id, pos=(-0.25, 0.0))
+    obj = add(builder)
     center = np.array([-0.25, 0.0, -ann.bbox_min[2]])
     eye = center + np.array([-1.6, 0.9, 1.3]) * max(size, 0.08) * 1.6
     panels = []

