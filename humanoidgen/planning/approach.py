@@ -39,6 +39,7 @@ from humanoidgen.planning.part_joint import grip_joint, moving_bodies
 from humanoidgen.planning.poses import Pose, screw_interpolate
 from humanoidgen.sim.layout import HAND_PREFIX, Side
 from humanoidgen.planning.context import PlanningContext
+from humanoidgen.planning.hand_ops import is_part
 
 # Grasps and pinches come in straight along the approach axis over the first of these that fits (metres).
 APPROACH_DISTANCES = (0.08, 0.05, 0.03)
@@ -230,7 +231,7 @@ def room_to_change(ctx: PlanningContext, side: Side, q: np.ndarray, posture: str
 
 def is_movable_part(ctx: PlanningContext, body: str) -> bool:
     obj = next((o for o in ctx.env.scene.objects if o.body == body), None)
-    return obj is not None and obj.annotations is not None and obj.annotations.articulation is not None
+    return is_part(obj)
 
 def part_clear(ctx: PlanningContext, side: Side, path: np.ndarray, body: str) -> bool:
     return clear_of(ctx, side, path, body, PART_TOUCH)

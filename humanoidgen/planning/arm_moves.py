@@ -12,7 +12,7 @@ import numpy as np
 from humanoidgen.objects.hands import HAND_POSTURES
 from humanoidgen.planning import approach, finger_room, part_grip, placing, shared_hold
 from humanoidgen.planning import regrip_request as regrip
-from humanoidgen.planning.context import PlanningContext
+from humanoidgen.planning.context import HAND_MOTION_TIME, PlanningContext
 from humanoidgen.planning.errors import PlanningError
 from humanoidgen.planning.feedback import motion_advice
 from humanoidgen.planning.motion import JointPath, MotionError, plan_arm_motion, time_dense_path
@@ -20,6 +20,7 @@ from humanoidgen.planning.part_joint import follow_articulation, follow_openness
 from humanoidgen.planning.paths import time_parametrize
 from humanoidgen.planning.poses import Pose
 from humanoidgen.planning.recovery import LegRequest
+from humanoidgen.planning.hand_ops import is_part
 from humanoidgen.sim.action import ARM_SLICE, HAND_SLICE
 from humanoidgen.sim.geometry import rotation_angle
 from humanoidgen.sim.layout import SIDES, Side
@@ -27,7 +28,6 @@ from humanoidgen.sim.layout import SIDES, Side
 RETREAT_DISTANCE = 0.10  # after letting go, the hand backs out along its approach axis this far
 FOLLOW_TOL = 0.05  # openness: a part this near the asked openness after a move got there
 FOLLOW_RETRY = 0.3  # a part that moved at least this share of the way but stopped short is pushed again, once
-HAND_MOTION_TIME = 0.5  # seconds to change the fingers' posture on the way (as planner.HAND_MOTION_TIME)
 CARRY_LIMITS = {"v_max": 0.6, "a_max": 1.5}  # joint speed (rad/s) and acceleration with an object in the hand
 # A carried object that stands on something (or is within this of it) and is to be turned more than this is first
 # lifted straight up this far: turned where it stands, its lower edge drags on the support and twists it out of a
@@ -152,7 +152,7 @@ def plan_side_timed(ctx: PlanningContext, side: Side, target: Pose, path_constra
     ignored_before = set(ctx.collisions.ignored_bodies)
     held = ctx.hands[side].held
     ctx.attach_held(side)
-    if held is not None and held.annotations is not None and held.annotations.articulation is not None:
+    if is_part(held):
         ctx.collisions.ignored_bodies.add(ctx.env.model.body(held.body).id)  # the hand is on the part
     ctx.ignore_contents(side)
     # Contact can push a joint a hair past its limit (e.g. the wrist after a pinch); plan from inside them.

@@ -22,7 +22,7 @@ from humanoidgen.planning import shared_hold
 from humanoidgen.planning.collision import CollisionWorld
 from humanoidgen.planning.constraints import use_kinematics
 from humanoidgen.planning.goal_solver import GoalResult, GoalSolver
-from humanoidgen.planning.hand_ops import contents, finger_contacts, is_held
+from humanoidgen.planning.hand_ops import contents, finger_contacts, is_held, is_part
 from humanoidgen.planning.hand_state import HandState
 from humanoidgen.planning.kinematics import Kinematics
 from humanoidgen.planning.poses import Pose
@@ -137,7 +137,7 @@ class PlanningContext:
     def carries(self, side: Side) -> bool:
         """Whether the hand holds a rigid object (one that moves with the hand, not a part it moves)."""
         held = self.hands[side].held
-        return held is not None and (held.annotations is None or held.annotations.articulation is None)
+        return held is not None and not is_part(held)
 
     def holds(self, side: Side, obj: SceneObject) -> bool:
         return is_held(finger_contacts(self.env.model, self.env.data, side, obj.body))
@@ -156,7 +156,7 @@ class PlanningContext:
     def attach_held(self, side: Side) -> None:
         held = self.hands[side].held
         self.kin.detach(side)
-        if held is not None and (held.annotations is None or held.annotations.articulation is None):
+        if held is not None and not is_part(held):
             if shared_hold.shared_object(self.holding) is held:
                 # The other hand carries it too (planning knows it as one object in both hands); `side`, attached
                 # last, places it while its own arm is planned.

@@ -12,6 +12,7 @@ from humanoidgen.planning.errors import PlanningError
 from humanoidgen.planning.feedback import body_label, contact_advice, push_advice, range_advice
 from humanoidgen.planning.goal_solver import GoalResult
 from humanoidgen.planning.part_joint import follow_articulation, follow_openness, point_motion
+from humanoidgen.planning.hand_ops import is_part
 from humanoidgen.sim.layout import OPERABLE_RANGE, Side
 
 PUSH_MIN_COS = 0.3  # a fingertip drives a part only where the part gives way within ~70 deg of the push
@@ -21,7 +22,7 @@ def use_ignores(ctx: PlanningContext, side: Side, gen, ignored_before: set[int])
     """What a goal for `gen` may touch: the body it operates on, a held part, what rests in a carried object."""
     ctx.collisions.ignored_bodies = ignored_before | ctx.touched_by(gen)
     held = ctx.hands[side].held
-    if held is not None and held.annotations is not None and held.annotations.articulation is not None:
+    if is_part(held):
         ctx.collisions.ignored_bodies.add(ctx.env.model.body(held.body).id)
     ctx.attach_held(side)
     ctx.ignore_contents(side)

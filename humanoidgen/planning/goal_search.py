@@ -88,7 +88,7 @@ def solve_goal(ctx: PlanningContext, constraints: list, side: Side) -> tuple[Goa
             result, gen, tried = exact_goal(ctx, side, constraints, gen, ignored_before, thorough=not riding)
             if first_try is not None and (not result.success or not reaches_back(ctx, side, follow, result)):
                 result = first_try  # the part's own path says best why not
-        if not result.success and not riding and getattr(ctx, "wider_search", True):
+        if not result.success and not riding and ctx.wider_search:
             result, gen, slack = wider_goal(ctx, side, gen, tried, ignored_before, result)
         if result.success and not riding and getattr(gen, "grip_part", None) is not None:
             result, gen = prefer_arc(ctx, side, gen, result, ignored_before)

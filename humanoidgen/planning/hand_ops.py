@@ -10,6 +10,11 @@ from humanoidgen.sim.layout import HAND_PREFIX, Side
 from humanoidgen.sim.scene import Scene, SceneObject
 
 
+def is_part(obj) -> bool:
+    """Whether `obj` (a SceneObject, or None) is an articulated object's part a hand moves, not a rigid body."""
+    return obj is not None and obj.annotations is not None and obj.annotations.articulation is not None
+
+
 def _root(model: mujoco.MjModel, geom: int) -> int:
     return int(model.body_rootid[model.geom_bodyid[geom]])
 

@@ -33,7 +33,6 @@ from humanoidgen.planning.poses import Pose
 from humanoidgen.planning.push_spec import TaskTargets
 from humanoidgen.sim.env import HumanoidEnv
 from humanoidgen.sim.layout import SIDES, Side
-from humanoidgen.sim.scene import SceneObject
 
 
 def _sides(hand_name: str) -> tuple[Side, ...]:
@@ -216,4 +215,4 @@ class HumanoidMotionPlanner:
         move.move_hands(self.ctx, sides, poses, path_constraints, verbs=self)
 
 
-__all__ = ["HumanoidMotionPlanner", "PlanningError", "SceneObject"]
+__all__ = ["HumanoidMotionPlanner", "PlanningError"]  # PlanningError: plans and tests catch it from here

@@ -9,29 +9,26 @@ import numpy as np
 
 from humanoidgen.planning import arm_moves, finger_room
 from humanoidgen.planning.context import PlanningContext
-from humanoidgen.planning.hand_ops import body_speed, resting_on
+from humanoidgen.planning.hand_ops import body_speed, is_part, resting_on
 from humanoidgen.planning.recovery import ReleaseRequest
 from humanoidgen.sim.layout import Side
 
 
-def _is_part(obj) -> bool:
-    return obj.annotations is not None and obj.annotations.articulation is not None
-
-
 def open_hands(ctx: PlanningContext, sides: tuple[Side, ...]) -> None:
     for s in sides:  # a hand-over: the other hand is to keep the object
-        if not _is_part_or_none(ctx.hands[s].held):
-            ctx.before("release", ReleaseRequest(s, ctx.hands[s].held, sides))
+        held = ctx.hands[s].held
+        if held is not None and not is_part(held):
+            ctx.before("release", ReleaseRequest(s, held, sides))
     released = [(s, ctx.hands[s].held) for s in sides if ctx.hands[s].held is not None]
     for s in sides:
         held = ctx.hands[s].held
-        if held is not None and _is_part(held):
+        if is_part(held):
             ctx.before("release", ReleaseRequest(s, held, sides))
             continue
         ctx.move_fingers((s,), f"pre_{ctx.hands[s].grip}" if held is not None else "open")
         ctx.hands[s].held = None
         ctx.kin.detach(s)
-    rigid = [(s, o) for s, o in released if not _is_part(o)]
+    rigid = [(s, o) for s, o in released if not is_part(o)]
     if rigid:
         ctx.settle(0.3)
         backed = []
@@ -43,7 +40,7 @@ def open_hands(ctx: PlanningContext, sides: tuple[Side, ...]) -> None:
     if released:
         ctx.settle(0.2)
         for side, obj in released:
-            if _is_part(obj):
+            if is_part(obj):
                 ctx.events.append(f"released {obj.type_name} {obj.obj_id} from the {side} hand")
                 continue
             below = resting_on(ctx.env.scene, ctx.env.model, ctx.env.data, obj)
@@ -51,7 +48,3 @@ def open_hands(ctx: PlanningContext, sides: tuple[Side, ...]) -> None:
             where = " and ".join(below) if below else "nothing"
             state = "is still moving" if moving else f"stayed on {where}"
             ctx.events.append(f"released {obj.type_name} {obj.obj_id} and it {state}")
-
-
-def _is_part_or_none(obj) -> bool:
-    return obj is None or _is_part(obj)

@@ -21,6 +21,7 @@ from humanoidgen.planning.constraint_gen import (
 )
 from humanoidgen.planning.constraints import Const, Constraint
 from humanoidgen.planning.push_spec import TaskTargets
+from humanoidgen.planning.hand_ops import is_part
 from humanoidgen.sim.layout import HAND_BASE_FRAME, Side
 
 
@@ -51,7 +52,7 @@ def generate(env, holding: dict, obj_name: str, obj_id: int, action: str, side: 
             gen.fallback = grasp_or_pinch(env, side, obj_name, obj_id, "pinch", None, None, finger_offset, holding)
             _close_as_pinch(gen.fallback)
         return gen
-    articulated = obj.annotations is not None and obj.annotations.articulation is not None
+    articulated = is_part(obj)
     if action in ta.TARGET_ACTIONS and not (articulated and action != "target"
                                             and not ta.has_task_target(targets, obj, action, side)):
         return ta.to_target(env, holding, targets, obj, action, side)

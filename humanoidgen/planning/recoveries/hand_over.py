@@ -18,7 +18,7 @@ from __future__ import annotations
 import numpy as np
 
 from humanoidgen.objects.hands import HAND_POSTURES
-from humanoidgen.planning.hand_ops import finger_contacts, is_held
+from humanoidgen.planning.hand_ops import finger_contacts, is_held, is_part
 from humanoidgen.planning.motion import MotionError, plan_arm_motion, time_dense_path
 from humanoidgen.planning.context import PlanningContext
 from humanoidgen.planning.recovery import Recovery, ReleaseRequest
@@ -43,7 +43,7 @@ class HandOverTrial(Recovery):
 
     def applies(self, ctx: PlanningContext, request: ReleaseRequest, failure: Exception | None) -> bool:
         held, other = request.held, OTHER_SIDE[request.side]
-        return (held is not None and held.annotations is not None and held.annotations.articulation is None
+        return (held is not None and held.annotations is not None and not is_part(held)
                 and ctx.hands[other].held is held and other not in request.releasing)
 
     def attempt(self, ctx: PlanningContext, request: ReleaseRequest, failure: Exception | None) -> bool:

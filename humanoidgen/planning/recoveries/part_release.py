@@ -43,6 +43,7 @@ from humanoidgen.sim.layout import Side
 from humanoidgen.sim.scene import SceneObject
 from humanoidgen.planning import arm_moves
 from humanoidgen.planning import finger_room
+from humanoidgen.planning.hand_ops import is_part
 
 log = logging.getLogger(__name__)
 
@@ -60,8 +61,7 @@ class PartRelease(Recovery):
     event = "letting go of <part>, the <side> hand <way> (the usual way moved it back <n>)"
 
     def applies(self, ctx: PlanningContext, request: ReleaseRequest, failure: Exception | None) -> bool:
-        held = request.held
-        return held is not None and held.annotations is not None and held.annotations.articulation is not None
+        return is_part(request.held)
 
     def attempt(self, ctx: PlanningContext, request: ReleaseRequest, failure: Exception | None) -> bool:
         # A hooked handle: back away while the fingers open, so they do not push the part back.
