@@ -1,4 +1,5 @@
-"""MkDocs hook: serve bench/results' pictures and JSON files in the site without copying them into docs/.
+"""MkDocs hooks: serve bench/results' pictures and JSON files in the site without copying them into docs/, and
+fill the pages' generated sections (the recoveries table, the planner API reference, the annotation vocabulary).
 
 The measured results live in bench/results/ (written by the benchmark scripts, one place for each figure).
 MkDocs only serves files under docs/, so this hook adds them to the build as generated files:
@@ -38,9 +39,38 @@ def recoveries_table() -> str:
     return "\n".join(rows)
 
 
+def api_reference() -> str:
+    """The planner API reference the prompts show (generation/api_reference.py), with the example of each
+    statement about what the calls accept (tests/test_api_reference.py runs them)."""
+    from humanoidgen.generation.api_reference import facts, reference
+
+    examples = "\n\n".join(f"- {f['statement']}\n\n```python\n{f['example'].strip()}\n```" for f in facts())
+    return reference().replace("### ", "## ") + "\n\n## the statements, run\n\n" \
+        "Each example runs on its task's scene in the tests; its asserts are the statement.\n\n" + examples
+
+
+def annotation_vocabulary() -> str:
+    """What every family's points, axes and openness mean (generation/object_text.py: the prompts' text)."""
+    from humanoidgen.generation.object_text import all_families_text
+
+    return all_families_text(indent="    ")
+
+
+# Markers a page holds, replaced at every build by text generated from the code and data.
+GENERATED = {
+    TABLE_MARK: recoveries_table,
+    "<!-- planner-api-reference -->": api_reference,
+    "<!-- annotation-vocabulary -->": annotation_vocabulary,
+}
+
+
 def on_page_markdown(markdown: str, page, config, files) -> str:
-    """The design page's table of recoveries is generated from the registry at every build."""
-    return markdown.replace(TABLE_MARK, recoveries_table()) if TABLE_MARK in markdown else markdown
+    """The design page's table of recoveries, the planner API reference and the objects' annotation vocabulary
+    are generated at every build."""
+    for mark, make in GENERATED.items():
+        if mark in markdown:
+            markdown = markdown.replace(mark, make())
+    return markdown
 
 
 def on_serve(server, config, builder):

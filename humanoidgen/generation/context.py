@@ -1,75 +1,56 @@
 """Live facts for the prompts, generated from the code and data themselves so the prompts cannot drift:
-the planner API reference (signatures + docstrings), the asset library with its annotations, the robot/table
+the planner API reference (api_reference.py), the asset library with its annotations and what they mean
+(object_text.py), the robot/table
 layout and the hands' operable ranges, and the success predicates."""
 
 from __future__ import annotations
 
-import inspect
 import json
 import typing
 from pathlib import Path
 
 from humanoidgen.sim import layout
 
-# Public planner methods that plan code should call, in the order a plan tends to use them.
-PLANNER_METHODS = (
-    "hand_pre_grasp", "hand_pre_pinch", "hand_press", "hand_grasp", "hand_pinch", "open_hand",
-    "generate_constraints", "generate_end_effector_pose", "move_to_pose_with_screw",
-    "ignore_collision", "restore_collision",
-)
-PLANNER_ATTRIBUTES = {
-    "planner.env": "the simulation (pass it to Constraint, get_point_in_env, get_axis_in_env)",
-    "planner.left_hand_init_pose": "the left hand's initial pose (a Pose); move there to take the hand back",
-    "planner.right_hand_init_pose": "the right hand's initial pose (a Pose)",
+def api_reference() -> str:
+    """The planner API as the prompts show it (generated from the public API: `api_reference.reference`)."""
+    from humanoidgen.generation.api_reference import reference
+
+    return reference()
+
+
+# What each field of a task's push target means (`targets: [{object: ..., push: {...}}]`), for the scene prompt;
+# tests/test_api_reference.py fails when these and the push target's fields disagree.
+PUSH_FIELDS = {
+    "point": "a point on the moving part where the fingertip pushes (one of the object's points)",
+    "to": "the openness the push brings the part to (0 to 1)",
+    "face": "`inner` lifts the part from under it (its inner face), `outer` presses its outer face",
+    "axes": "two axes of the part: the first along it toward its hinge, the second into it from its outer face "
+            "(default `[edge_in, lid_in]`)",
+    "inset": "metres the contact lies in from the point along the first of `axes` (or `[[openness, metres], ...]` "
+             "pairs: an inset that changes as the part turns)",
+    "depth": "metres from the point to the fingertip's centre along the second of `axes` (default 0.012)",
+    "aim": "the way the fingertip points: an object axis name or a world direction `[x, y, z]`",
+    "aim_cone_deg": "how far (deg) the finger may lean off `aim` (default 40)",
+    "palm_across": "an object axis the palm stays across (70-110 deg), e.g. `up`",
+    "step": "openness pushed per stage (default 0.15)",
+    "standoff": "target1 (the pre-push pose): metres the fingertip stays off the contact point (default 0.05)",
 }
 
 
-def _doc(obj: object) -> str:
-    doc = inspect.getdoc(obj) or ""
-    return "\n".join("    " + line if line else "" for line in doc.splitlines())
+def push_fields_text() -> str:
+    """The push target's fields, required first, each with what it means."""
+    from humanoidgen.tasks.targets import PushSpec
+
+    required = [k for k, f in PushSpec.model_fields.items() if f.is_required()]
+    optional = [k for k in PushSpec.model_fields if k not in required]
+    return "; ".join(f"`{k}`{'' if k in required else ' (optional)'}: {PUSH_FIELDS[k]}" for k in required + optional)
 
 
-def _signature(fn: typing.Callable, drop_self: bool = True) -> str:
-    sig = inspect.signature(fn)
-    params = [p for p in sig.parameters.values() if not (drop_self and p.name == "self")]
-    return f"({', '.join(_param(p) for p in params)})"
+def vocabulary_text(objects: list[tuple[str, int]] | None = None) -> str:
+    """What the points, axes and openness of these (type, type_id) objects mean (every family when None)."""
+    from humanoidgen.generation import object_text
 
-
-def _param(p: inspect.Parameter) -> str:
-    # Annotations are strings here (postponed evaluation); show them bare: `hand_name: str = 'all'`.
-    text = p.name
-    if p.annotation is not inspect.Parameter.empty:
-        ann = p.annotation if isinstance(p.annotation, str) else inspect.formatannotation(p.annotation)
-        text += f": {ann.replace('np.ndarray', 'array')}"
-    if p.default is not inspect.Parameter.empty:
-        text += f" = {p.default!r}" if p.annotation is not inspect.Parameter.empty else f"={p.default!r}"
-    return text
-
-
-def api_reference() -> str:
-    """The planner API as the prompt shows it, from the current signatures and docstrings."""
-    from humanoidgen.objects.hands import HAND_AXIS_NAMES, HAND_POINT_NAMES
-    from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env
-    from humanoidgen.planning import constraint_gen, constraints
-    from humanoidgen.planning.planner import HumanoidMotionPlanner
-
-    out = ["### planner methods (call as `planner.<name>(...)`)"]
-    for name in PLANNER_METHODS:
-        fn = getattr(HumanoidMotionPlanner, name)
-        out.append(f"planner.{name}{_signature(inspect.unwrap(fn))}\n{_doc(fn)}")
-    out.append("### `action` values of generate_constraints\n" + _doc(constraint_gen))
-    out.append("### planner attributes\n" + "\n".join(f"{k}: {v}" for k, v in PLANNER_ATTRIBUTES.items()))
-    out.append("### custom constraints (for what the actions above do not cover)\n"
-               f"Constraint{_signature(constraints.Constraint, drop_self=False)}\n"
-               f"Const{_signature(constraints.Const, drop_self=False)}\n{_doc(constraints.Const)}\n"
-               f"{_doc(constraints)}\n    `end_effector_frame`: {layout.HAND_BASE_FRAME['left']!r} (left) or "
-               f"{layout.HAND_BASE_FRAME['right']!r} (right).")
-    for fn in (get_point_in_env, get_axis_in_env):
-        out.append(f"{fn.__name__}{_signature(fn)}\n{_doc(fn)}")
-    out.append(f"Hand points: {', '.join(HAND_POINT_NAMES)}\nHand axes: {', '.join(HAND_AXIS_NAMES)}")
-    out.append("A planner call that cannot do its job raises an error naming the call and the reason; the "
-               "program stops at that step.")
-    return "\n\n".join(out)
+    return object_text.all_families_text() if objects is None else object_text.objects_text(objects)
 
 
 def layout_text() -> str:

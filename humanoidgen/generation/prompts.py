@@ -6,6 +6,7 @@ import re
 from pathlib import Path
 
 from humanoidgen.generation import context
+from humanoidgen.sandbox import language
 
 PROMPTS_DIR = Path(__file__).resolve().parents[1] / "prompts"
 _PLACEHOLDER = re.compile(r"\{\{([A-Z_]+)\}\}")
@@ -32,7 +33,8 @@ def load(name: str) -> str:
 def scene_prompt(description: str) -> str:
     example = "\n".join(ln for ln in context.example_spec_yaml().splitlines() if not ln.startswith("plan:"))
     return render(load("scene.md"), LAYOUT=context.layout_text(), ASSETS=context.assets_text(),
-                  PREDICATES=context.predicates_text(), EXAMPLE=example, DESCRIPTION=description.strip())
+                  VOCABULARY=context.vocabulary_text(), PREDICATES=context.predicates_text(),
+                  PUSH_FIELDS=context.push_fields_text(), EXAMPLE=example, DESCRIPTION=description.strip())
 
 
 def scene_repair_prompt(errors: list[str]) -> str:
@@ -43,10 +45,18 @@ def script_prompt(description: str, scene: dict, hands: dict, names: list[str]) 
     """`scene` is describe_scene(env, as_json=False); `hands` maps side -> {p, q} of the end effectors."""
     ex_task, ex_plan = context.example_plan()
     return render(load("script.md"), LAYOUT=context.layout_text(),
-                  ATTRIBUTES=context.compact_json(scene["attributes"]),
+                  ATTRIBUTES=context.compact_json(scene["attributes"]), VOCABULARY=scene_vocabulary(scene),
                   STATUS=context.compact_json(scene["status"]), HANDS=context.hands_text(hands),
                   NAMES=", ".join(f"`{n}`" for n in names), API=context.api_reference(),
-                  EXAMPLE_TASK=ex_task, EXAMPLE=ex_plan, DESCRIPTION=description.strip())
+                  LANGUAGE=language.rules_text("script"), EXAMPLE_TASK=ex_task, EXAMPLE=ex_plan,
+                  DESCRIPTION=description.strip())
+
+
+def scene_vocabulary(scene: dict, leave_out: tuple[str, ...] = ()) -> str:
+    """What the points, axes and openness of the scene's objects mean (`scene` as describe_scene gives it), but
+    for the types in `leave_out`."""
+    return context.vocabulary_text([(a["type"], a["type_id"]) for a in scene["attributes"]
+                                    if a["type"] not in leave_out])
 
 
 def script_retry_prompt(failure: str) -> str:

@@ -1,12 +1,13 @@
 """The expansion prompt: the task, the scene at set-up, the code executed to reach the node, what happened
 (planner events, success conditions), the failure that ended the last branch here and the actions already
 tried from here (prohibited as the next action). Options for minimal guidance: no operation annotations for
-cubes and short task descriptions."""
+cubes (nor what their points mean) and short task descriptions."""
 
 from __future__ import annotations
 
 from humanoidgen.generation import context, prompts
 from humanoidgen.mcts.tree import Node, Tree
+from humanoidgen.sandbox import language
 
 TEMPLATE = "mcts_expand.md"
 SHORT_DESCRIPTIONS = {
@@ -61,7 +62,9 @@ def expansion_prompt(tree: Tree, node: Node, names: list[str], minimal: bool = F
     tried = tried_actions(tree, node)
     return prompts.render(
         prompts.load(TEMPLATE), LAYOUT=context.layout_text(),
-        ATTRIBUTES=context.compact_json(attributes(scene, minimal)),
+        ATTRIBUTES=context.compact_json(attributes(scene, minimal)), VOCABULARY=prompts.scene_vocabulary(
+            scene, MINIMAL_HIDDEN_TYPES if minimal else ()),
+        LANGUAGE=language.rules_text("mcts"),
         STATUS=context.compact_json(node.status or scene["status"]), HANDS=context.hands_text(hands),
         NAMES=", ".join(f"`{n}`" for n in names), API=context.api_reference(), EXAMPLE_TASK=ex_task,
         EXAMPLE=ex_plan, DESCRIPTION=task_description(meta["task"], meta["description"], short).strip(),

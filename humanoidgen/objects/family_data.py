@@ -69,6 +69,16 @@ def family_data(name: str, params_model: type[ModelFile]) -> FamilyData:
     return _load(name, params_model, search_path())
 
 
+@cache
+def family_file(name: str) -> FamilyFile:
+    """A packaged family's validated `family.yaml`: its annotation vocabulary (points and axes with their
+    descriptions, operations, functions, what its openness moves)."""
+    path = FAMILIES_DIR / name / FAMILY_FILE
+    if not path.is_file():
+        raise FamilyDataError(f"{path}: missing; every family needs its {FAMILY_FILE}")
+    return _validated(FamilyFile, _read(path), path)
+
+
 def material(name: str) -> tuple[float, float, float]:
     """A material's (sliding, torsional, rolling) friction from families/materials.yaml."""
     table = materials()

@@ -67,6 +67,40 @@ def hand_axes(side: Side) -> dict[str, np.ndarray]:
     }
 
 
+# What each hand point and axis is, in words ("{side}" stands for left / right): plan authors know the hands only
+# from these (the prompts and docs show them; tests fail on a point or axis without one). They are given in the
+# world at the hand's pose now (get_point_in_env / get_axis_in_env) and move with the hand.
+HAND_POINT_DESCRIPTIONS: dict[str, str] = {
+    "base_{side}_hand": "the base of the hand, 5.4 cm from the wrist joint toward the fingers",
+    "grasp_point_base_{side}_hand": "inside the ring that the closed fingers and thumb make, 16.5 cm out from the "
+                                    "wrist and 4.5 cm out of the palm: what a whole-hand grasp holds is centred here",
+    "pinch_point_base_{side}_hand": "where the thumb tip and the index finger's pad meet in a pinch",
+    "press_point_base_{side}_hand": "the tip of the extended index finger (in the hand_press posture)",
+    "palm_center_{side}_hand": "the middle of the palm, 12.5 cm from the wrist joint",
+}
+HAND_AXIS_DESCRIPTIONS: dict[str, str] = {
+    "{side}_grasp_axis": "out of the palm, from the back of the hand through the palm: the way the palm faces",
+    "{side}_pinch_axis": "out of the hand's index-finger edge (from the little finger's edge toward the index's): "
+                         "the way a pinch faces; pointing down means pinching from above, index edge down and the "
+                         "thumb beside the object",
+    "{side}_thumb_2_index": "from the thumb tip toward the index fingertip in a pinch: into the palm, opposite to "
+                            "the grasp axis",
+    "{side}_ring_2_index": "across the hand from the ring finger toward the index finger (the same as the pinch axis)",
+    "{side}_grasp_wrist_2_palm_axis": "from the wrist toward the fingertips, along the straight fingers",
+    "{side}_pinch_wrist_2_palm_axis": "from the wrist toward the fingertips (the same as the grasp one)",
+    "{side}_press_axis": "along the extended index finger toward its tip: the way a press pushes",
+}
+
+
+def hand_description(name: str) -> str:
+    """What a hand point or axis is, in words."""
+    generic = name.replace(side_of(name), "{side}", 1)
+    table = {**HAND_POINT_DESCRIPTIONS, **HAND_AXIS_DESCRIPTIONS}
+    if generic not in table:
+        raise KeyError(f"no description of hand annotation {name!r}")
+    return table[generic]
+
+
 HAND_POINT_NAMES = tuple(n for side in SIDES for n in hand_points(side))
 HAND_AXIS_NAMES = tuple(n for side in SIDES for n in hand_axes(side))
 

@@ -3,8 +3,9 @@
 A model file is one model (`type_id`) of a family: its description and parameters (dimensions in metres,
 colours as RGBA in [0, 1], masses in kg, materials, joint dynamics). `family.yaml` holds what the family's
 models share: `defaults` (parameters a model file may leave out or override) and the family's annotation
-vocabulary (axes, operations, functions, and for articulated families the annotated points' parts and
-descriptions). Point positions are not data: the family code derives them from the parameters, so that they
+vocabulary: points (with the moving part they are on, if any) and axes, each with a description in words (plan
+authors read these), operations, functions, and for articulated families what their openness moves. Point
+positions are not data: the family code derives them from the parameters, so that they
 follow the geometry. Every model is validated against its family's parameter model below (unknown fields are
 errors, numbers must be numbers).
 """
@@ -30,11 +31,32 @@ RGBA = tuple[Unit, Unit, Unit, Unit]
 
 # -- family.yaml ------------------------------------------------------------------------------------------------
 class PointSpec(_Strict):
-    """An annotated point of an articulated family; its position comes from the family code."""
+    """An annotated point of a family; its position comes from the family code. The description says where it is
+    in words (plan authors read it: the prompts and the docs show it), with its direction from the object's
+    middle where that matters ("on the side facing the robot")."""
 
     name: str = Field(min_length=1)
-    part: str | None = None
-    description: str = ""
+    part: str | None = None  # articulated families: the moving part it is on (it moves with it)
+    description: str = Field(min_length=1)
+
+
+class AxisSpec(KeyAxis):
+    """An annotated axis of a family: its direction in the object's frame (or its part's, with the part closed)
+    and, required here, what that direction is in words, as the robot sees the object at yaw 0."""
+
+    description: str = Field(min_length=1)
+
+
+class OpennessSpec(_Strict):
+    """What an articulated family's openness means for one of its joints (the object's own, or a part's that has
+    a joint of its own), for plan authors: which part moves and which way, in which physical unit the models'
+    ranges are shown, and how far plans should ask for (a limit measured, not a joint limit)."""
+
+    part: str  # the part it moves; the object's own openness is the one whose part has no joint of its own
+    unit: Literal["deg", "mm"]  # deg for a hinge, mm for a slide
+    moves: str = Field(min_length=1)  # what moves which way as openness grows from 0 (closed) to 1 (open)
+    recommended_max: Unit | None = None  # ask for at most this openness (why: `note`)
+    note: str = ""
 
 
 class OperationSpec(_Strict):
@@ -65,9 +87,17 @@ class FamilyFile(_Strict):
     static: bool = False
     defaults: dict[str, Any] = Field(default_factory=dict)
     points: list[PointSpec] = Field(default_factory=list)
-    axes: list[KeyAxis]
+    axes: list[AxisSpec]
     operations: list[OperationSpec]
     functions: list[FunctionSpec] = Field(default_factory=list)
+    openness: list[OpennessSpec] = Field(default_factory=list)  # articulated families: one per joint
+
+    @model_validator(mode="after")
+    def _openness_for_articulated(self) -> "FamilyFile":
+        if self.articulated != bool(self.openness):
+            raise ValueError("an articulated family says what its openness moves (openness: [...]); "
+                             "only articulated families have one")
+        return self
 
 
 # -- model files --------------------------------------------------------------------------------------------------
@@ -161,6 +191,9 @@ class ArticulatedParams(ModelFile):
     rgba: RGBA
     # Mass of each box geom (kg) by its name without the object prefix; the build checks that every geom has one.
     masses: dict[str, Pos]
+    # The main part stays where a hand leaves it only from this openness up (below, it falls shut by its own
+    # weight); None: anywhere. Measured; the prompts show it.
+    holds_from: Unit | None = None
 
 
 class DrawerParams(ArticulatedParams):

@@ -1,4 +1,5 @@
 """Static check of plan code (LLM-written or user plans) before it runs: the friendly first layer.
+Which constructs it accepts and refuses is the plan language's data (`language.py`), which the prompts state too.
 
 The security boundary is the locked-down worker process that runs plan code (restricted builtins, memory and
 time limits, OS-level lockdown). This check is not that boundary and is not complete (`BLOCKED_ATTRIBUTES` lists
@@ -40,6 +41,7 @@ import builtins
 import difflib
 from dataclasses import dataclass, field
 
+from humanoidgen.sandbox import language
 from humanoidgen.sandbox.format_fields import format_template_problems
 from humanoidgen.sandbox.steps import STEP_FUNCTION, split_steps, strip_api_imports
 from humanoidgen.sandbox.vocabulary import (
@@ -310,28 +312,11 @@ class _Checker:
         self.defines_step = True
 
 
-_ALLOWED_NODES: tuple[type[ast.AST], ...] = (
-    ast.Module, ast.Expr, ast.Assign, ast.AugAssign, ast.AnnAssign, ast.If, ast.For, ast.While, ast.Pass,
-    ast.Break, ast.Continue, ast.Assert, ast.Raise, ast.Return, ast.FunctionDef, ast.arguments, ast.arg,
-    ast.Try, ast.TryStar, ast.ExceptHandler, ast.Import, ast.ImportFrom, ast.alias, ast.Global, ast.Nonlocal,
-    ast.Delete, ast.Lambda,
-    ast.Constant, ast.Name, ast.Load, ast.Store, ast.Del, ast.Attribute, ast.Subscript, ast.Slice, ast.Starred,
-    ast.Call, ast.keyword, ast.BinOp, ast.UnaryOp, ast.BoolOp, ast.Compare, ast.IfExp, ast.NamedExpr,
-    ast.List, ast.Tuple, ast.Dict, ast.Set, ast.ListComp, ast.SetComp, ast.DictComp, ast.GeneratorExp,
-    ast.comprehension, ast.JoinedStr, ast.FormattedValue,
-    ast.operator, ast.unaryop, ast.boolop, ast.cmpop, ast.expr_context,
-)
-
-_ASYNC = "`async`/`await` is not available in plan code; planner calls are ordinary calls, call them directly"
-# Refused constructs; what is inside them is not checked further (one message per construct).
-_REFUSED: dict[type[ast.AST], str] = {
-    ast.ClassDef: "`class` definitions are not available in plan code; use functions, dicts and tuples",
-    ast.With: "`with` is not available in plan code (plans cannot open files); write the statements without it",
-    ast.Yield: "`yield` is not available in plan code (no generator functions); build and return a list",
-    ast.YieldFrom: "`yield from` is not available in plan code (no generator functions); build and return a list",
-    ast.Match: "`match` is not available in plan code; use `if`/`elif`/`else`",
-    ast.AsyncFunctionDef: _ASYNC, ast.AsyncFor: _ASYNC, ast.AsyncWith: _ASYNC, ast.Await: _ASYNC,
-}
+# The syntax nodes plan code may use, and the refused constructs with their messages (what is inside a refused
+# construct is not checked further: one message per construct): the plan language's data (`language.py`), which
+# the prompts state too.
+_ALLOWED_NODES: tuple[type[ast.AST], ...] = language.allowed_nodes()
+_REFUSED: dict[type[ast.AST], str] = language.refused_nodes()
 
 
 def _collect(tree: ast.Module) -> list[tuple[ast.AST, bool, bool]]:
