@@ -103,6 +103,15 @@ class ObjectAnnotations(_Strict):
     # point or axis on such a part is that joint's (`articulation_for`). The object's openness stays the main one.
     part_articulations: list[Articulation] = Field(default_factory=list)
 
+    @field_validator("axes", mode="before")
+    @classmethod
+    def _plain_axes(cls, v: object) -> object:
+        # A family file's axes (params.AxisSpec, a KeyAxis with a required description) are stored as KeyAxis, so
+        # that annotations compare equal to themselves read back from their JSON.
+        if isinstance(v, list):
+            return [KeyAxis(**a.model_dump()) if isinstance(a, KeyAxis) and type(a) is not KeyAxis else a for a in v]
+        return v
+
     @model_validator(mode="after")
     def _references(self) -> "ObjectAnnotations":
         if self.part_articulations and self.articulation is None:
