@@ -1,4 +1,4 @@
-"""`hgen generate scene|script|eval`: LLM-generated task scenes and demonstration scripts.
+"""`hgen generate prompt|scene|script|eval`: LLM-generated task scenes and demonstration scripts.
 
 Endpoint: --base-url / --model override $OPENAI_BASE_URL / $HGEN_LLM_MODEL; the key is read from
 $OPENAI_API_KEY (not needed for a loopback server); --timeout bounds the wait for one answer. The key and any
@@ -20,6 +20,7 @@ app = typer.Typer(
         "Generate task scenes and demonstration scripts with an LLM (OpenAI-compatible endpoint).\n\n"
         "Set $OPENAI_BASE_URL (e.g. https://api.deepseek.com/v1) and $OPENAI_API_KEY, or pass --base-url.\n\n"
         "Examples:\n\n"
+        "  hgen generate prompt block_stack_single --kind script   (the exact prompt, no endpoint needed)\n\n"
         "  hgen generate scene \"stack the red cube on the green cube\" --out stack.yaml\n\n"
         "  hgen generate script stack.yaml --attempts 3 --out plan.py --log log.json\n\n"
         "  hgen run stack.yaml --script plan.py\n\n"
@@ -124,6 +125,56 @@ def _write_scene_log(path: Path, turns: list[dict]) -> None:
 
     path.parent.mkdir(parents=True, exist_ok=True)
     path.write_text(json.dumps(redact(turns), indent=1))
+
+
+@app.command()
+def prompt(
+    task: str = typer.Argument(..., help="A task name (see `hgen tasks`) or a task YAML file; with --kind scene, "
+                                         "a description in words or a task whose description is used."),
+    kind: str = typer.Option("script", "--kind", help="Which prompt: script (generate script's first prompt), "
+                             "scene (generate scene's) or mcts (the tree search's root expansion)."),
+    seed: int = typer.Option(None, help="Scene seed (default: the task's default layout)."),
+    out: Path = typer.Option(None, "--out", "-o", help="Write the prompt here instead of printing it."),
+) -> None:
+    """Print the exact prompt an LLM gets for a task, without an endpoint.
+
+    Example: hgen generate prompt open_drawer --kind script --seed 3 > prompt.md
+    """
+    os.environ.setdefault("MUJOCO_GL", "egl")
+    if kind not in ("script", "scene", "mcts"):
+        _fail(f"unknown --kind {kind!r}: choose script, scene or mcts")
+    from humanoidgen.generation import prompt_preview
+
+    with _reported_errors():
+        if kind == "scene":
+            text = prompt_preview.scene_prompt(_description_of(task))
+        else:
+            view = prompt_preview.scene_view(task, seed)
+            if kind == "script":
+                text = prompt_preview.script_prompt(view)
+            else:
+                from humanoidgen.generation.script_gen import step_names
+                from humanoidgen.mcts.prompt import root_prompt
+
+                text = root_prompt(view, step_names())
+    if out is None:
+        typer.echo(text)
+    else:
+        out.parent.mkdir(parents=True, exist_ok=True)
+        out.write_text(text)
+        typer.echo(f"wrote {out} ({len(text)} characters)")
+
+
+def _description_of(task: str) -> str:
+    """A known task's (or task file's) description; anything else is taken as the description itself."""
+    from humanoidgen.tasks.registry import load_task
+
+    if Path(task).suffix in (".yaml", ".yml"):
+        return load_task(task).description  # a task file: its errors are the user's to see
+    try:
+        return load_task(task).description
+    except KeyError:  # not a task name: a description in words, as `generate scene` takes it
+        return task
 
 
 @app.command()

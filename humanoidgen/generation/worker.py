@@ -49,6 +49,12 @@ def _log(actions: list[np.ndarray]) -> np.ndarray:
     return np.stack(actions) if actions else np.zeros((0, 26))
 
 
+def hand_poses(planner: Any) -> dict[str, dict[str, list[float]]]:
+    """The hands' starting poses as the prompts show them (position and quaternion, rounded to 1 mm)."""
+    return {s: {"p": _round(p.p), "q": _round(p.q)}
+            for s, p in (("left", planner.left_hand_init_pose), ("right", planner.right_hand_init_pose))}
+
+
 def setup() -> dict[str, Any]:
     os.environ.setdefault("MUJOCO_GL", "egl")
     from humanoidgen.episodes.action_log import packed
@@ -73,9 +79,7 @@ def setup() -> dict[str, Any]:
                                         targets=scene.targets)
         handle._bind(planner)
         state.update(spec=spec, env=env, planner=planner, actions=actions)
-        hands = {s: {"p": _round(p.p), "q": _round(p.q)}
-                 for s, p in (("left", planner.left_hand_init_pose), ("right", planner.right_hand_init_pose))}
-        return {"scene": describe_scene(env, as_json=False), "hands": hands}
+        return {"scene": describe_scene(env, as_json=False), "hands": hand_poses(planner)}
 
     def judge_now() -> dict:
         """The task's predicates on the current state, plus the planner's event log."""

@@ -73,3 +73,11 @@ def expansion_prompt(tree: Tree, node: Node, names: list[str], minimal: bool = F
         CHECKS="\n".join(f"- [{'ok' if c['ok'] else 'not met'}] {c['predicate']}: {c['detail']}"
                          for c in node.checks) or "- (not judged)",
         ERROR=error, PROHIBITED="\n".join(tried) if tried else "(none)")
+
+
+def root_prompt(view, names: list[str], minimal: bool = False, short: bool = False) -> str:
+    """The tree search's first expansion prompt for a scene (`prompt_preview.SceneView`): no step run yet."""
+    tree = Tree(meta={"task": view.task, "description": view.description, "seed": view.seed,
+                      "spec": view.spec_data, "scene": view.scene, "hands": view.hands, "expansions": []})
+    tree.add(None, None, None)
+    return expansion_prompt(tree, tree.root, names, minimal, short)
