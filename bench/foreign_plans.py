@@ -8,6 +8,10 @@ annotations, the planner's docstrings), never from the reference plans:
     bench/foreign_plans/<task>/alt_*.py          other strategies and styles (helpers, loops, try/except, ...)
     bench/foreign_plans/<task>/alt_*/step0.py..  a plan folder (upstream's layout), run in natural order
 
+Another corpus (`--corpus bench/contract_plans`) may bring task specs of its own: `<corpus>/tasks/<task>.yaml`;
+a task folder with such a YAML runs on that spec (as `hgen run <corpus>/tasks/<task>.yaml --script plan.py`),
+every other folder on the built-in task of its name.
+
 Every (plan, seed) runs as `run_task_episode(EpisodeRequest(task, seed, plan_path=...))`, each in its own
 locked-down worker process; `--workers` episodes run at once (threads that wait on those processes).
 
@@ -41,6 +45,7 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")
 
 HERE = Path(__file__).resolve().parent
 CORPUS = HERE / "foreign_plans"
+SPECS_DIR = "tasks"  # <corpus>/tasks/<task>.yaml: a corpus's own task specs (not a task folder)
 RESULTS = HERE / "results"
 DEFAULT_JSON = RESULTS / "foreign_plans.json"
 DEFAULT_PLOT = RESULTS / "foreign_plans.png"
@@ -53,6 +58,12 @@ class CorpusPlan:
     task: str
     name: str  # file stem or folder name: "paper", "alt_helpers", "alt_folder"
     path: Path
+    spec: str = ""  # what the episode loads: the corpus's own task YAML, or "" for the built-in task `task`
+
+    @property
+    def episode_task(self) -> str:
+        """The task as EpisodeRequest takes it: a built-in task's name or the path of the corpus's YAML."""
+        return self.spec or self.task
 
     @property
     def key(self) -> str:
@@ -62,14 +73,18 @@ class CorpusPlan:
 def discover(corpus: Path = CORPUS) -> list[CorpusPlan]:
     """Every plan of the corpus: `<task>/<name>.py` files and `<task>/<name>/` folders holding `*.py` steps."""
     plans = []
-    for task_dir in sorted(p for p in Path(corpus).iterdir() if p.is_dir() and not p.name.startswith((".", "_"))):
+    specs = Path(corpus) / SPECS_DIR
+    for task_dir in sorted(p for p in Path(corpus).iterdir() if p.is_dir() and not p.name.startswith((".", "_"))
+                           and p.name != SPECS_DIR):
+        own = specs / f"{task_dir.name}.yaml"
+        spec = str(own) if own.is_file() else ""
         for entry in sorted(task_dir.iterdir()):
             if entry.name.startswith((".", "_")):
                 continue
             if entry.is_file() and entry.suffix == ".py":
-                plans.append(CorpusPlan(task_dir.name, entry.stem, entry))
+                plans.append(CorpusPlan(task_dir.name, entry.stem, entry, spec))
             elif entry.is_dir() and any(entry.glob("*.py")):
-                plans.append(CorpusPlan(task_dir.name, entry.name, entry))
+                plans.append(CorpusPlan(task_dir.name, entry.name, entry, spec))
     # paper first within a task, then the alternatives
     return sorted(plans, key=lambda p: (p.task, p.name != "paper", p.name))
 
@@ -163,7 +178,7 @@ def run_one(plan: CorpusPlan, seed: int, step_timeout_s: float | None) -> dict:
     t0 = time.monotonic()
     out = {"seed": seed, "success": False, "message": "", "wall_s": 0.0, "steps_ok": 0, "steps": 0}
     try:
-        req = EpisodeRequest(plan.task, seed, plan_path=str(plan.path))
+        req = EpisodeRequest(plan.episode_task, seed, plan_path=str(plan.path))
         if step_timeout_s is not None:
             req.step_timeout_s = float(step_timeout_s)
         result, _ = run_task_episode(req)
