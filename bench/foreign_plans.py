@@ -25,6 +25,7 @@ Examples:
     python bench/foreign_plans.py --tasks open_drawer,close_drawer --plans paper --seeds 0-2
     python bench/foreign_plans.py --plans 'alt_*' --seeds 0,3,5-7 --workers 1 --json-out /tmp/alt.json
     python bench/foreign_plans.py --tasks cup_pour_easy --merge    # rerun one task, keep the others' results
+    python bench/foreign_plans.py --seeds 5-9 --merge              # add seeds 5-9 to a report of seeds 0-4
 """
 
 from __future__ import annotations
@@ -212,6 +213,30 @@ def summarize(plan: CorpusPlan, runs: list[dict]) -> dict:
     }
 
 
+def merge_seeds(old: dict, new: dict) -> dict:
+    """One plan's entry from two runs: the seeds run now replace the same seeds of `old`, its other seeds stay
+    (seeds 0-4 in one run, 5-9 in the next give the entry for 0-9)."""
+    fresh = set(new["seeds"])
+    kept = [s for s in old["seeds"] if s not in fresh]
+    if not kept:
+        return new
+    seeds = sorted(kept + new["seeds"])
+    ok = sorted([s for s in old["succeeded_seeds"] if s in kept] + new["succeeded_seeds"])
+    failures = sorted([f for f in old["failures"] if f["seed"] in kept] + new["failures"], key=lambda f: f["seed"])
+    wall = (old["mean_wall_s"] * len(kept) + new["mean_wall_s"] * len(new["seeds"])) / len(seeds)
+    return {**new, "seeds": seeds, "successes": len(ok), "succeeded_seeds": ok, "failures": failures,
+            "mean_wall_s": round(wall, 2)}
+
+
+def merge_entries(old: list[dict], new: list[dict], order: dict[str, int]) -> list[dict]:
+    """`--merge`: the other plans' entries of the old report, and per plan the seeds run now over its old ones."""
+    by_key = {(e["task"], e["plan"]): e for e in old}
+    for e in new:
+        key = (e["task"], e["plan"])
+        by_key[key] = merge_seeds(by_key[key], e) if key in by_key else e
+    return sorted(by_key.values(), key=lambda e: order.get(f"{e['task']}/{e['plan']}", 10**6))
+
+
 def headline(entries: list[dict]) -> dict:
     """The figures the issue asks for, computed over what `entries` hold."""
     n_plans = len(entries)
@@ -344,7 +369,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--plot-out", type=Path, default=DEFAULT_PLOT, help=f"bar chart (default {DEFAULT_PLOT})")
     ap.add_argument("--no-plot", action="store_true", help="do not draw the bar chart")
     ap.add_argument("--merge", action="store_true",
-                    help="keep the other plans' entries of an existing --json-out and replace only those run now")
+                    help="keep the other plans' entries of an existing --json-out and, for the plans run now, "
+                         "their other seeds (the seeds run now replace the same seeds)")
     ap.add_argument("--step-timeout", type=float, default=None,
                     help="seconds one plan step may take (default: the episode's own, 300 s)")
     ap.add_argument("--list", action="store_true", help="list the selected corpus plans and exit")
@@ -398,10 +424,8 @@ def main(argv: list[str] | None = None) -> int:
     if args.merge and args.json_out.exists():
         try:
             old = json.loads(args.json_out.read_text())
-            fresh = {(e["task"], e["plan"]) for e in entries}
-            kept = [e for e in old.get("plans", []) if (e["task"], e["plan"]) not in fresh]
             order = {p.key: i for i, p in enumerate(discover(args.corpus))}
-            entries = sorted(kept + entries, key=lambda e: order.get(f"{e['task']}/{e['plan']}", 10**6))
+            entries = merge_entries(old.get("plans", []), entries, order)
         except (OSError, ValueError, KeyError) as exc:
             print(f"could not merge with {args.json_out}: {exc}; writing only this run", file=sys.stderr)
 

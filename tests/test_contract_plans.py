@@ -64,3 +64,20 @@ def test_every_contract_plan_loads_and_says_what_it_exercises():
         assert load_plan(p.path).steps, p.key
         head = p.path.read_text().splitlines()[0]
         assert head.startswith("# ") and not head.lower().startswith("# step"), f"{p.key}: no header line"
+
+
+def _entry(plan, seeds, ok, wall):
+    return {"task": "t", "plan": plan, "seeds": seeds, "successes": len(ok), "succeeded_seeds": ok,
+            "failures": [{"seed": s, "message": f"m{s}", "cause": "c"} for s in seeds if s not in ok],
+            "mean_wall_s": wall}
+
+
+def test_merge_adds_seeds_run_later_and_replaces_seeds_run_again():
+    old = [_entry("a", [0, 1, 2], [0, 2], 10.0), _entry("b", [0], [], 1.0)]
+    new = [_entry("a", [2, 3], [3], 20.0)]
+    merged = {e["plan"]: e for e in bench.merge_entries(old, new, {"t/a": 0, "t/b": 1})}
+    a = merged["a"]
+    assert a["seeds"] == [0, 1, 2, 3] and a["succeeded_seeds"] == [0, 3] and a["successes"] == 2
+    assert [f["seed"] for f in a["failures"]] == [1, 2]  # seed 2 failed in the newer run
+    assert a["mean_wall_s"] == 15.0
+    assert merged["b"] == old[1]  # a plan not run now is kept as it was
