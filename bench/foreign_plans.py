@@ -301,7 +301,7 @@ def print_table(entries: list[dict], head: dict) -> None:
             print(f"  {n:>4}  {cause}")
 
 
-def plot(entries: list[dict], out: Path) -> bool:
+def plot(entries: list[dict], out: Path, corpus: str = "foreign_plans") -> bool:
     try:
         import matplotlib
 
@@ -346,9 +346,10 @@ def plot(entries: list[dict], out: Path) -> bool:
     ax.set_xlim(spans[0][0] - 0.3, spans[-1][1] + 0.3)
     from matplotlib.patches import Patch
 
-    ax.legend(handles=[Patch(color="tab:blue", label="paper.py"), Patch(color="tab:orange", label="alt_*"),
-                       ax.get_lines()[0]], loc="upper right", fontsize=8, bbox_to_anchor=(1.0, 0.97))
-    ax.set_title("Plans we did not write: successes per plan, grouped by task", pad=60)
+    kinds = [Patch(color="tab:blue", label="paper.py")] if any(e["plan"] == "paper" for e in entries) else []
+    kinds.append(Patch(color="tab:orange", label="alt_*" if kinds else "plan"))
+    ax.legend(handles=kinds + [ax.get_lines()[0]], loc="upper right", fontsize=8, bbox_to_anchor=(1.0, 0.97))
+    ax.set_title(f"Plans we did not write (bench/{corpus}): successes per plan, grouped by task", pad=60)
     fig.tight_layout()
     out.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(out, dpi=120)
@@ -389,7 +390,7 @@ def main(argv: list[str] | None = None) -> int:
         old["headline"] = head
         args.from_json.write_text(json.dumps(old, indent=2) + "\n")  # causes and headline brought up to date
         print_table(entries, head)
-        if not args.no_plot and plot(entries, args.plot_out):
+        if not args.no_plot and plot(entries, args.plot_out, Path(args.corpus).name):
             print(f"\ndrew {args.plot_out}")
         return 0
 
@@ -441,7 +442,7 @@ def main(argv: list[str] | None = None) -> int:
     args.json_out.write_text(json.dumps(report, indent=2) + "\n")
     print_table(entries, head)
     print(f"\nwrote {args.json_out}", end="")
-    if not args.no_plot and plot(entries, args.plot_out):
+    if not args.no_plot and plot(entries, args.plot_out, Path(args.corpus).name):
         print(f" and {args.plot_out}", end="")
     print(f"  ({report['wall_s']:.0f} s)")
     return 0
