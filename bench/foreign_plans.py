@@ -8,6 +8,10 @@ annotations, the planner's docstrings), never from the reference plans:
     bench/foreign_plans/<task>/alt_*.py          other strategies and styles (helpers, loops, try/except, ...)
     bench/foreign_plans/<task>/alt_*/step0.py..  a plan folder (upstream's layout), run in natural order
 
+Another corpus (`--corpus bench/contract_plans`) may bring task specs of its own: `<corpus>/tasks/<task>.yaml`;
+a task folder with such a YAML runs on that spec (as `hgen run <corpus>/tasks/<task>.yaml --script plan.py`),
+every other folder on the built-in task of its name.
+
 Every (plan, seed) runs as `run_task_episode(EpisodeRequest(task, seed, plan_path=...))`, each in its own
 locked-down worker process; `--workers` episodes run at once (threads that wait on those processes).
 
@@ -21,6 +25,7 @@ Examples:
     python bench/foreign_plans.py --tasks open_drawer,close_drawer --plans paper --seeds 0-2
     python bench/foreign_plans.py --plans 'alt_*' --seeds 0,3,5-7 --workers 1 --json-out /tmp/alt.json
     python bench/foreign_plans.py --tasks cup_pour_easy --merge    # rerun one task, keep the others' results
+    python bench/foreign_plans.py --seeds 5-9 --merge              # add seeds 5-9 to a report of seeds 0-4
 """
 
 from __future__ import annotations
@@ -41,6 +46,7 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")
 
 HERE = Path(__file__).resolve().parent
 CORPUS = HERE / "foreign_plans"
+SPECS_DIR = "tasks"  # <corpus>/tasks/<task>.yaml: a corpus's own task specs (not a task folder)
 RESULTS = HERE / "results"
 DEFAULT_JSON = RESULTS / "foreign_plans.json"
 DEFAULT_PLOT = RESULTS / "foreign_plans.png"
@@ -53,6 +59,12 @@ class CorpusPlan:
     task: str
     name: str  # file stem or folder name: "paper", "alt_helpers", "alt_folder"
     path: Path
+    spec: str = ""  # what the episode loads: the corpus's own task YAML, or "" for the built-in task `task`
+
+    @property
+    def episode_task(self) -> str:
+        """The task as EpisodeRequest takes it: a built-in task's name or the path of the corpus's YAML."""
+        return self.spec or self.task
 
     @property
     def key(self) -> str:
@@ -62,14 +74,18 @@ class CorpusPlan:
 def discover(corpus: Path = CORPUS) -> list[CorpusPlan]:
     """Every plan of the corpus: `<task>/<name>.py` files and `<task>/<name>/` folders holding `*.py` steps."""
     plans = []
-    for task_dir in sorted(p for p in Path(corpus).iterdir() if p.is_dir() and not p.name.startswith((".", "_"))):
+    specs = Path(corpus) / SPECS_DIR
+    for task_dir in sorted(p for p in Path(corpus).iterdir() if p.is_dir() and not p.name.startswith((".", "_"))
+                           and p.name != SPECS_DIR):
+        own = specs / f"{task_dir.name}.yaml"
+        spec = str(own) if own.is_file() else ""
         for entry in sorted(task_dir.iterdir()):
             if entry.name.startswith((".", "_")):
                 continue
             if entry.is_file() and entry.suffix == ".py":
-                plans.append(CorpusPlan(task_dir.name, entry.stem, entry))
+                plans.append(CorpusPlan(task_dir.name, entry.stem, entry, spec))
             elif entry.is_dir() and any(entry.glob("*.py")):
-                plans.append(CorpusPlan(task_dir.name, entry.name, entry))
+                plans.append(CorpusPlan(task_dir.name, entry.name, entry, spec))
     # paper first within a task, then the alternatives
     return sorted(plans, key=lambda p: (p.task, p.name != "paper", p.name))
 
@@ -163,7 +179,7 @@ def run_one(plan: CorpusPlan, seed: int, step_timeout_s: float | None) -> dict:
     t0 = time.monotonic()
     out = {"seed": seed, "success": False, "message": "", "wall_s": 0.0, "steps_ok": 0, "steps": 0}
     try:
-        req = EpisodeRequest(plan.task, seed, plan_path=str(plan.path))
+        req = EpisodeRequest(plan.episode_task, seed, plan_path=str(plan.path))
         if step_timeout_s is not None:
             req.step_timeout_s = float(step_timeout_s)
         result, _ = run_task_episode(req)
@@ -195,6 +211,30 @@ def summarize(plan: CorpusPlan, runs: list[dict]) -> dict:
                      for r in runs if not r["success"]],
         "mean_wall_s": round(sum(r["wall_s"] for r in runs) / max(len(runs), 1), 2),
     }
+
+
+def merge_seeds(old: dict, new: dict) -> dict:
+    """One plan's entry from two runs: the seeds run now replace the same seeds of `old`, its other seeds stay
+    (seeds 0-4 in one run, 5-9 in the next give the entry for 0-9)."""
+    fresh = set(new["seeds"])
+    kept = [s for s in old["seeds"] if s not in fresh]
+    if not kept:
+        return new
+    seeds = sorted(kept + new["seeds"])
+    ok = sorted([s for s in old["succeeded_seeds"] if s in kept] + new["succeeded_seeds"])
+    failures = sorted([f for f in old["failures"] if f["seed"] in kept] + new["failures"], key=lambda f: f["seed"])
+    wall = (old["mean_wall_s"] * len(kept) + new["mean_wall_s"] * len(new["seeds"])) / len(seeds)
+    return {**new, "seeds": seeds, "successes": len(ok), "succeeded_seeds": ok, "failures": failures,
+            "mean_wall_s": round(wall, 2)}
+
+
+def merge_entries(old: list[dict], new: list[dict], order: dict[str, int]) -> list[dict]:
+    """`--merge`: the other plans' entries of the old report, and per plan the seeds run now over its old ones."""
+    by_key = {(e["task"], e["plan"]): e for e in old}
+    for e in new:
+        key = (e["task"], e["plan"])
+        by_key[key] = merge_seeds(by_key[key], e) if key in by_key else e
+    return sorted(by_key.values(), key=lambda e: order.get(f"{e['task']}/{e['plan']}", 10**6))
 
 
 def headline(entries: list[dict]) -> dict:
@@ -261,7 +301,7 @@ def print_table(entries: list[dict], head: dict) -> None:
             print(f"  {n:>4}  {cause}")
 
 
-def plot(entries: list[dict], out: Path) -> bool:
+def plot(entries: list[dict], out: Path, corpus: str = "foreign_plans") -> bool:
     try:
         import matplotlib
 
@@ -306,9 +346,10 @@ def plot(entries: list[dict], out: Path) -> bool:
     ax.set_xlim(spans[0][0] - 0.3, spans[-1][1] + 0.3)
     from matplotlib.patches import Patch
 
-    ax.legend(handles=[Patch(color="tab:blue", label="paper.py"), Patch(color="tab:orange", label="alt_*"),
-                       ax.get_lines()[0]], loc="upper right", fontsize=8, bbox_to_anchor=(1.0, 0.97))
-    ax.set_title("Plans we did not write: successes per plan, grouped by task", pad=60)
+    kinds = [Patch(color="tab:blue", label="paper.py")] if any(e["plan"] == "paper" for e in entries) else []
+    kinds.append(Patch(color="tab:orange", label="alt_*" if kinds else "plan"))
+    ax.legend(handles=kinds + [ax.get_lines()[0]], loc="upper right", fontsize=8, bbox_to_anchor=(1.0, 0.97))
+    ax.set_title(f"Plans we did not write (bench/{corpus}): successes per plan, grouped by task", pad=60)
     fig.tight_layout()
     out.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(out, dpi=120)
@@ -329,7 +370,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--plot-out", type=Path, default=DEFAULT_PLOT, help=f"bar chart (default {DEFAULT_PLOT})")
     ap.add_argument("--no-plot", action="store_true", help="do not draw the bar chart")
     ap.add_argument("--merge", action="store_true",
-                    help="keep the other plans' entries of an existing --json-out and replace only those run now")
+                    help="keep the other plans' entries of an existing --json-out and, for the plans run now, "
+                         "their other seeds (the seeds run now replace the same seeds)")
     ap.add_argument("--step-timeout", type=float, default=None,
                     help="seconds one plan step may take (default: the episode's own, 300 s)")
     ap.add_argument("--list", action="store_true", help="list the selected corpus plans and exit")
@@ -348,7 +390,7 @@ def main(argv: list[str] | None = None) -> int:
         old["headline"] = head
         args.from_json.write_text(json.dumps(old, indent=2) + "\n")  # causes and headline brought up to date
         print_table(entries, head)
-        if not args.no_plot and plot(entries, args.plot_out):
+        if not args.no_plot and plot(entries, args.plot_out, Path(args.corpus).name):
             print(f"\ndrew {args.plot_out}")
         return 0
 
@@ -383,10 +425,8 @@ def main(argv: list[str] | None = None) -> int:
     if args.merge and args.json_out.exists():
         try:
             old = json.loads(args.json_out.read_text())
-            fresh = {(e["task"], e["plan"]) for e in entries}
-            kept = [e for e in old.get("plans", []) if (e["task"], e["plan"]) not in fresh]
             order = {p.key: i for i, p in enumerate(discover(args.corpus))}
-            entries = sorted(kept + entries, key=lambda e: order.get(f"{e['task']}/{e['plan']}", 10**6))
+            entries = merge_entries(old.get("plans", []), entries, order)
         except (OSError, ValueError, KeyError) as exc:
             print(f"could not merge with {args.json_out}: {exc}; writing only this run", file=sys.stderr)
 
@@ -402,7 +442,7 @@ def main(argv: list[str] | None = None) -> int:
     args.json_out.write_text(json.dumps(report, indent=2) + "\n")
     print_table(entries, head)
     print(f"\nwrote {args.json_out}", end="")
-    if not args.no_plot and plot(entries, args.plot_out):
+    if not args.no_plot and plot(entries, args.plot_out, Path(args.corpus).name):
         print(f" and {args.plot_out}", end="")
     print(f"  ({report['wall_s']:.0f} s)")
     return 0
