@@ -3,9 +3,6 @@ each worker starts warm (imports cost about a second; a fork costs milliseconds)
 here, because the server must come up; the worker that needs a module then reports the import error.
 
 Two cores' worth of work, done side by side (bench/startup.py; `docs/results/recording.md`, start-up):
-- as soon as MuJoCo is imported, threads process the robot's collision meshes into MuJoCo's mesh cache
-  (`sim.mesh_warmup`: most of a scene's first compile, which MuJoCo itself does in one thread on two cores),
-  while this thread imports the task library and builds the scene's spec;
 - a thread compiles a scene as soon as MuJoCo and the scene modules are imported (MuJoCo's compile releases
   the GIL): what the server was started to build (`forkserver.ENV_WARM`; `hgen run`: its episode's scene,
   `episode_worker.prebuild`, which that episode's worker then takes instead of building it), or else the
@@ -13,7 +10,7 @@ Two cores' worth of work, done side by side (bench/startup.py; `docs/results/rec
   worker inherits (a scene's compile drops from about 1.05 s to 0.25 s);
 - meanwhile this thread imports the rest (Drake, OMPL, the planner) and loads the collision checks' kernel
   from numba's cache (a locked-down worker could not write it there).
-All are done before the server forks anyone: no thread outlives this module.
+Both are done before the server forks anyone: no thread outlives this module.
 """
 
 from __future__ import annotations
@@ -28,9 +25,6 @@ from humanoidgen.sandbox.forkserver import ENV_WARM  # in the server's environme
 
 os.environ.setdefault("MUJOCO_GL", "egl")
 
-# What the robot's mesh warm-up needs.
-_FOR_THE_MESHES = ("numpy", "mujoco", "humanoidgen.assets.robot_files", "humanoidgen.sim.robot",
-                   "humanoidgen.sim.mesh_warmup")
 # What a task's scene needs (the object families `objects.library` imports when first asked, numpy's random
 # generators for the layout): imported before the scene's thread starts, so that the two threads do not
 # import the same modules at once.
@@ -73,15 +67,6 @@ def _compile_scene(warm: str | None) -> None:
         SceneBuilder().build()
 
 
-def _warm_meshes() -> None:
-    """Start processing the robot's collision meshes (`sim.mesh_warmup`); the scene's compile waits for it."""
-    with contextlib.suppress(Exception):
-        from humanoidgen.assets.robot_files import resolve_assets_root
-        from humanoidgen.sim import mesh_warmup, robot
-
-        mesh_warmup.start(*robot.robot_collision_meshes(resolve_assets_root()))
-
-
 def _load_kernel() -> None:
     """Load the collision checks' kernel (numba) now. Not here: the recording level of detail and the
     point-cloud kernel. Workers hand back configurations and the collecting process renders and samples the
@@ -95,22 +80,14 @@ def _load_kernel() -> None:
 
 def _warm() -> None:
     warm = os.environ.pop(ENV_WARM, None)
-    _import(_FOR_THE_MESHES)
-    _warm_meshes()
+    _import(_FOR_THE_SCENE)
+    scene = threading.Thread(target=_compile_scene, args=(warm,), name="hgen-warm-scene")
+    scene.start()
     try:
-        _import(_FOR_THE_SCENE)
-        scene = threading.Thread(target=_compile_scene, args=(warm,), name="hgen-warm-scene")
-        scene.start()
-        try:
-            _import(_THE_REST)
-            _load_kernel()
-        finally:
-            scene.join()
+        _import(_THE_REST)
+        _load_kernel()
     finally:
-        with contextlib.suppress(Exception):  # (a scene that failed before its compile did not wait for it)
-            from humanoidgen.sim import mesh_warmup
-
-            mesh_warmup.wait()
+        scene.join()
 
 
 _warm()

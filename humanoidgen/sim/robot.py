@@ -212,22 +212,6 @@ def _split_visual_and_collision(spec: mujoco.MjSpec, robot_dir: Path, max_faces:
             geom.group = ROBOT_COLLISION_GROUP
 
 
-def collision_meshes(spec: mujoco.MjSpec) -> list:
-    """The mesh files the robot's collision geoms use: what `build_robot_spec` keeps as files (visual geoms draw
-    decimated copies, `_split_visual_and_collision`)."""
-    used = {g.meshname for g in spec.geoms if g.type == mujoco.mjtGeom.mjGEOM_MESH and (g.contype or g.conaffinity)}
-    return [m for m in spec.meshes if m.name in used and m.file]
-
-
-def robot_collision_meshes(assets_root: Path) -> tuple[mujoco.MjSpec, list]:
-    """The upstream robot as far as its collision geoms go, and the mesh files they will use: the files a
-    `build_robot_spec` spec compiles, known in a few milliseconds (nothing decimated, nothing added), so that
-    `mesh_warmup` can process them while the rest is still being built."""
-    spec = mujoco.MjSpec.from_file(str(Path(assets_root) / "h1_2" / "h1_2.xml"))
-    _disable_static_collisions(spec)
-    return spec, collision_meshes(spec)
-
-
 def _drop_unused_meshes(spec: mujoco.MjSpec) -> None:
     """Delete the meshes no geom uses: the upstream meshes that only visual geoms used (they draw decimated
     copies now), 16 meshes and 177k faces that every compile processed for nothing (about 0.25 s of the

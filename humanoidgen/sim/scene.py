@@ -15,7 +15,6 @@ import mujoco
 import numpy as np
 
 from humanoidgen.assets.robot_files import resolve_assets_root
-from humanoidgen.sim import mesh_warmup
 from humanoidgen.sim.cameras import add_cameras
 from humanoidgen.sim.layout import ROBOT_BASE_POS, TABLE_THICKNESS, TABLE_TOP_Z, TABLE_X, TABLE_Y
 from humanoidgen.sim.meshes import floor_grid, visual_faces
@@ -173,7 +172,6 @@ class SceneBuilder:
 
     # -- compile -----------------------------------------------------------------------------------------
     def build(self) -> Scene:
-        mesh_warmup.wait()  # a warm-up of the robot's meshes under way: then they are all in MuJoCo's cache
         model = self.spec.compile()
         return Scene(model=model, objects=list(self._objects), geom_labels=_geom_labels(model, self._objects),
                      label_names=_label_names(self._objects))
