@@ -15,6 +15,12 @@ Each round runs, in fresh processes:
     python bench/startup.py --rounds 3 --against /work/old   # taking turns with another checkout, round by
                                                             # round: its results go to --before-json
 
+Python's compiled bytecode: each checkout's package is compiled (`compileall`, into its `__pycache__`) before
+any timing, as an installed `hgen` has it (pip compiles what it installs; Python writes the rest on first
+import). Where the environment sets PYTHONDONTWRITEBYTECODE (this machine's does), nothing would be written and
+every run would compile the package's modules from source again, about 0.25 s of `hgen run`'s start;
+`--no-bytecode` times that (it removes nothing: a checkout compiled before keeps its bytecode).
+
 The probe starts the server as `hgen run` does: told which episode to build while it warms up
 (`forkserver.prestart(warm=...)`), where the checkout's `prestart` takes that. Where `perf` can count,
 `cpu_s` is the CPU time of `hgen run`'s whole process tree (server, worker and twin included; the episode's
@@ -92,6 +98,12 @@ def run_cli(task: str, seed: int, code: Path = ROOT) -> dict:
             "beyond_episode_s": round(total - d["wall_seconds"], 3), "cpu_s": cpu, "success": d["success"]}
 
 
+def compile_bytecode(code: Path) -> None:
+    """Compile the checkout's package to bytecode, as an installed `hgen` has it (see the module docstring)."""
+    subprocess.run([sys.executable, "-m", "compileall", "-q", str(code / "humanoidgen")], check=True,
+                   capture_output=True)
+
+
 def _task_clock(path: Path) -> float | None:
     """CPU seconds from `perf stat -x,` output, None where perf could not count."""
     try:
@@ -142,7 +154,7 @@ def _commit(code: Path) -> str:
                           text=True).stdout.strip()
 
 
-def _summary(task: str, seed: int, code: Path, rows: list[dict], turns: str | None) -> dict:
+def _summary(task: str, seed: int, code: Path, rows: list[dict], turns: str | None, no_bytecode: bool) -> dict:
     commit = _commit(code)
     beyond = [r["cli"]["beyond_episode_s"] for r in rows]
     result = {"what": f"hgen run {task} --seed {seed}: wall time from start to exit minus the episode's "
@@ -150,6 +162,7 @@ def _summary(task: str, seed: int, code: Path, rows: list[dict], turns: str | No
               "commit": commit, "machine": _machine()}
     if turns:
         result["taking_turns_with"] = turns
+    result["bytecode"] = "as the environment has it" if no_bytecode else "compiled first (compileall)"
     result.update({"rounds": rows, "median_beyond_episode_s": round(statistics.median(beyond), 3),
                    "median_cpu_s": _median([r["cli"]["cpu_s"] for r in rows]),
                    "median_phases": {key: round(statistics.median(r["phases"][key] for r in rows), 3)
@@ -168,9 +181,13 @@ def main() -> None:
                     help="another checkout, timed in turns with --code (it goes first in each round)")
     ap.add_argument("--before-json", type=Path, default=ROOT / "bench/results/startup_before.json",
                     help="where --against's results go")
+    ap.add_argument("--no-bytecode", action="store_true",
+                    help="do not compile the checkouts' bytecode first (see above)")
     args = ap.parse_args()
     codes = [args.code] if args.against is None else [args.against, args.code]
     for code in codes:
+        if not args.no_bytecode:
+            compile_bytecode(code)
         run_cli(args.task, args.seed, code)  # warm the OS file cache and numba's kernels
     rows: dict[Path, list[dict]] = {code: [] for code in codes}
     for k in range(args.rounds):
@@ -180,7 +197,7 @@ def main() -> None:
     for code, path in outs:
         other = next((f"{_commit(c)} (round by round, it first)" if c == args.against else f"{_commit(c)}"
                       for c in codes if c != code), None)
-        result = _summary(args.task, args.seed, code, rows[code], other)
+        result = _summary(args.task, args.seed, code, rows[code], other, args.no_bytecode)
         path.write_text(json.dumps(result, indent=2) + "\n")
         print(f"{code} ({result['commit']}): beyond the episode median {result['median_beyond_episode_s']} s, "
               f"CPU {result['median_cpu_s']} s; phases {result['median_phases']}; wrote {path}")

@@ -132,3 +132,33 @@ def test_warm_up_compiles_the_kernel_the_planner_calls(tmp_path):
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300, env=env)
     assert r.returncode == 0, r.stderr[-2000:]
     assert r.stdout.strip().splitlines()[-1] == "1"
+
+
+def test_the_kernel_loads_without_scipy_and_a_later_blas_call_still_compiles(tmp_path):
+    """warm_up loads numba's registries without importing scipy.linalg (numba only probes it for BLAS; the
+    kernel needs none: 0.25 s of the fork server's start); a compiled np.dot later in the same process still
+    works (numba imports SciPy then), and the import system is left as it was."""
+    import os
+    import subprocess
+    import sys
+
+    code = ("import sys; from humanoidgen.planning import broadphase as b; b.warm_up(); "
+            "print('scipy.linalg' in sys.modules); import numpy as np; from numba import njit; "
+            "f = njit(lambda a, c: np.dot(a, c)); a = np.arange(4.0).reshape(2, 2); "
+            "print(bool((f(a, a) == a @ a).all())); print('scipy.linalg' in sys.modules)")
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path))
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300, env=env)
+    assert r.returncode == 0, r.stderr[-2000:]
+    assert r.stdout.split() == ["False", "True", "True"]
+
+
+def test_without_blas_changes_nothing_where_scipy_linalg_is_imported():
+    import sys
+
+    import scipy.linalg
+
+    from humanoidgen.planning.broadphase import without_blas
+
+    with without_blas():
+        import scipy.linalg as again
+    assert again is scipy.linalg and sys.modules["scipy.linalg"] is scipy.linalg

@@ -164,3 +164,18 @@ def test_the_server_builds_the_scene_it_is_told_before_it_forks_and_comes_up_if_
                        text=True, timeout=600, cwd=ROOT, env=env)
     assert r.returncode == 0, r.stderr[-3000:]
     assert int(r.stdout.strip().splitlines()[-1]) == prebuilt  # what a worker inherited from the server
+
+
+def test_the_parent_of_an_episode_imports_no_planner():
+    """`hgen run`'s own process imports what it needs to run and judge an episode, not the planner (numba,
+    Drake: half a second of CPU beside the fork server's start on two cores); the worker and its twin get the
+    planner from the server."""
+    code = ("import sys; import humanoidgen.cli.main; "
+            "from humanoidgen.episodes.task_episode import EpisodeRequest, run_task_episode, load_spec; "
+            "from humanoidgen.episodes.video import VideoWriter; load_spec('block_stack_single'); "
+            "print(sorted(m for m in ('numba', 'pydrake', 'ompl', 'scipy', 'humanoidgen.planning.planner', "
+            "'humanoidgen.planning.collision') if m in sys.modules))")
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")]))
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300, cwd=ROOT, env=env)
+    assert r.returncode == 0, r.stderr[-2000:]
+    assert r.stdout.strip().splitlines()[-1] == "[]"

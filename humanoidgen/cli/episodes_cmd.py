@@ -11,6 +11,8 @@ from rich.console import Console
 from rich.markup import escape
 from rich.table import Table
 
+from humanoidgen.cli import fast_exit
+
 console = Console()
 
 
@@ -140,6 +142,7 @@ def run(
         console.print(f"video: {video}")
     if json_out is not None:
         json_out.write_text(json.dumps(result.to_dict(), indent=2))
+    fast_exit.allow()  # all written (the video is closed, the JSON too): no need to wait for the teardown
     raise typer.Exit(0 if result.success else 2)
 
 

@@ -7,9 +7,24 @@ from pathlib import Path
 
 import typer
 
-from humanoidgen.cli import assets_cmd, dataset_cmd, episodes_cmd, generate_cmd, policy_cmd, sandbox_cmd
+from humanoidgen.cli import assets_cmd, dataset_cmd, episodes_cmd, fast_exit, generate_cmd, policy_cmd, sandbox_cmd
 
-app = typer.Typer(
+
+class _Program(typer.Typer):
+    """The `hgen` program: a command that has written everything (`fast_exit.allow`) ends its process without
+    the interpreter's teardown. Only calling the app as a program comes here (the `hgen` script,
+    `python -m humanoidgen.cli.main`); typer's test runner invokes the commands without it."""
+
+    def __call__(self, *args, **kwargs):
+        try:
+            return super().__call__(*args, **kwargs)
+        except SystemExit as exc:
+            if fast_exit.allowed():
+                fast_exit.exit_now(exc.code)
+            raise
+
+
+app = _Program(
     help=(
         "humanoidgen: bimanual dexterous manipulation for the Unitree H1-2 with Inspire hands.\n\n"
         "Start with `hgen assets fetch` (downloads the robot model once), then `hgen render --out scene.png` "

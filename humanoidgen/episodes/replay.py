@@ -26,11 +26,10 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from humanoidgen.episodes.recorder import EpisodeRecorder, RecorderConfig
-from humanoidgen.planning.settling import MAX_REST_WAIT_S
 from humanoidgen.sim.action import ACTION_DIM
 from humanoidgen.sim.env import HumanoidEnv
 from humanoidgen.sim.fingerprint import changed_fields, fingerprint
-from humanoidgen.sim.rest import moving_objects, object_dofs
+from humanoidgen.sim.rest import MAX_REST_WAIT_S, moving_objects, object_dofs
 from humanoidgen.tasks.judge import judge
 
 DIVERGED = 1e-6  # m or rad: an honest worker matches the replay bit for bit

@@ -9,6 +9,11 @@ per move for some 30 x 60 pairs, where numpy's per-call overhead cost more than 
 
 from __future__ import annotations
 
+import contextlib
+import sys
+import threading
+from collections.abc import Iterator
+
 import numpy as np
 from numba import njit
 
@@ -35,14 +40,40 @@ def _read_only(ids) -> np.ndarray:
 
 def warm_up() -> None:
     """Compile (or load from the cache) the kernel now, for the array types MuJoCo hands it: a process that
-    forks locked-down workers does this once, since a worker may not write the compiled code to the cache."""
+    forks locked-down workers does this once, since a worker may not write the compiled code to the cache.
+    Numba's first compile or cache load in a process is done without SciPy's BLAS (`without_blas`)."""
     import mujoco
 
     model = mujoco.MjModel.from_xml_string("<mujoco><worldbody><geom type='box' size='1 1 1'/>"
                                            "<geom type='sphere' size='0.1' pos='0 0 3'/></worldbody></mujoco>")
     data = mujoco.MjData(model)
     mujoco.mj_kinematics(model, data)
-    candidate_pairs(model, data, np.array([1]), np.array([0]), 0.0)
+    with without_blas():
+        candidate_pairs(model, data, np.array([1]), np.array([0]), 0.0)
+
+
+_BLAS_PROBE = "scipy.linalg"
+_blas_lock = threading.Lock()
+
+
+@contextlib.contextmanager
+def without_blas() -> Iterator[None]:
+    """Numba's first compile or cache load in a process imports all of its lowering registries, and one of
+    them imports scipy.linalg (0.25 s, with numpy.f2py) only to see whether BLAS is there for `np.dot` and
+    friends (`numba.np.arraymath._HAVE_BLAS`). This kernel calls none of them: while this holds, scipy.linalg
+    cannot be imported, so numba finds no BLAS and moves on. Numba compiles the one function that asks
+    (vector inner products) with its own loop instead, and a later `np.dot` or `np.linalg` in a compiled
+    function imports SciPy then, as usual. Nothing changes where scipy.linalg is imported already."""
+    with _blas_lock:
+        if _BLAS_PROBE in sys.modules:
+            yield
+            return
+        sys.modules[_BLAS_PROBE] = None  # type: ignore[assignment]  # the import system's "cannot import"
+        try:
+            yield
+        finally:
+            if sys.modules.get(_BLAS_PROBE, 0) is None:
+                del sys.modules[_BLAS_PROBE]
 
 
 @njit(cache=True, nogil=True)

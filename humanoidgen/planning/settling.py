@@ -3,11 +3,9 @@
 from __future__ import annotations
 
 from humanoidgen.planning.context import PlanningContext
-from humanoidgen.sim.rest import moving_objects, object_dofs
+from humanoidgen.sim.rest import MAX_REST_WAIT_S, moving_objects, object_dofs
 
-# Long enough for a cube tipped from 15 cm to land and stop bouncing (about 0.2 s); an object still moving
-# after this is judged where it is (a part swinging on its own, a ball rolling away).
-MAX_REST_WAIT_S = 1.0
+__all__ = ["MAX_REST_WAIT_S", "wait_until_still"]
 
 
 def wait_until_still(ctx: PlanningContext, max_s: float = MAX_REST_WAIT_S) -> list[str]:

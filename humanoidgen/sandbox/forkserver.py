@@ -4,7 +4,8 @@ starts in milliseconds with warm imports and no secret in its memory or in `/pro
 
 This is the standard library's multiprocessing "forkserver" start method. Its server is a process of its
 own, spawned (fork + exec) from the parent; it runs no plan code itself and forks one worker per request.
-Server and workers die with the process that started them (`lifeline`).
+Server and workers die with the process that started them (`lifeline`). The server's stdout and stderr are
+pipes that process relays (`relay`), so that a reader of its output is done when it is.
 
 A forked worker would also re-run the parent's `__main__` script before anything else (multiprocessing's
 "main fixup"): the `hgen` console script, or in a Ray worker Ray's `default_worker.py`, which imports all of
@@ -26,6 +27,7 @@ from collections.abc import Iterator
 
 from humanoidgen.sandbox.lifeline import ENV_PARENT
 from humanoidgen.sandbox.lockdown import scrubbed_environ
+from humanoidgen.sandbox.relay import relayed_stdio
 
 # lifeline first: the server dies with its parent from the start, not after seconds of imports
 PRELOAD = ["humanoidgen.sandbox.lifeline", "humanoidgen.sandbox.preload"]
@@ -71,7 +73,7 @@ def context(warm: tuple[str, dict] | None = None) -> mp.context.BaseContext:
             env[ENV_PARENT] = str(os.getpid()) if threading.current_thread() is threading.main_thread() else "-"
             if warm is not None:
                 env[ENV_WARM] = json.dumps({"call": warm[0], "data": warm[1]})
-            with _environ(env):
+            with _environ(env), relayed_stdio():  # no reader of our output waits for the server's end
                 mp_forkserver.ensure_running()
             _started_env = env
     return ctx

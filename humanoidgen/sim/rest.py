@@ -17,6 +17,11 @@ STILL_LINEAR = 0.01
 STILL_ANGULAR = 0.1
 STILL_LINEAR_ACC = 1.0
 STILL_ANGULAR_ACC = 10.0
+# Long enough for a cube tipped from 15 cm to land and stop bouncing (about 0.2 s); an object still moving
+# after this is judged where it is (a part swinging on its own, a ball rolling away). Here, not in
+# `planning.settling` which waits for it, so that the parent's replay client (`episodes.replay`) can name it
+# without importing the planner (numba, Drake: half a second of `hgen run`'s start).
+MAX_REST_WAIT_S = 1.0
 
 
 def object_dofs(scene: Scene) -> dict[str, tuple[np.ndarray, np.ndarray]]:

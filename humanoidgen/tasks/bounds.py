@@ -22,7 +22,7 @@ AXES = "xyz"
 
 class Strict(BaseModel):
     # allow_inf_nan=False: YAML's .nan / .inf are not numbers a layout can use.
-    model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
+    model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False, defer_build=True)
 
 
 def bad(message: str, **ctx: Any) -> PydanticCustomError:

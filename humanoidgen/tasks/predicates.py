@@ -23,7 +23,7 @@ _REF = re.compile(r"^\s*([a-z_]+)\s*\[\s*(\d+)\s*\]\s*$")
 
 
 class _Strict(BaseModel):
-    model_config = ConfigDict(extra="forbid", frozen=True)
+    model_config = ConfigDict(extra="forbid", frozen=True, defer_build=True)
 
 
 class ObjRef(_Strict):
