@@ -107,7 +107,11 @@ def train(
 
 @app.command()
 def eval(  # noqa: A001 - the command is called eval
-    run: Path = typer.Argument(..., help="A run folder (all its kept checkpoints) or one checkpoint file."),
+    run: Path = typer.Argument(..., help="A run folder (all its kept checkpoints) or one checkpoint file; with "
+                                          "--policy random|noop, the task."),
+    policy: str | None = typer.Option(None, "--policy", help="A baseline instead of a trained run: random "
+                                                             "(uniform joint targets, each held 4 actions) or noop "
+                                                             "(hold the start posture)."),
     checkpoint: list[Path] = typer.Option(None, "--checkpoint", help="Only these checkpoints (repeatable)."),
     task: str | None = typer.Option(None, help="The task to evaluate on; it must be the one trained on."),
     episodes: int = typer.Option(20, min=1, help="Episodes per seed and checkpoint."),
@@ -123,15 +127,24 @@ def eval(  # noqa: A001 - the command is called eval
     ray_gpus: float = typer.Option(0.0, min=0.0, help="With --ray, GPUs per episode."),
     action_steps: int | None = typer.Option(None, "--action-steps", help="Actions executed per prediction "
                                                                           "(default: the run's n_action_steps)."),
+    baselines: bool = typer.Option(True, "--baselines/--no-baselines", help="Also run the random and noop "
+                                                                            "baselines on the same scenes."),
+    data: Path | None = typer.Option(None, "--data", help="With --policy random: draw targets within this zarr's "
+                                                         "action range and at its action rate (default: the joint "
+                                                         "limits, 10 Hz)."),
 ) -> None:
-    """Run the policy in its task and report success mean and std over seeds and checkpoints.
+    """Run the policy in its task and report success mean and std over seeds and checkpoints, with the random
+    and no-op baselines' on the same scenes beside it.
 
     Example: hgen policy eval runs/cd_dp3 --task close_drawer --episodes 20 --seeds 0,1,2
+
+    Example (a baseline alone): hgen policy eval --policy random close_drawer --episodes 20
     """
     os.environ.setdefault("MUJOCO_GL", "egl")
     import torch
 
     from humanoidgen.policies.eval import evaluate
+    from humanoidgen.policies.registry import BASELINE_NAMES
 
     if threads:
         torch.set_num_threads(threads)
@@ -140,21 +153,48 @@ def eval(  # noqa: A001 - the command is called eval
     except ValueError:
         _fail(f"--seeds must be comma-separated integers, got {seeds!r}")
         return
+    if policy is not None and policy not in BASELINE_NAMES:
+        _fail(f"--policy is for the baselines ({', '.join(BASELINE_NAMES)}); a trained {policy} is evaluated from "
+              f"its run folder: hgen policy eval RUN")
     try:
-        report = evaluate(run, task, episodes, seed_list, checkpoints=checkpoint or None, device=device,
-                          video_dir=video, max_steps=max_steps, ray_address=ray_address, ray_gpus=ray_gpus,
-                          action_steps=action_steps)
+        if policy is not None:
+            report = _baseline_report(policy, str(run), episodes, seed_list, data, max_steps, video)
+        else:
+            report = evaluate(run, task, episodes, seed_list, checkpoints=checkpoint or None, device=device,
+                              video_dir=video, max_steps=max_steps, ray_address=ray_address, ray_gpus=ray_gpus,
+                              action_steps=action_steps, baselines=baselines)
     except _errors() as exc:
         _fail(_one_line(exc))
         return
     for (ckpt, seed), rate in report.rates().items():
         typer.echo(f"{Path(ckpt).name} seed {seed}: {100 * rate:.0f}% of {episodes}")
-    typer.echo(f"{report.policy} on {report.task}: success {100 * report.success_mean:.1f}% +- "
-               f"{100 * report.success_std:.1f} over {len(report.rates())} (checkpoint, seed) pairs")
+    typer.echo(report.summary())
+    if report.baseline_line():
+        typer.echo(report.baseline_line())
     if out is not None:
         out.parent.mkdir(parents=True, exist_ok=True)
         out.write_text(json.dumps(report.to_dict(), indent=2))
         typer.echo(f"wrote {out}")
+
+
+def _baseline_report(policy: str, task: str, episodes: int, seeds: tuple[int, ...], data: Path | None,
+                     max_steps: int | None, video: Path | None):
+    from humanoidgen.envs.config import TaskEnvConfig
+    from humanoidgen.policies.baseline_eval import evaluate_baseline, zarr_range
+
+    action_range, cfg = None, TaskEnvConfig(max_steps=max_steps)
+    if data is not None:
+        action_range, attrs = zarr_range(data)
+        if attrs.get("task") not in (None, task):
+            raise ValueError(f"{data} holds task {attrs['task']!r}, not {task!r}")
+        cfg = TaskEnvConfig.from_recorder(dict(attrs.get("recorder") or {}), float(attrs.get("control_hz", 50.0)),
+                                          max_steps=max_steps)
+    report = evaluate_baseline(policy, task, episodes, seeds, env_config=cfg, action_range=action_range,
+                               video_dir=video)
+    if policy == "random":
+        typer.echo(f"random targets within {report.info['action_range']['source']}, each held "
+                   f"{report.info['hold_actions']} actions")
+    return report
 
 
 @app.command()
@@ -172,6 +212,8 @@ def bench(
     out: Path = typer.Option(Path("bench/results/policies.json"), help="JSON of the rows; a .png plot beside it."),
     device: str = typer.Option("auto", help="auto, cpu or cuda."),
     workers: int = typer.Option(1, min=1, help="Collection workers for missing data."),
+    baselines: bool = typer.Option(True, "--baselines/--no-baselines", help="The random and noop baselines on "
+                                                                            "each row's scenes too."),
 ) -> None:
     """The study: tasks x demos x policies, trained and evaluated; writes a table, a JSON and a plot.
 
@@ -185,7 +227,8 @@ def bench(
     cfg = StudyConfig(tasks=task_list, demos=tuple(int(d) for d in demos.split(",")),
                       policies=tuple(p.strip() for p in policies.split(",")), data_root=data_root,
                       runs_root=runs_root, overrides={p: over for p in ("dp", "dp3")}, eval_episodes=episodes,
-                      eval_seeds=tuple(int(s) for s in seeds.split(",")), device=device, collect_workers=workers)
+                      eval_seeds=tuple(int(s) for s in seeds.split(",")), device=device, collect_workers=workers,
+                      baselines=baselines)
     try:
         rows = run_study(cfg)
     except _errors() as exc:
