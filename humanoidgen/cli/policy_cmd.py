@@ -70,9 +70,12 @@ def train(
     policy: str = typer.Option(..., "--policy", help="dp (head RGB + joints) or dp3 (point cloud + joints)."),
     data: Path = typer.Option(..., "--data", help="A zarr from `hgen dataset export --zarr`."),
     out: Path = typer.Option(..., "--out", help="Run folder: checkpoints/, latest.pt, config.json."),
-    epochs: int | None = typer.Option(None, min=1, help="Epochs (default 3000, the paper's)."),
+    recipe: str | None = typer.Option(None, "--recipe", help="paper (the paper's GPU recipe: 3000 epochs, batch 256), "
+                                                             "fast (CPU-sized: 40 epochs, batch 64, a small U-Net) or "
+                                                             "reduced; default: paper with CUDA, fast without."),
+    epochs: int | None = typer.Option(None, min=1, help="Epochs (default: the recipe's; paper 3000, fast 40)."),
     episodes: int | None = typer.Option(None, min=1, help="Train on the first N episodes (20, 50, 100 ...)."),
-    batch_size: int | None = typer.Option(None, min=1, help="Batch size (default 256)."),
+    batch_size: int | None = typer.Option(None, min=1, help="Batch size (default: the recipe's; paper 256)."),
     checkpoint_every: int | None = typer.Option(None, min=1, help="Keep a checkpoint every N epochs (and the last)."),
     config: str | None = typer.Option(None, help="More settings as JSON (or a JSON file), e.g. "
                                                  "'{\"unet\": {\"down_dims\": [64, 128, 256]}, \"num_points\": 512}'."),
@@ -93,6 +96,7 @@ def train(
         torch.set_num_threads(threads)
     over = _overrides(epochs, batch_size, episodes, checkpoint_every, config)
     try:
+        over = _with_recipe(policy, recipe, over, device, resume)
         result = run_train(policy, data, out, over, device=device, resume=resume, task=task)
     except _errors() as exc:
         _fail(_one_line(exc))
@@ -103,6 +107,28 @@ def train(
                f"{result.seconds / 60:.1f} min ({result.seconds_per_epoch:.2f} s/epoch, {result.steps_per_epoch} "
                f"steps each); loss {result.losses[0]:.4f} -> {result.losses[-1]:.4f}; checkpoints in "
                f"{out / 'checkpoints'}")
+
+
+def _with_recipe(policy: str, recipe: str | None, over: dict, device: str, resume: bool) -> dict:
+    """The run's settings: the recipe's (named, or by device: `recipes.default_recipe`) under `over`, with one
+    line saying which when the device chose it. A resumed run keeps its own settings unless a recipe is named."""
+    from humanoidgen.policies.recipes import default_recipe, recipe_overrides
+    from humanoidgen.policies.registry import policy_type
+    from humanoidgen.policies.train import resolve_device
+
+    if recipe is None and resume:
+        return over
+    name = recipe or default_recipe(resolve_device(device))
+    over = recipe_overrides(name, policy, over)
+    if recipe is None:
+        ptype = policy_type(policy)
+        cfg = ptype.config(over)
+        size = sum(p.numel() for p in ptype.model_cls()(cfg).parameters()) / 1e6
+        why = "no CUDA device: the CPU-sized 'fast' recipe" if name == "fast" else "CUDA: the paper's recipe"
+        typer.echo(f"{why} ({size:.1f} M parameters, U-Net {'/'.join(map(str, cfg.unet.down_dims))}, batch "
+                   f"{cfg.train.batch_size}, {cfg.train.epochs} epochs); "
+                   + ("--recipe paper trains the paper's" if name == "fast" else "--recipe fast for a smaller one"))
+    return over
 
 
 @app.command()
@@ -205,7 +231,9 @@ def bench(
     policies: str = typer.Option("dp,dp3", help="Policies."),
     data_root: Path = typer.Option(Path("data/policy_study"), help="Where <task>.zarr are (collected if missing)."),
     runs_root: Path = typer.Option(Path("runs/policy_study"), help="Where the runs go."),
-    epochs: int | None = typer.Option(None, min=1, help="Epochs per run (default: the paper's 3000)."),
+    recipe: str | None = typer.Option(None, "--recipe", help="paper, fast or reduced (as for train; default: paper "
+                                                             "with CUDA, fast without)."),
+    epochs: int | None = typer.Option(None, min=1, help="Epochs per run (default: the recipe's)."),
     config: str | None = typer.Option(None, help="Settings for every run, JSON (as for train --config)."),
     episodes: int = typer.Option(20, min=1, help="Evaluation episodes per seed."),
     seeds: str = typer.Option("0,1,2", help="Evaluation seeds."),
@@ -218,15 +246,23 @@ def bench(
     """The study: tasks x demos x policies, trained and evaluated; writes a table, a JSON and a plot.
 
     Example (GPU, the paper's recipe): hgen policy bench --tasks paper --device cuda
+
+    Example (CPU, the fast recipe): hgen policy bench --tasks close_drawer --policies dp3 --demos 50
     """
     os.environ.setdefault("MUJOCO_GL", "egl")
     from humanoidgen.policies.bench import PAPER_TASKS, StudyConfig, format_row, run_study, write_results
 
     over = _overrides(epochs, None, None, None, config)
     task_list = PAPER_TASKS if tasks == "paper" else tuple(t.strip() for t in tasks.split(",") if t.strip())
+    policy_list = tuple(p.strip() for p in policies.split(","))
+    try:
+        by_policy = {p: _with_recipe(p, recipe, over, device, False) for p in policy_list}
+    except _errors() as exc:
+        _fail(_one_line(exc))
+        return
     cfg = StudyConfig(tasks=task_list, demos=tuple(int(d) for d in demos.split(",")),
-                      policies=tuple(p.strip() for p in policies.split(",")), data_root=data_root,
-                      runs_root=runs_root, overrides={p: over for p in ("dp", "dp3")}, eval_episodes=episodes,
+                      policies=policy_list, data_root=data_root,
+                      runs_root=runs_root, overrides=by_policy, eval_episodes=episodes,
                       eval_seeds=tuple(int(s) for s in seeds.split(",")), device=device, collect_workers=workers,
                       baselines=baselines)
     try:

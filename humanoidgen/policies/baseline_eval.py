@@ -33,7 +33,8 @@ def joint_limits(env) -> ActionRange:
 
 def demo_range(model, source: str) -> ActionRange:
     """The action range a trained policy's normalizer was fitted on (`normalizer.MinMaxNormalizer`): x =
-    (y - offset) / scale at y = -1 and 1; a feature that never changed (scale 1, offset -value) is its value."""
+    (y - offset) / scale at y = -1 and 1; a feature that never changed (scale 1, offset -value) is its value.
+    A feature spanning exactly 2.0 has scale 1 too and would read as constant; measured actions never do."""
     norm = model.normalizer
     scale = getattr(norm, "action__scale").detach().cpu().double().numpy()
     offset = getattr(norm, "action__offset").detach().cpu().double().numpy()
