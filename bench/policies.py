@@ -32,19 +32,9 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 os.environ.setdefault("MUJOCO_GL", "egl")
 
 ROOT = Path(__file__).resolve().parent
-REDUCED = {"unet": {"down_dims": [64, 128, 256]}, "n_obs_steps": 2, "n_action_steps": 7, "horizon": 8,
-           "train": {"batch_size": 64, "lr": 3e-4, "lr_warmup_steps": 200}}
-REDUCED_BY_POLICY = {"dp3": {**REDUCED, "num_points": 512},
-                     "dp": {**REDUCED, "image_size": [84, 112], "crop_size": [76, 100]}}
-# The faster CPU recipe (issue 13's 45-minute runs): the point encoder's cost grows with the points and dominates
-# a step, so half the points (256, still the first of the recorded farthest-point order) and a higher peak rate
-# (1e-3, cosine decay after 200 warm-up steps) buy about twice the optimizer steps per CPU-minute; 4 executed
-# actions of the 8 predicted (a new prediction every 0.4 s instead of 0.7 s: the same 30-epoch DP3 closed
-# close_drawer in 9 of 10 scenes instead of 2); DP at 60x80 (cropped 54x72) with one observation step.
-FAST = {**REDUCED, "n_action_steps": 4, "train": {**REDUCED["train"], "lr": 1e-3}}
-FAST_BY_POLICY = {"dp3": {**FAST, "num_points": 256},
-                  "dp": {**FAST, "n_obs_steps": 1, "image_size": [60, 80], "crop_size": [54, 72]}}
-RECIPES = {"reduced": REDUCED_BY_POLICY, "fast": FAST_BY_POLICY}
+sys.path.insert(0, str(ROOT.parent))
+from humanoidgen.policies.recipes import RECIPES, merge  # noqa: E402 (the recipes: humanoidgen/policies/recipes.py)
+
 # (task, policy) pairs of the reduced study, as the issue sizes it.
 REDUCED_RUNS = (("close_drawer", "dp3"), ("open_box_easy", "dp3"), ("dual_bottles_pick_easy", "dp3"),
                 ("close_drawer", "dp"))
@@ -66,7 +56,7 @@ def main() -> int:
     p.add_argument("--device", default="auto")
     p.add_argument("--paper", action="store_true", help="the paper's recipe and study: 14 tasks x 20/50/100 x both")
     p.add_argument("--recipe", choices=sorted(RECIPES), default="reduced",
-                   help="the CPU recipe (reduced: the first one; fast: 256 points, lr 1e-3)")
+                   help="the recipe (reduced: the first CPU one; fast: 256 points, lr 1e-3; paper: the GPU one)")
     p.add_argument("--config", default=None,
                    help="JSON merged into the recipe of every policy run, e.g. '{\"train\": {\"epochs\": 40}}'")
     args = p.parse_args()
@@ -88,8 +78,7 @@ def main() -> int:
         pairs = [(t, q) for t, q in REDUCED_RUNS if q in policies] if tasks is None else \
             [(t, q) for t in tasks for q in policies]
         extra = json.loads(args.config) if args.config else {}
-        recipe = {q: _merge({**o, "train": {**o["train"], "epochs": args.epochs}}, extra)
-                  for q, o in RECIPES[args.recipe].items()}
+        recipe = {q: merge(merge(o, {"train": {"epochs": args.epochs}}), extra) for q, o in RECIPES[args.recipe].items()}
         from humanoidgen.policies.registry import policy_type
 
         for q in policies:  # a bad setting is refused here, before any data is collected
@@ -108,13 +97,6 @@ def main() -> int:
     write_results(rows, cfg, out, out.with_suffix(".png"), settings)
     print(f"wrote {out} and {out.with_suffix('.png')}")
     return 0
-
-
-def _merge(base: dict, extra: dict) -> dict:
-    out = dict(base)
-    for k, v in extra.items():
-        out[k] = _merge(out[k], v) if isinstance(v, dict) and isinstance(out.get(k), dict) else v
-    return out
 
 
 if __name__ == "__main__":

@@ -122,6 +122,16 @@ def test_dp_trains_and_eval_runs_episodes_judged_by_the_predicates(demos_zarr, t
     assert report.success_mean == 0.0 and report.outcomes[0].scene_seed == 100_000
     assert report.outcomes[1].scene_seed == 101_000
     assert all("openness" in o.final for o in report.outcomes)  # where each episode ended, by the predicates
+    # The baselines beside it, on the same scenes and episode length; random within the demonstrations' range.
+    assert set(report.baselines) == {"random", "noop"}
+    for b in report.baselines.values():
+        assert [(o.scene_seed, o.steps) for o in b.outcomes] == [(o.scene_seed, o.steps) for o in report.outcomes]
+    demo = read_demos(demos_zarr, ("state",)).arrays["action"][:]
+    got = report.baselines["random"].info["action_range"]
+    assert got["source"].startswith("demonstrations")
+    np.testing.assert_allclose(got["low"], demo.min(axis=0), atol=1e-4)
+    np.testing.assert_allclose(got["high"], demo.max(axis=0), atol=1e-4)
+    assert "baselines" in report.to_dict() and "baselines on the same 2 scenes" in report.baseline_line()
 
 
 def test_bench_recipes_are_valid_configs():
@@ -196,3 +206,31 @@ def test_a_study_asked_for_more_epochs_resumes_a_finished_run(demos_zarr, tmp_pa
     train("dp3", demos_zarr, run, _with(TINY_DP3, epochs=2), device="cpu", progress=False)
     assert _finished(run) and _finished(run, 2) and _finished(run, None)
     assert not _finished(run, 3)  # asked for 3 epochs: it trains one more (it used to be evaluated at 2)
+
+
+def test_a_cpu_gets_the_cpu_sized_recipe_unless_paper_is_asked_for(demos_zarr, tmp_path, capsys):
+    """`hgen policy train --policy dp3` with no recipe on a CPU trains `fast` (and says so in one line), not the
+    paper's 259 M-parameter GPU recipe; `--recipe paper` forces the paper's; a GPU gets the paper's."""
+    from humanoidgen.cli.policy_cmd import _with_recipe
+    from humanoidgen.policies.recipes import default_recipe
+
+    assert default_recipe("cpu") == "fast" and default_recipe("cuda") == "paper" and default_recipe("cuda:1") == "paper"
+    run = tmp_path / "default"
+    r = CliRunner().invoke(app, ["policy", "train", "--policy", "dp3", "--data", str(demos_zarr), "--out", str(run),
+                                 "--device", "cpu", "--epochs", "1", "--config", '{"num_points": 64}'])
+    assert r.exit_code == 0, r.output
+    lines = [line for line in r.output.splitlines() if "recipe" in line]
+    assert len(lines) == 1 and "no CUDA device: the CPU-sized 'fast' recipe" in lines[0]
+    assert "--recipe paper" in lines[0] and "M parameters" in lines[0]
+    cfg = json.loads((run / "config.json").read_text())
+    assert cfg["train"]["batch_size"] == 64 and cfg["unet"]["down_dims"] == [64, 128, 256]
+    assert cfg["n_action_steps"] == 4 and cfg["num_points"] == 64 and cfg["train"]["epochs"] == 1  # options win
+    # Resumed with only --epochs, it keeps its recipe (the fast settings are not compared against the paper's).
+    r = CliRunner().invoke(app, ["policy", "train", "--policy", "dp3", "--data", str(demos_zarr), "--out", str(run),
+                                 "--device", "cpu", "--epochs", "2", "--resume"])
+    assert r.exit_code == 0, r.output
+    assert json.loads((run / "config.json").read_text())["train"]["epochs"] == 2
+    capsys.readouterr()
+    paper = _with_recipe("dp3", "paper", {}, "cpu", False)  # forced: the configs' defaults, said nothing
+    assert policy_type("dp3").config(paper).train.batch_size == 256 and capsys.readouterr().out == ""
+    assert policy_type("dp3").config(paper).unet.down_dims == (512, 1024, 2048)

@@ -70,9 +70,12 @@ def train(
     policy: str = typer.Option(..., "--policy", help="dp (head RGB + joints) or dp3 (point cloud + joints)."),
     data: Path = typer.Option(..., "--data", help="A zarr from `hgen dataset export --zarr`."),
     out: Path = typer.Option(..., "--out", help="Run folder: checkpoints/, latest.pt, config.json."),
-    epochs: int | None = typer.Option(None, min=1, help="Epochs (default 3000, the paper's)."),
+    recipe: str | None = typer.Option(None, "--recipe", help="paper (the paper's GPU recipe: 3000 epochs, batch 256), "
+                                                             "fast (CPU-sized: 40 epochs, batch 64, a small U-Net) or "
+                                                             "reduced; default: paper with CUDA, fast without."),
+    epochs: int | None = typer.Option(None, min=1, help="Epochs (default: the recipe's; paper 3000, fast 40)."),
     episodes: int | None = typer.Option(None, min=1, help="Train on the first N episodes (20, 50, 100 ...)."),
-    batch_size: int | None = typer.Option(None, min=1, help="Batch size (default 256)."),
+    batch_size: int | None = typer.Option(None, min=1, help="Batch size (default: the recipe's; paper 256)."),
     checkpoint_every: int | None = typer.Option(None, min=1, help="Keep a checkpoint every N epochs (and the last)."),
     config: str | None = typer.Option(None, help="More settings as JSON (or a JSON file), e.g. "
                                                  "'{\"unet\": {\"down_dims\": [64, 128, 256]}, \"num_points\": 512}'."),
@@ -93,6 +96,7 @@ def train(
         torch.set_num_threads(threads)
     over = _overrides(epochs, batch_size, episodes, checkpoint_every, config)
     try:
+        over = _with_recipe(policy, recipe, over, device, resume)
         result = run_train(policy, data, out, over, device=device, resume=resume, task=task)
     except _errors() as exc:
         _fail(_one_line(exc))
@@ -105,9 +109,35 @@ def train(
                f"{out / 'checkpoints'}")
 
 
+def _with_recipe(policy: str, recipe: str | None, over: dict, device: str, resume: bool) -> dict:
+    """The run's settings: the recipe's (named, or by device: `recipes.default_recipe`) under `over`, with one
+    line saying which when the device chose it. A resumed run keeps its own settings unless a recipe is named."""
+    from humanoidgen.policies.recipes import default_recipe, recipe_overrides
+    from humanoidgen.policies.registry import policy_type
+    from humanoidgen.policies.train import resolve_device
+
+    if recipe is None and resume:
+        return over
+    name = recipe or default_recipe(resolve_device(device))
+    over = recipe_overrides(name, policy, over)
+    if recipe is None:
+        ptype = policy_type(policy)
+        cfg = ptype.config(over)
+        size = sum(p.numel() for p in ptype.model_cls()(cfg).parameters()) / 1e6
+        why = "no CUDA device: the CPU-sized 'fast' recipe" if name == "fast" else "CUDA: the paper's recipe"
+        typer.echo(f"{why} ({size:.1f} M parameters, U-Net {'/'.join(map(str, cfg.unet.down_dims))}, batch "
+                   f"{cfg.train.batch_size}, {cfg.train.epochs} epochs); "
+                   + ("--recipe paper trains the paper's" if name == "fast" else "--recipe fast for a smaller one"))
+    return over
+
+
 @app.command()
 def eval(  # noqa: A001 - the command is called eval
-    run: Path = typer.Argument(..., help="A run folder (all its kept checkpoints) or one checkpoint file."),
+    run: Path = typer.Argument(..., help="A run folder (all its kept checkpoints) or one checkpoint file; with "
+                                          "--policy random|noop, the task."),
+    policy: str | None = typer.Option(None, "--policy", help="A baseline instead of a trained run: random "
+                                                             "(uniform joint targets, each held 4 actions) or noop "
+                                                             "(hold the start posture)."),
     checkpoint: list[Path] = typer.Option(None, "--checkpoint", help="Only these checkpoints (repeatable)."),
     task: str | None = typer.Option(None, help="The task to evaluate on; it must be the one trained on."),
     episodes: int = typer.Option(20, min=1, help="Episodes per seed and checkpoint."),
@@ -123,15 +153,24 @@ def eval(  # noqa: A001 - the command is called eval
     ray_gpus: float = typer.Option(0.0, min=0.0, help="With --ray, GPUs per episode."),
     action_steps: int | None = typer.Option(None, "--action-steps", help="Actions executed per prediction "
                                                                           "(default: the run's n_action_steps)."),
+    baselines: bool = typer.Option(True, "--baselines/--no-baselines", help="Also run the random and noop "
+                                                                            "baselines on the same scenes."),
+    data: Path | None = typer.Option(None, "--data", help="With --policy random: draw targets within this zarr's "
+                                                         "action range and at its action rate (default: the joint "
+                                                         "limits, 10 Hz)."),
 ) -> None:
-    """Run the policy in its task and report success mean and std over seeds and checkpoints.
+    """Run the policy in its task and report success mean and std over seeds and checkpoints, with the random
+    and no-op baselines' on the same scenes beside it.
 
     Example: hgen policy eval runs/cd_dp3 --task close_drawer --episodes 20 --seeds 0,1,2
+
+    Example (a baseline alone): hgen policy eval --policy random close_drawer --episodes 20
     """
     os.environ.setdefault("MUJOCO_GL", "egl")
     import torch
 
     from humanoidgen.policies.eval import evaluate
+    from humanoidgen.policies.registry import BASELINE_NAMES
 
     if threads:
         torch.set_num_threads(threads)
@@ -140,21 +179,48 @@ def eval(  # noqa: A001 - the command is called eval
     except ValueError:
         _fail(f"--seeds must be comma-separated integers, got {seeds!r}")
         return
+    if policy is not None and policy not in BASELINE_NAMES:
+        _fail(f"--policy is for the baselines ({', '.join(BASELINE_NAMES)}); a trained {policy} is evaluated from "
+              f"its run folder: hgen policy eval RUN")
     try:
-        report = evaluate(run, task, episodes, seed_list, checkpoints=checkpoint or None, device=device,
-                          video_dir=video, max_steps=max_steps, ray_address=ray_address, ray_gpus=ray_gpus,
-                          action_steps=action_steps)
+        if policy is not None:
+            report = _baseline_report(policy, str(run), episodes, seed_list, data, max_steps, video)
+        else:
+            report = evaluate(run, task, episodes, seed_list, checkpoints=checkpoint or None, device=device,
+                              video_dir=video, max_steps=max_steps, ray_address=ray_address, ray_gpus=ray_gpus,
+                              action_steps=action_steps, baselines=baselines)
     except _errors() as exc:
         _fail(_one_line(exc))
         return
     for (ckpt, seed), rate in report.rates().items():
         typer.echo(f"{Path(ckpt).name} seed {seed}: {100 * rate:.0f}% of {episodes}")
-    typer.echo(f"{report.policy} on {report.task}: success {100 * report.success_mean:.1f}% +- "
-               f"{100 * report.success_std:.1f} over {len(report.rates())} (checkpoint, seed) pairs")
+    typer.echo(report.summary())
+    if report.baseline_line():
+        typer.echo(report.baseline_line())
     if out is not None:
         out.parent.mkdir(parents=True, exist_ok=True)
         out.write_text(json.dumps(report.to_dict(), indent=2))
         typer.echo(f"wrote {out}")
+
+
+def _baseline_report(policy: str, task: str, episodes: int, seeds: tuple[int, ...], data: Path | None,
+                     max_steps: int | None, video: Path | None):
+    from humanoidgen.envs.config import TaskEnvConfig
+    from humanoidgen.policies.baseline_eval import evaluate_baseline, zarr_range
+
+    action_range, cfg = None, TaskEnvConfig(max_steps=max_steps)
+    if data is not None:
+        action_range, attrs = zarr_range(data)
+        if attrs.get("task") not in (None, task):
+            raise ValueError(f"{data} holds task {attrs['task']!r}, not {task!r}")
+        cfg = TaskEnvConfig.from_recorder(dict(attrs.get("recorder") or {}), float(attrs.get("control_hz", 50.0)),
+                                          max_steps=max_steps)
+    report = evaluate_baseline(policy, task, episodes, seeds, env_config=cfg, action_range=action_range,
+                               video_dir=video)
+    if policy == "random":
+        typer.echo(f"random targets within {report.info['action_range']['source']}, each held "
+                   f"{report.info['hold_actions']} actions")
+    return report
 
 
 @app.command()
@@ -165,27 +231,40 @@ def bench(
     policies: str = typer.Option("dp,dp3", help="Policies."),
     data_root: Path = typer.Option(Path("data/policy_study"), help="Where <task>.zarr are (collected if missing)."),
     runs_root: Path = typer.Option(Path("runs/policy_study"), help="Where the runs go."),
-    epochs: int | None = typer.Option(None, min=1, help="Epochs per run (default: the paper's 3000)."),
+    recipe: str | None = typer.Option(None, "--recipe", help="paper, fast or reduced (as for train; default: paper "
+                                                             "with CUDA, fast without)."),
+    epochs: int | None = typer.Option(None, min=1, help="Epochs per run (default: the recipe's)."),
     config: str | None = typer.Option(None, help="Settings for every run, JSON (as for train --config)."),
     episodes: int = typer.Option(20, min=1, help="Evaluation episodes per seed."),
     seeds: str = typer.Option("0,1,2", help="Evaluation seeds."),
     out: Path = typer.Option(Path("bench/results/policies.json"), help="JSON of the rows; a .png plot beside it."),
     device: str = typer.Option("auto", help="auto, cpu or cuda."),
     workers: int = typer.Option(1, min=1, help="Collection workers for missing data."),
+    baselines: bool = typer.Option(True, "--baselines/--no-baselines", help="The random and noop baselines on "
+                                                                            "each row's scenes too."),
 ) -> None:
     """The study: tasks x demos x policies, trained and evaluated; writes a table, a JSON and a plot.
 
     Example (GPU, the paper's recipe): hgen policy bench --tasks paper --device cuda
+
+    Example (CPU, the fast recipe): hgen policy bench --tasks close_drawer --policies dp3 --demos 50
     """
     os.environ.setdefault("MUJOCO_GL", "egl")
     from humanoidgen.policies.bench import PAPER_TASKS, StudyConfig, format_row, run_study, write_results
 
     over = _overrides(epochs, None, None, None, config)
     task_list = PAPER_TASKS if tasks == "paper" else tuple(t.strip() for t in tasks.split(",") if t.strip())
+    policy_list = tuple(p.strip() for p in policies.split(","))
+    try:
+        by_policy = {p: _with_recipe(p, recipe, over, device, False) for p in policy_list}
+    except _errors() as exc:
+        _fail(_one_line(exc))
+        return
     cfg = StudyConfig(tasks=task_list, demos=tuple(int(d) for d in demos.split(",")),
-                      policies=tuple(p.strip() for p in policies.split(",")), data_root=data_root,
-                      runs_root=runs_root, overrides={p: over for p in ("dp", "dp3")}, eval_episodes=episodes,
-                      eval_seeds=tuple(int(s) for s in seeds.split(",")), device=device, collect_workers=workers)
+                      policies=policy_list, data_root=data_root,
+                      runs_root=runs_root, overrides=by_policy, eval_episodes=episodes,
+                      eval_seeds=tuple(int(s) for s in seeds.split(",")), device=device, collect_workers=workers,
+                      baselines=baselines)
     try:
         rows = run_study(cfg)
     except _errors() as exc:

@@ -34,6 +34,7 @@ class StudyConfig:
     eval_seeds: tuple[int, ...] = (0, 1, 2)
     device: str = "auto"
     collect_workers: int = 1
+    baselines: bool = True  # the random and noop baselines on each row's scenes (`baseline_eval`)
 
 
 def _collect_child(task: str, n: int, folder: str, workers: int, resume: bool, progress: bool) -> None:
@@ -97,7 +98,7 @@ def run_study(cfg: StudyConfig, progress: bool = True) -> list[dict]:
                 last = ck.run_checkpoints(run)[-1]
                 t0 = time.perf_counter()
                 report = evaluate(run, task, cfg.eval_episodes, cfg.eval_seeds, checkpoints=[last],
-                                  device=cfg.device, progress=progress)
+                                  device=cfg.device, progress=progress, baselines=cfg.baselines)
                 state = ck.read(run / ck.LATEST)
                 row = {"task": task, "policy": policy, "demos": n, "success_mean": report.success_mean,
                        "success_std": report.success_std, "rates": [r["success"] for r in report.to_dict()["rates"]],
@@ -106,17 +107,32 @@ def run_study(cfg: StudyConfig, progress: bool = True) -> list[dict]:
                        "seconds_per_epoch": result.seconds_per_epoch if result else None,
                        "eval_seconds": time.perf_counter() - t0, "checkpoint": str(last),
                        "episodes": [{"seed": o.seed, "scene_seed": o.scene_seed, "success": o.success,
-                                     "steps": o.steps, "final": o.final} for o in report.outcomes]}
+                                     "steps": o.steps, "final": o.final} for o in report.outcomes],
+                       **baseline_columns(report)}
                 rows.append(row)
                 if progress:
                     print(format_row(row), flush=True)
     return rows
 
 
+def baseline_columns(report) -> dict:
+    """A row's baseline columns: baseline_<name> (success mean on the row's scenes) and their details."""
+    out: dict = {f"baseline_{name}": b.success_mean for name, b in report.baselines.items()}
+    if report.baselines:
+        out["baselines"] = {name: {"success_mean": b.success_mean, "success_std": b.success_std,
+                                   "rates": [r["success"] for r in b.to_dict()["rates"]], **b.info,
+                                   "successes": [o.scene_seed for o in b.outcomes if o.success]}
+                            for name, b in report.baselines.items()}
+    return out
+
+
 def format_row(r: dict) -> str:
     train = f"{r['train_seconds'] / 60:.1f} min ({r['seconds_per_epoch']:.1f} s/epoch)" if r["train_seconds"] else "-"
+    base = "".join(f"  {k[len('baseline_'):]} {100 * v:.0f}%" for k, v in r.items()
+                   if k.startswith("baseline_") and isinstance(v, float))
     return (f"{r['task']:<24} {r['policy']:<4} {r['demos']:>4} demos  success {100 * r['success_mean']:5.1f}% "
-            f"+- {100 * r['success_std']:4.1f}  train {train}  loss {r['final_loss']:.4f}")
+            f"+- {100 * r['success_std']:4.1f}  train {train}  loss {r['final_loss']:.4f}"
+            + (f"  baselines:{base}" if base else ""))
 
 
 def write_results(rows: list[dict], cfg: StudyConfig, json_path: Path, plot_path: Path | None,
@@ -145,6 +161,10 @@ def plot(rows: list[dict], path: Path) -> bool:
                          if r["task"] == task and r["policy"] == policy)
             xs, ys, es = zip(*pts)
             ax.errorbar(xs, ys, yerr=es, marker="o", capsize=3, label=policy.upper())
+        for name, style in (("random", "--"), ("noop", ":")):
+            vals = [100 * r[f"baseline_{name}"] for r in rows if r["task"] == task and f"baseline_{name}" in r]
+            if vals:  # the baselines on the same scenes, the most any row saw
+                ax.axhline(max(vals), color="grey", ls=style, lw=1, label=f"{name} baseline")
         ax.set_title(task)
         ax.set_xlabel("demonstrations")
         ax.set_ylim(-5, 105)

@@ -1,4 +1,5 @@
-"""The policies by name: their config class, model class and what each needs from the data and the env."""
+"""The policies by name: the trained ones (their config class, model class and what each needs from the data
+and the env) and the baselines that need no training (`baselines/`), which evaluation runs beside them."""
 
 from __future__ import annotations
 
@@ -44,10 +45,33 @@ def _types() -> dict[str, PolicyType]:
 
 
 POLICY_NAMES = ("dp", "dp3")
+BASELINE_NAMES = ("random", "noop")
 
 
 def policy_type(name: str) -> PolicyType:
     types = _types()
+    if name in BASELINE_NAMES:
+        raise ValueError(f"{name} is a baseline and needs no training; evaluate it with: hgen policy eval "
+                         f"--policy {name} TASK")
     if name not in types:
-        raise ValueError(f"unknown policy {name!r}; policies: {', '.join(POLICY_NAMES)}")
+        raise ValueError(f"unknown policy {name!r}; policies: {', '.join(POLICY_NAMES)}; baselines: "
+                         f"{', '.join(BASELINE_NAMES)}")
     return types[name]
+
+
+def baseline_policy(name: str, action_range=None, hold: int | None = None):
+    """A baseline by name: `random` draws its targets in `action_range` (an `ActionRange`; required) and holds
+    each for `hold` actions (default `RANDOM_HOLD_ACTIONS`); `noop` holds the start posture."""
+    from humanoidgen.policies.baselines import RANDOM_HOLD_ACTIONS
+
+    if name == "random":
+        from humanoidgen.policies.baselines.random_policy import RandomPolicy
+
+        if action_range is None:
+            raise ValueError("the random baseline needs an action range")
+        return RandomPolicy(action_range, hold or RANDOM_HOLD_ACTIONS)
+    if name == "noop":
+        from humanoidgen.policies.baselines.noop_policy import NoopPolicy
+
+        return NoopPolicy()
+    raise ValueError(f"unknown baseline {name!r}; baselines: {', '.join(BASELINE_NAMES)}")

@@ -4,6 +4,7 @@ Ray evaluation (`ray_eval.py`)."""
 
 from __future__ import annotations
 
+import time
 from collections import deque
 from dataclasses import dataclass
 from pathlib import Path
@@ -11,7 +12,7 @@ from pathlib import Path
 import numpy as np
 import torch
 
-from humanoidgen.envs.config import TaskEnvConfig
+from humanoidgen.envs.config import EVAL_SEED_BASE, TaskEnvConfig
 
 MAX_EPISODES_PER_SEED = 1000
 
@@ -73,6 +74,8 @@ def rollout(model, env, scene_seed: int, generator: torch.Generator, device: str
             ) -> tuple[bool, int, str]:
     """One closed-loop episode: (success, actions taken, the predicates' details at its end)."""
     obs, info = env.reset(seed=scene_seed)
+    if hasattr(model, "start_episode"):  # a baseline that remembers the episode's start (`baselines.noop_policy`)
+        model.start_episode(obs)
     history = deque([obs] * model.cfg.n_obs_steps, maxlen=model.cfg.n_obs_steps)
     steps, done = 0, False
     if video is not None:
@@ -89,6 +92,31 @@ def rollout(model, env, scene_seed: int, generator: torch.Generator, device: str
                 done = True
                 break
     return bool(info["success"]), steps, final_detail(info)
+
+
+def run_episodes(model, env, label: str, seeds, episodes: int, device: str, video_dir: Path | None = None,
+                 bar=None) -> list[EpisodeOutcome]:
+    """Evaluation seed s, episode i for each seed and i < episodes: scene EVAL_SEED_BASE + number and the
+    policy's noise seeded by number (number = MAX_EPISODES_PER_SEED * s + i), so every policy, trained or
+    baseline, meets the same scenes; `label` names the outcomes' checkpoint."""
+    out = []
+    for seed in seeds:
+        for i in range(episodes):
+            number = MAX_EPISODES_PER_SEED * seed + i
+            video = _video(video_dir, Path(label), seed, i, env.config.action_hz)
+            t0 = time.perf_counter()
+            try:
+                ok, steps, final = rollout(model, env, EVAL_SEED_BASE + number, torch.Generator().manual_seed(number),
+                                           device, video)
+            finally:
+                if video is not None:
+                    video.close()
+            out.append(EpisodeOutcome(label, seed, EVAL_SEED_BASE + number, ok, steps, time.perf_counter() - t0,
+                                      final))
+            if bar is not None:
+                bar.update(1)
+                bar.set_postfix_str(f"success {sum(o.success for o in out)}/{len(out)}")
+    return out
 
 
 def final_detail(info: dict) -> str:

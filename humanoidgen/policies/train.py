@@ -192,13 +192,16 @@ def _keys(ptype, cfg: PolicyConfig) -> tuple[str, ...]:
 
 
 def _resumed_config(ptype, state: dict, overrides: dict | None, latest: Path) -> PolicyConfig:
-    """The saved run's config; overrides may only extend its epochs."""
+    """The saved run's config; overrides (merged over it, so a run trained with a recipe resumes with only
+    --epochs) may only extend its epochs."""
+    from humanoidgen.policies.recipes import merge
+
     if state.get("policy") != ptype.name:
         raise ck.CheckpointError(f"{latest} is a {state.get('policy')} run, not {ptype.name}")
     saved = ptype.config_cls.model_validate(state["config"])
     if not overrides:
         return saved
-    wanted = ptype.config(overrides)
+    wanted = ptype.config_cls.model_validate(merge(saved.model_dump(), overrides))
     epochs = wanted.train.epochs
     if wanted.model_copy(update={"train": wanted.train.model_copy(update={"epochs": saved.train.epochs})}) != saved:
         raise ck.CheckpointError(f"{latest} was trained with other settings; resume it with its own (only "

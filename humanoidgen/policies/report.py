@@ -1,0 +1,64 @@
+"""An evaluation's outcomes and their summary as the paper reports it: the success rate of each (checkpoint,
+seed), then their mean and standard deviation; with the baselines measured on the same scenes beside it."""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass, field
+
+import numpy as np
+
+from humanoidgen.policies.rollout import EpisodeOutcome
+
+
+@dataclass
+class EvalReport:
+    task: str
+    policy: str
+    checkpoints: list[str]
+    seeds: list[int]
+    episodes: int
+    outcomes: list[EpisodeOutcome] = field(default_factory=list)
+    info: dict = field(default_factory=dict)  # what else defines the run (a baseline's action range and hold)
+    baselines: dict[str, EvalReport] = field(default_factory=dict)  # by name, on the same scenes
+
+    def rates(self) -> dict[tuple[str, int], float]:
+        """Success rate of each (checkpoint, seed)."""
+        out: dict[tuple[str, int], list[bool]] = {}
+        for o in self.outcomes:
+            out.setdefault((o.checkpoint, o.seed), []).append(o.success)
+        return {k: float(np.mean(v)) for k, v in out.items()}
+
+    @property
+    def success_mean(self) -> float:
+        return float(np.mean(list(self.rates().values()))) if self.outcomes else 0.0
+
+    @property
+    def success_std(self) -> float:
+        return float(np.std(list(self.rates().values()))) if self.outcomes else 0.0
+
+    def summary(self) -> str:
+        """'dp3 on close_drawer: success 68.3% +- 6.2 over 3 (checkpoint, seed) pairs'."""
+        return (f"{self.policy} on {self.task}: success {100 * self.success_mean:.1f}% +- "
+                f"{100 * self.success_std:.1f} over {len(self.rates())} (checkpoint, seed) pairs")
+
+    def baseline_line(self) -> str:
+        """The baselines beside the score, one line ('' without them)."""
+        if not self.baselines:
+            return ""
+        parts = [f"{name} {100 * b.success_mean:.1f}% +- {100 * b.success_std:.1f}" for name, b in self.baselines.items()]
+        return f"baselines on the same {len(self.outcomes_per_checkpoint())} scenes: " + ", ".join(parts)
+
+    def outcomes_per_checkpoint(self) -> list[EpisodeOutcome]:
+        first = self.outcomes[0].checkpoint if self.outcomes else None
+        return [o for o in self.outcomes if o.checkpoint == first]
+
+    def to_dict(self) -> dict:
+        out = {"task": self.task, "policy": self.policy, "checkpoints": self.checkpoints, "seeds": self.seeds,
+               "episodes": self.episodes, "success_mean": self.success_mean, "success_std": self.success_std,
+               "rates": [{"checkpoint": c, "seed": s, "success": r} for (c, s), r in self.rates().items()],
+               "outcomes": [asdict(o) for o in self.outcomes]}
+        if self.info:
+            out["info"] = self.info
+        if self.baselines:
+            out["baselines"] = {name: b.to_dict() for name, b in self.baselines.items()}
+        return out
