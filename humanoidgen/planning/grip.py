@@ -11,7 +11,6 @@ from humanoidgen.sim.layout import Side
 
 def close_on(ctx: PlanningContext, side: Side, obj_type: str, obj_id: int, posture: str, verb: str) -> None:
     obj = ctx.env.scene.object(obj_type, obj_id)
-    obj_type, obj_id = obj.type_name, obj.obj_id  # an alias ("cube1") is named as the scene names it
     ctx.move_fingers((side,), posture, seconds=0.6)
     ctx.settle(0.3)
     touched = finger_contacts(ctx.env.model, ctx.env.data, side, obj.body)
