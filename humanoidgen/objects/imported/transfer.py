@@ -42,6 +42,8 @@ RIM_POINTS = {"rim", "lip"}
 TOP_POINTS = {"top", "pinch", "support"}
 BOTTOM_POINTS = {"pinch_bottom", "base"}
 HANDLE_POINTS = {"handle_left", "handle_right", "grip_left", "grip_right"}
+_STANDS_OUT, _STANDS_OUT_M = 1.18, 0.004  # a surface farther from the axis than this times the body's radius
+# at its height, plus this much, stands out of the body (a handle)
 
 
 @dataclass
@@ -102,7 +104,7 @@ def _standing_out(samples: np.ndarray, axis: np.ndarray) -> np.ndarray:
     idx = np.clip(np.digitize(z, bins) - 1, 0, 11)
     body = np.array([np.percentile(r[idx == k], 40) if np.any(idx == k) else 0.0 for k in range(12)])
     ref = np.maximum(body[idx], np.median(body[body > 0]) if np.any(body > 0) else 0.0)
-    return r > 1.18 * ref + 0.004
+    return r > _STANDS_OUT * ref + _STANDS_OUT_M
 
 
 def _handle_yaw(samples: np.ndarray, axis: np.ndarray, n_handles: int) -> float | None:
@@ -286,7 +288,9 @@ def _snap(name: str, p: np.ndarray, geo, tmesh: trimesh.Trimesh, f: _Frame, fami
             hits = f.ray([*f.axis, z], [d[0], d[1], 0.0])
             if len(hits):
                 r = float(hits[-1])
-                back = f.ray([*f.axis, z], [-d[0], -d[1], 0.0])
+                # The diameter across: the far wall is the last surface the ray back meets within the body's
+                # radius; beyond it stands a handle (a mug grasped opposite its handle is 8 cm wide, not 12).
+                back = [h for h in f.ray([*f.axis, z], [-d[0], -d[1], 0.0]) if h <= _STANDS_OUT * r + _STANDS_OUT_M]
                 width = r + float(back[-1]) if len(back) else 2 * r
                 return PointResult(name, np.array([*(f.axis + d * r), z]), 1.0, "surface at relative height",
                                    True, width)
