@@ -63,6 +63,9 @@ def test_the_folder_holds_the_model_its_annotations_and_a_picture(imported_mug):
     axis = pts["storage"][:2]  # the vertical axis (the frame is centred on the box, handle and all)
     assert abs(np.linalg.norm(pts["side"][:2] - axis) - 0.04) < 0.002  # on the body's outer surface
     assert pts["rim"][2] == pytest.approx(ann["bbox_max"][2], abs=0.003)
+    # a wrap grasp's width is the body's diameter from either side, the handle's side too (not out to the handle)
+    widths = {o["point"]: o["width"] for o in ann["operations"] if o["operation"] == "grasp"}
+    assert widths == {"side": pytest.approx(0.08, abs=0.003), "side_right": pytest.approx(0.08, abs=0.003)}
 
 
 def test_an_imported_mug_rests_on_the_table_in_a_scene(imported_mug, monkeypatch):
@@ -224,7 +227,7 @@ def test_a_task_runs_on_a_chosen_model_and_each_seed_draws_its_own(imported_mug,
     assert [o.pos for o in layouts[1]] == [o.pos for o in spec.sample_layout(2)]
     with pytest.raises(ModelChoiceError, match="has no model 'nope'"):
         with_models(spec, {"cup": "nope"}, randomize=False)
-    with pytest.raises(ModelChoiceError, match="has no drawer"):
+    with pytest.raises(ModelChoiceError, match="has no family drawer"):
         with_models(spec, {"drawer": "x"}, randomize=False)
     r = runner.invoke(app, ["run", "empty_cup_place", "--model", "cup=nope"])
     assert r.exit_code == 1 and "cup has no model 'nope'" in r.output
@@ -238,3 +241,44 @@ def test_a_mesh_on_its_side_is_flagged_with_a_hint_about_up(tmp_path, collision_
                             str(tmp_path / "models"), "--no-preview"])
     assert r.exit_code == 0, r.output
     assert "most points are unsure: is the object upright? --up" in r.output
+
+
+def test_contents_ride_in_the_storage_of_the_cup_they_are_put_in(imported_mug, monkeypatch):
+    """cup_pour_easy's two cubes stand in its cup's opening; on an imported mug (whose opening is elsewhere in
+    its box, its bottom at another height) they move with its storage point and stay inside it."""
+    from humanoidgen.objects.queries import get_point_in_env
+    from humanoidgen.tasks.models import with_models
+    from humanoidgen.tasks.registry import load_task
+    from humanoidgen.tasks.scene import build_scene
+
+    monkeypatch.setenv(ENV_FAMILIES_PATH, str(imported_mug))
+    spec = load_task("cup_pour_easy")
+    for derived in (with_models(spec, {"cup": "my_mug"}, randomize=False), with_models(spec, {}, randomize=True)):
+        for seed in (0, 7):
+            scene, env = build_scene(derived, seed)
+            cup = scene.object("cup", 0)
+            assert cup.type_id == 100
+            storage = get_point_in_env(env, "storage", "cup", 0)
+            for k in (0, 1):
+                cube = env.data.xpos[env.model.body(scene.object("cube", k).body).id]
+                assert np.linalg.norm(cube[:2] - storage[:2]) < 0.01, (seed, k)  # inside the opening
+                assert storage[2] - 0.02 < cube[2] < storage[2] + 0.06
+
+
+def test_fit_family_scales_a_model_into_the_size_range_of_the_familys_own(tmp_path):
+    """--fit-family: an 8 cm tin imported as a bottle comes out as tall as the family's smallest bottle (the
+    sizes its tasks were written for); one inside the range is left as it is."""
+    from humanoidgen.objects.imported.sizing import family_size_range
+
+    lo, hi = family_size_range("bottle")
+    for name, height, want in (("stubby", 0.08, lo), ("fine", (lo + hi) / 2, (lo + hi) / 2)):
+        trimesh.creation.cylinder(radius=0.02, height=height, sections=32).export(tmp_path / f"{name}.obj")
+        r = runner.invoke(app, ["assets", "import", str(tmp_path / f"{name}.obj"), "--family", "bottle",
+                                "--fit-family", "--out", str(tmp_path / "models"), "--no-preview"])
+        assert r.exit_code == 0, r.output
+        folder = tmp_path / "models" / "bottle" / name
+        ann = yaml.safe_load((folder / "annotations.yaml").read_text())
+        assert ann["bbox_max"][2] - ann["bbox_min"][2] == pytest.approx(want, abs=1e-4)
+        info = yaml.safe_load((folder / "model.yaml").read_text())
+        assert info["fitted"] == pytest.approx(want / height, rel=1e-6)
+        assert ("scaled x" in r.output) == (name == "stubby")

@@ -48,6 +48,27 @@ def model_named(family_name: str, model: str) -> ObjectModel:
     raise KeyError(f"{family_name} has no model {model!r}; models: {', '.join(names)}")
 
 
+# A model drawn to stand in for a task's object is at most this many times larger or smaller (largest extent)
+# than the model the task was written with: the task placed other things by that size (two 3 cm cubes in a cup,
+# not two 8 cm cartons). Library models are already in their family's size range (imported/sizing.py).
+STAND_IN_RATIO = 1.4
+
+
+def drawable_models(family_name: str, like: int | None = None) -> list[ObjectModel]:
+    """The models a task's episode may draw for an object of this family (`--randomize-models`): its imported
+    ones (type_id 100 and up); with `like` (the type_id the task was written with), those within STAND_IN_RATIO
+    of its size."""
+    from humanoidgen.objects.imported.model_file import FIRST_IMPORTED_TYPE_ID
+    from humanoidgen.objects.imported.sizing import largest_extent
+
+    out = [m for m in family(family_name).models() if m.type_id >= FIRST_IMPORTED_TYPE_ID]
+    if like is None:
+        return out
+    ref = largest_extent(family_name, like)
+    return [m for m in out
+            if 1.0 / STAND_IN_RATIO <= largest_extent(family_name, m.type_id) / ref <= STAND_IN_RATIO]
+
+
 def annotations(name: str, type_id: int) -> ObjectAnnotations:
     model(name, type_id)  # a clear error for an unknown type_id
     return family(name).annotations(type_id)
