@@ -34,11 +34,19 @@ def _commit() -> str:
 
 
 def run_column(task: str, column: str, seeds: range) -> list[dict]:
+    """The column's episodes; a library column of a task none of whose objects has a library model to draw
+    is not run (it would be the primitive column again): its rows say so (success None)."""
     from humanoidgen.episodes.bench import run_bench
+    from humanoidgen.tasks.models import with_models
     from humanoidgen.tasks.registry import load_task
 
-    (report,) = run_bench([load_task(task)], episodes=len(seeds), seed=seeds.start,
-                          randomize_models=column == "library")
+    spec = load_task(task)
+    if column == "library" and not with_models(spec, {}, randomize=True).randomize_models:
+        families = sorted({o.type for o in spec.objects})
+        note = f"no library model to draw for the task's objects ({', '.join(families)})"
+        return [{"task": task, "column": column, "seed": s, "success": None, "error": note, "models": None}
+                for s in seeds]
+    (report,) = run_bench([spec], episodes=len(seeds), seed=seeds.start, randomize_models=column == "library")
     return [{"task": task, "column": column, "seed": r["seed"], "success": bool(r["success"]),
              "error": r["error"] or None, "models": {k: m["model"] for k, m in r.get("models", {}).items()}
              if column == "library" else None} for r in report.records]
@@ -50,7 +58,10 @@ def summary(rows: list[dict]) -> list[dict]:
         entry = {"task": task}
         for col in COLUMNS:
             got = [r for r in rows if r["task"] == task and r["column"] == col]
-            entry[col] = {"successes": sum(r["success"] for r in got), "episodes": len(got)}
+            entry[col] = {"successes": sum(bool(r["success"]) for r in got),
+                          "episodes": sum(r["success"] is not None for r in got)}
+            if got and all(r["success"] is None for r in got):
+                entry[col]["note"] = got[0]["error"]
         p, lib = entry["primitive"], entry["library"]
         if p["episodes"] and lib["episodes"]:
             entry["gap_points"] = round(100 * (p["successes"] / p["episodes"] - lib["successes"] / lib["episodes"]), 1)
@@ -75,8 +86,8 @@ def plot(data: dict, path: Path) -> None:
                       label={"primitive": "the task's own (primitive) models",
                              "library": "--randomize-models over the library"}[col])
         for b, e in zip(bars, s):
-            ax.text(b.get_x() + b.get_width() / 2, b.get_height() + 1, f"{e[col]['successes']}/{e[col]['episodes']}",
-                    ha="center", fontsize=7)
+            label = f"{e[col]['successes']}/{e[col]['episodes']}" if e[col]["episodes"] else "no\nlibrary\nmodel"
+            ax.text(b.get_x() + b.get_width() / 2, b.get_height() + 1, label, ha="center", fontsize=7)
     ax.set_xticks(x, [e["task"] for e in s], rotation=30, ha="right", fontsize=8)
     ax.set_ylabel("success (%)")
     ax.set_ylim(0, 112)
