@@ -127,7 +127,7 @@ def main() -> None:
                 rows = [r for r in rows if not (r["task"] == task and r["column"] == col)] + new
                 meta.setdefault("columns", {})[f"{task}/{col}"] = {"commit": _commit(),
                                                                     "seconds": round(time.perf_counter() - t0)}
-                print(f"{task} {col}: {sum(r['success'] for r in new)}/{len(new)}", flush=True)
+                print(f"{task} {col}: {sum(bool(r['success']) for r in new)}/{len(new)}", flush=True)
                 order = {t: k for k, t in enumerate(TASKS)}
                 rows.sort(key=lambda r: (order.get(r["task"], 99), r["task"], COLUMNS.index(r["column"]), r["seed"]))
                 meta.update(commit=_commit(), seeds=args.seeds,

@@ -282,3 +282,31 @@ def test_fit_family_scales_a_model_into_the_size_range_of_the_familys_own(tmp_pa
         info = yaml.safe_load((folder / "model.yaml").read_text())
         assert info["fitted"] == pytest.approx(want / height, rel=1e-6)
         assert ("scaled x" in r.output) == (name == "stubby")
+
+
+def test_an_mjcf_whose_case_is_turned_keeps_its_drawer_inside(tmp_path, collision_cache):
+    """A body welded between the root and the drawer may be turned (LIBERO's short cabinet turns its case and
+    drawers by a quaternion): the drawer link is placed in its parent link's frame, inside the case, not left
+    unturned beside it."""
+    (tmp_path / "cab.xml").write_text("""<mujoco model="cab"><worldbody><body name="object">
+  <body name="base" pos="0 0 0.1" quat="0.5 0.5 -0.5 -0.5">
+    <geom type="box" size="0.15 0.2 0.01" pos="0 0 -0.09"/><geom type="box" size="0.15 0.2 0.01" pos="0 0 0.09"/>
+    <geom type="box" size="0.15 0.01 0.1" pos="0 -0.19 0"/><geom type="box" size="0.15 0.01 0.1" pos="0 0.19 0"/>
+    <geom type="box" size="0.01 0.2 0.1" pos="-0.14 0 0"/>
+    <body name="drawer"><joint name="slide" type="slide" axis="1 0 0" range="0 0.2"/>
+      <geom type="box" size="0.12 0.16 0.005" pos="0 0 -0.07"/><geom type="box" size="0.01 0.16 0.07" pos="0.13 0 0"/>
+      <geom type="box" size="0.01 0.03 0.01" pos="0.15 0 0.03"/>
+    </body></body></body></worldbody></mujoco>""")
+    r = runner.invoke(app, ["assets", "import", str(tmp_path / "cab.xml"), "--family", "drawer", "--name", "cab",
+                            "--out", str(tmp_path / "models"), "--no-preview"])
+    assert r.exit_code == 0, r.output
+    folder = tmp_path / "models" / "drawer" / "cab"
+    info = yaml.safe_load((folder / "model.yaml").read_text())
+    arrays = np.load(folder / "meshes.npz")
+    links = {l["name"]: l for l in info["links"]}
+    case = arrays[f"{next(n for n, l in links.items() if l['parent'] is None)}_v"]
+    drawer = arrays["drawer_v"] + np.asarray(links["drawer"]["pos"])  # the drawer link's frame in the case's
+    lo, hi = case.min(0), case.max(0)
+    # inside the case but for its front and handle, which stand out toward the robot (-x)
+    assert np.all(drawer[:, 1:].min(0) >= lo[1:] - 0.002) and np.all(drawer[:, 1:].max(0) <= hi[1:] + 0.002)
+    assert drawer[:, 0].max() <= hi[0] + 0.002
