@@ -5,6 +5,7 @@ and leave nothing behind."""
 from __future__ import annotations
 
 import os
+import re
 from pathlib import Path
 
 import numpy as np
@@ -310,3 +311,54 @@ def test_an_mjcf_whose_case_is_turned_keeps_its_drawer_inside(tmp_path, collisio
     # inside the case but for its front and handle, which stand out toward the robot (-x)
     assert np.all(drawer[:, 1:].min(0) >= lo[1:] - 0.002) and np.all(drawer[:, 1:].max(0) <= hi[1:] + 0.002)
     assert drawer[:, 0].max() <= hi[0] + 0.002
+
+
+def test_a_drawer_whose_handle_no_hand_can_hook_is_kept_but_never_drawn(tmp_path, collision_cache, monkeypatch):
+    """The drawer family's `usable` rules: the test drawer (handle 12 cm up, 2.5 cm out) passes; the same drawer at
+    half size (its handle 6 cm over the table) fails the height rule, with the measured value in the reason. It is
+    still a model of the family (--model takes it); --randomize-models does not draw it."""
+    from humanoidgen.objects import library
+    from humanoidgen.objects.imported.usable import unusable_reason
+    from humanoidgen.tasks.models import with_models
+    from humanoidgen.tasks.registry import load_task
+    from meshes_for_tests import drawer_urdf
+
+    urdf = drawer_urdf(tmp_path / "src")
+    for name, scale in (("full", "1"), ("half", "0.5")):
+        r = runner.invoke(app, ["assets", "import", str(urdf), "--family", "drawer", "--name", name, "--scale", scale,
+                                "--out", str(tmp_path / "models"), "--no-preview"])
+        assert r.exit_code == 0, r.output
+    monkeypatch.setenv(ENV_FAMILIES_PATH, str(tmp_path / "models"))
+    by = {m.info.name: m for m in library.family("drawer").imported()}
+    assert unusable_reason(by["full"]) is None
+    reason = unusable_reason(by["half"])
+    got = re.match(r"its handle is ([0-9.]+) cm over its base \(at least 10.5 cm wanted\): the hand hooks", reason)
+    assert got is not None and 5.5 <= float(got.group(1)) <= 6.5, reason
+    assert [m.params["name"] for m in library.drawable_models("drawer")] == ["full"]
+    spec = load_task("open_drawer")
+    assert with_models(spec, {"drawer": "half"}, randomize=False).objects[0].type_id == by["half"].info.type_id
+    assert {o.type_id for s in range(8) for o in with_models(spec, {}, True).sample_layout(s)} == \
+        {by["full"].info.type_id}
+
+
+def test_the_familys_own_drawers_pass_its_usable_rules():
+    """The rules describe what the family's own models offer (their handles 21 cm up, standing 6 cm out)."""
+    from humanoidgen.objects import library
+    from humanoidgen.objects.imported.usable import family_rules
+    from humanoidgen.objects.queries import get_point_in_env
+    from humanoidgen.sim.env import HumanoidEnv
+    from humanoidgen.sim.layout import TABLE_TOP_Z
+    from humanoidgen.sim.scene import SceneBuilder
+
+    rules = family_rules("drawer")
+    assert {("min_height" if r.min_height else "min_out") for r in rules} == {"min_height", "min_out"}
+    for m in library.family("drawer").base.models():
+        b = SceneBuilder()
+        library.add_object(b, "drawer", type_id=m.type_id, pos=(-0.1, 0.3))
+        env = HumanoidEnv(b.build())
+        for r in rules:
+            p = get_point_in_env(env, r.point, "drawer", 0)
+            if r.min_height:
+                assert p[2] - TABLE_TOP_Z >= r.min_height, (m.type_id, r)
+            else:
+                assert get_point_in_env(env, r.from_point, "drawer", 0)[0] - p[0] >= r.min_out, (m.type_id, r)

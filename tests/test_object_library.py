@@ -155,3 +155,20 @@ def test_library_drawers_and_laptops_open(fetched):
             assert p1[0] - p0[0] < -0.05, m.name  # out toward the robot
         else:
             assert p1[2] - p0[2] > 0.05, m.name  # the lid's edge goes up
+
+
+def test_the_manifests_exclusions_are_what_the_families_rules_say(fetched):
+    """A model the manifest marks `excluded` fails one of its family's `usable` rules and no other model does;
+    --randomize-models never draws an excluded one, and every model is in its family's size range."""
+    from humanoidgen.objects import library
+    from humanoidgen.objects.imported.sizing import family_size_range, largest_extent
+    from humanoidgen.objects.imported.usable import unusable_reason
+
+    for m in fetch.manifest().models:
+        model = next(i for i in library.family(m.family).imported() if i.info.name == m.name)
+        reason = unusable_reason(model)
+        assert (reason is None) == (m.excluded is None), (m.name, reason, m.excluded)
+        drawn = {d.type_id for d in library.drawable_models(m.family)}
+        assert (m.type_id in drawn) == (m.excluded is None), m.name
+        lo, hi = family_size_range(m.family)
+        assert lo - 1e-3 <= largest_extent(m.family, m.type_id) <= hi + 1e-3, m.name

@@ -56,12 +56,15 @@ STAND_IN_RATIO = 1.4
 
 def drawable_models(family_name: str, like: int | None = None) -> list[ObjectModel]:
     """The models a task's episode may draw for an object of this family (`--randomize-models`): its imported
-    ones (type_id 100 and up); with `like` (the type_id the task was written with), those within STAND_IN_RATIO
-    of its size."""
-    from humanoidgen.objects.imported.model_file import FIRST_IMPORTED_TYPE_ID
+    ones (type_id 100 and up) that offer what the family's tasks need (`imported/usable.py`); with `like` (the
+    type_id the task was written with), those within STAND_IN_RATIO of its size."""
     from humanoidgen.objects.imported.sizing import largest_extent
+    from humanoidgen.objects.imported.usable import unusable_reason
 
-    out = [m for m in family(family_name).models() if m.type_id >= FIRST_IMPORTED_TYPE_ID]
+    fam = family(family_name)
+    imported = fam.imported() if hasattr(fam, "imported") else []
+    usable = {m.info.type_id for m in imported if unusable_reason(m) is None}
+    out = [m for m in fam.models() if m.type_id in usable]
     if like is None:
         return out
     ref = largest_extent(family_name, like)

