@@ -109,6 +109,8 @@ def main() -> None:
     ap.add_argument("--out", type=Path, default=Path("bench/results/model_randomization.json"))
     ap.add_argument("--plot", type=Path, default=Path("bench/results/model_randomization.png"))
     ap.add_argument("--plot-only", action="store_true")
+    ap.add_argument("--commit", default=None, help="the commit to record (default: this checkout's HEAD; for a run "
+                    "from an exported tree)")
     args = ap.parse_args()
     a, b = (int(x) for x in args.seeds.split("-"))
     seeds = range(a, b + 1)
@@ -125,12 +127,12 @@ def main() -> None:
                 t0 = time.perf_counter()
                 new = run_column(task, col, seeds)
                 rows = [r for r in rows if not (r["task"] == task and r["column"] == col)] + new
-                meta.setdefault("columns", {})[f"{task}/{col}"] = {"commit": _commit(),
+                meta.setdefault("columns", {})[f"{task}/{col}"] = {"commit": args.commit or _commit(),
                                                                     "seconds": round(time.perf_counter() - t0)}
                 print(f"{task} {col}: {sum(bool(r['success']) for r in new)}/{len(new)}", flush=True)
                 order = {t: k for k, t in enumerate(TASKS)}
                 rows.sort(key=lambda r: (order.get(r["task"], 99), r["task"], COLUMNS.index(r["column"]), r["seed"]))
-                meta.update(commit=_commit(), seeds=args.seeds,
+                meta.update(commit=args.commit or _commit(), seeds=args.seeds,
                             machine=f"{platform.machine()}, {__import__('os').cpu_count()} cores (shared)")
                 args.out.write_text(json.dumps({"meta": meta, "summary": summary(rows), "rows": rows}, indent=1))
     data = {"meta": meta, "summary": summary(rows), "rows": rows}
