@@ -62,6 +62,15 @@ def summary(rows: list[dict]) -> list[dict]:
                           "episodes": sum(r["success"] is not None for r in got)}
             if got and all(r["success"] is None for r in got):
                 entry[col]["note"] = got[0]["error"]
+        by_model: dict[str, list[int]] = {}
+        for r in rows:
+            if r["task"] == task and r["column"] == "library" and r["success"] is not None:
+                for name in {n for n in (r["models"] or {}).values() if not n.isdigit()}:  # imported ones
+                    tally = by_model.setdefault(name, [0, 0])
+                    tally[0] += bool(r["success"])
+                    tally[1] += 1
+        if by_model:
+            entry["library"]["by_model"] = {k: f"{a}/{b}" for k, (a, b) in sorted(by_model.items())}
         p, lib = entry["primitive"], entry["library"]
         if p["episodes"] and lib["episodes"]:
             entry["gap_points"] = round(100 * (p["successes"] / p["episodes"] - lib["successes"] / lib["episodes"]), 1)
@@ -92,8 +101,9 @@ def plot(data: dict, path: Path) -> None:
     ax.set_ylabel("success (%)")
     ax.set_ylim(0, 112)
     m = data["meta"]
-    ax.set_title(f"Reference plans, seeds {m['seeds']}: own models vs the object library ({m['commit']})", fontsize=9)
-    ax.legend(loc="lower left", fontsize=8)
+    ax.set_title(f"Reference plans, seeds {m['seeds']}: the task's own models vs the object library "
+                 f"(at {str(m['commit']).split()[0]})", fontsize=9, pad=24)
+    ax.legend(loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=2, fontsize=8, frameon=False)
     fig.tight_layout()
     path.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(path, dpi=120)

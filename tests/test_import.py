@@ -22,6 +22,16 @@ from meshes_for_tests import bottle, mug
 runner = CliRunner()
 
 
+@pytest.fixture(autouse=True, scope="module")
+def no_fetched_library():
+    """These tests count the type_ids and draws of the models they import: a library fetched under the assets
+    root (`hgen assets fetch --objects`) is kept out of sight."""
+    mp = pytest.MonkeyPatch()
+    mp.setattr("humanoidgen.objects.imported.model_file.library_dir", lambda: None)
+    yield
+    mp.undo()
+
+
 @pytest.fixture(scope="module")
 def collision_cache(tmp_path_factory) -> Path:
     """One CoACD cache for the module: the same mug is decomposed once (about 20 s on 2 cores)."""
@@ -319,6 +329,7 @@ def test_a_drawer_whose_handle_no_hand_can_hook_is_kept_but_never_drawn(tmp_path
     still a model of the family (--model takes it); --randomize-models does not draw it."""
     from humanoidgen.objects import library
     from humanoidgen.objects.imported.usable import unusable_reason
+    from humanoidgen.objects.stand_ins import drawable_models
     from humanoidgen.tasks.models import with_models
     from humanoidgen.tasks.registry import load_task
     from meshes_for_tests import drawer_urdf
@@ -334,7 +345,7 @@ def test_a_drawer_whose_handle_no_hand_can_hook_is_kept_but_never_drawn(tmp_path
     reason = unusable_reason(by["half"])
     got = re.match(r"its handle is ([0-9.]+) cm over its base \(at least 10.5 cm wanted\): the hand hooks", reason)
     assert got is not None and 5.5 <= float(got.group(1)) <= 6.5, reason
-    assert [m.params["name"] for m in library.drawable_models("drawer")] == ["full"]
+    assert [m.params["name"] for m in drawable_models("drawer")] == ["full"]
     spec = load_task("open_drawer")
     assert with_models(spec, {"drawer": "half"}, randomize=False).objects[0].type_id == by["half"].info.type_id
     assert {o.type_id for s in range(8) for o in with_models(spec, {}, True).sample_layout(s)} == \

@@ -163,12 +163,13 @@ def test_the_manifests_exclusions_are_what_the_families_rules_say(fetched):
     from humanoidgen.objects import library
     from humanoidgen.objects.imported.sizing import family_size_range, largest_extent
     from humanoidgen.objects.imported.usable import unusable_reason
+    from humanoidgen.objects.stand_ins import drawable_models
 
     for m in fetch.manifest().models:
         model = next(i for i in library.family(m.family).imported() if i.info.name == m.name)
         reason = unusable_reason(model)
         assert (reason is None) == (m.excluded is None), (m.name, reason, m.excluded)
-        drawn = {d.type_id for d in library.drawable_models(m.family)}
+        drawn = {d.type_id for d in drawable_models(m.family)}
         assert (m.type_id in drawn) == (m.excluded is None), m.name
         lo, hi = family_size_range(m.family)
         assert lo - 1e-3 <= largest_extent(m.family, m.type_id) <= hi + 1e-3, m.name

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import yaml
 
-from humanoidgen.objects import library
+from humanoidgen.objects import library, stand_ins
 from humanoidgen.objects.imported.model_file import FIRST_IMPORTED_TYPE_ID as _FIRST_IMPORTED
 from humanoidgen.tasks.contents import moved, storage_shift
 from humanoidgen.tasks.registry import load_task, plan_path
@@ -48,7 +48,7 @@ def _refs(spec: TaskSpec) -> list[str]:
 
 def with_models(spec: TaskSpec, models: dict[str, str], randomize: bool) -> TaskSpec:
     """`spec` with each object of a family (or each object) in `models` on that model; `randomize`: every other
-    object of a family that has models to draw (`library.drawable_models`) draws one per episode."""
+    object of a family that has models to draw (`stand_ins.drawable_models`) draws one per episode."""
     refs = _refs(spec)
     types = {o.type for o in spec.objects}
     family_of = {t: _TARGET.match(t).group(1) for t in models}
@@ -76,7 +76,7 @@ def with_models(spec: TaskSpec, models: dict[str, str], randomize: bool) -> Task
                 o["pos"] = list(moved(authored.pos, math.radians(parent.yaw_deg), shift))
     if randomize:  # the objects not pinned that have a model of about their size to draw
         free = [r for o, r in zip(spec.objects, refs)
-                if r not in pinned and library.drawable_models(o.type, like=o.type_id)]
+                if r not in pinned and stand_ins.drawable_models(o.type, like=o.type_id)]
         # a family whose every object draws is named once; otherwise its free objects one by one
         whole = sorted(t for t in types if all(r in free for o, r in zip(spec.objects, refs) if o.type == t))
         raw["randomize_models"] = whole + [r for r in free if _TARGET.match(r).group(1) not in whole]

@@ -15,7 +15,7 @@ from typing import Annotated, Any, Literal
 import numpy as np
 from pydantic import AfterValidator, Field, field_validator, model_validator
 
-from humanoidgen.objects import library
+from humanoidgen.objects import library, stand_ins
 from humanoidgen.tasks.bounds import (
     AXES as _AXES,
     MAX_OFFSET_M,
@@ -298,7 +298,7 @@ class TaskSpec(_Strict):
 
     def _draw_models(self, seed: int) -> dict[int, int]:
         """Object index -> the type_id drawn for it, for each object that `randomize_models` names (by its family
-        or by itself), from the family's models that may stand in for it (`library.drawable_models`)."""
+        or by itself), from the family's models that may stand in for it (`stand_ins.drawable_models`)."""
         if not self.randomize_models:
             return {}
         mrng = np.random.default_rng([int(seed) % 2**63, 0x5EED])
@@ -306,7 +306,7 @@ class TaskSpec(_Strict):
         for i, o in enumerate(self.objects):
             k = counts[o.type] = counts.get(o.type, -1) + 1
             if o.type in self.randomize_models or f"{o.type}[{k}]" in self.randomize_models:
-                ids = [m.type_id for m in library.drawable_models(o.type, like=o.type_id)]
+                ids = [m.type_id for m in stand_ins.drawable_models(o.type, like=o.type_id)]
                 if ids:
                     out[i] = int(mrng.choice(ids))
         return out

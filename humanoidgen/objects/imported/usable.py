@@ -1,7 +1,7 @@
 """Whether an imported model offers what its family's tasks need (the `usable` rules of the family's
 family.yaml: a drawer's handle high enough over the table for the hooked fingers, standing far enough out of the
 front to be held). A model that fails a rule stays a model of its family (`--model` takes it) but is never
-drawn by `--randomize-models` (`library.drawable_models`); the library's manifest names such models and the
+drawn by `--randomize-models` (`stand_ins.drawable_models`); the library's manifest names such models and the
 reason, and a test checks the two agree."""
 
 from __future__ import annotations
