@@ -95,6 +95,8 @@ def extra_folder(tmp_path: Path, monkeypatch) -> Path:
     (tmp_path / "drawer").mkdir()
     (tmp_path / "drawer" / "wide.json").write_text(json.dumps(__import__("yaml").safe_load(WIDE_DRAWER)))
     monkeypatch.setenv(ENV_FAMILIES_PATH, str(tmp_path))
+    # the models counted are the family's and these; a library fetched under the assets root stays out of sight
+    monkeypatch.setattr("humanoidgen.objects.imported.model_file.library_dir", lambda: None)
     return tmp_path
 
 

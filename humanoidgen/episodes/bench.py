@@ -3,6 +3,7 @@ like the paper's figure 5 (single-arm / bimanual, short / long horizon)."""
 
 from __future__ import annotations
 
+import tempfile
 from concurrent.futures import ThreadPoolExecutor
 from collections.abc import Callable
 from dataclasses import asdict, dataclass, field
@@ -10,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
-from humanoidgen.episodes.task_episode import EpisodeRequest, run_task_episode
+from humanoidgen.episodes.task_episode import EpisodeRequest, models_record, run_task_episode
 
 
 @dataclass
@@ -50,18 +51,38 @@ def _one(req: EpisodeRequest) -> dict:
 def run_bench(tasks: list, episodes: int, seed: int = 0, workers: int = 1,
               progress: Callable[[str, int, int], None] | None = None,
               ray_address: str | None = None, room: str | int | None = None,
-              randomize_visuals: bool = False) -> list[TaskReport]:
+              randomize_visuals: bool = False, models: list[str] | None = None,
+              randomize_models: bool = False) -> list[TaskReport]:
     """`ray_address`: run every episode on Ray's warm workers (`ray_pool`), all tasks' episodes at once.
     `room`: a room seed or "random" (each episode its own room); `randomize_visuals`: each episode's look drawn
-    from its seed (`scenes.dressing.episode_dressing`, as `hgen collect` does)."""
-    if ray_address is not None:
-        return _ray_bench(tasks, episodes, seed, workers, progress, ray_address, room, randomize_visuals)
+    from its seed (`scenes.dressing.episode_dressing`, as `hgen collect` does). `models` ("FAMILY=MODEL" or
+    "FAMILY[K]=MODEL"; a task without that family is an error) and `randomize_models`: the tasks on other models
+    of their objects' families (`tasks.models`); each record names its episode's models."""
+    with tempfile.TemporaryDirectory(prefix="hgen-bench-") as folder:
+        runs = [_task_run(spec, models, randomize_models, Path(folder)) for spec in tasks]
+        if ray_address is not None:
+            return _ray_bench(tasks, runs, episodes, seed, workers, progress, ray_address, room, randomize_visuals)
+        return _local_bench(tasks, runs, episodes, seed, workers, progress, room, randomize_visuals)
+
+
+def _task_run(spec, models: list[str] | None, randomize: bool, folder: Path) -> tuple[str, str | None]:
+    """The task file and plan an episode of `spec` runs (its name and reference plan without models)."""
+    if not models and not randomize:
+        return spec.name, None
+    from humanoidgen.tasks.models import task_with_models
+
+    task, plan = task_with_models(spec.name, list(models or []), randomize, folder / spec.name)
+    return task, str(plan) if plan is not None else None
+
+
+def _local_bench(tasks: list, runs: list, episodes: int, seed: int, workers: int, progress, room,
+                 randomize_visuals: bool) -> list[TaskReport]:
     # Each episode runs in its own locked-down worker process; threads here only wait on them.
     pool = ThreadPoolExecutor(workers) if workers > 1 else None
     reports = []
     try:
-        for spec in tasks:
-            reqs = [_request(spec.name, seed + i, room, randomize_visuals) for i in range(episodes)]
+        for spec, run in zip(tasks, runs):
+            reqs = [_request(run, seed + i, room, randomize_visuals) for i in range(episodes)]
             outs = list(pool.map(_one, reqs)) if pool is not None else [_one(r) for r in reqs]
             reports.append(_report(spec, reqs, outs))
             if progress is not None:
@@ -72,18 +93,19 @@ def run_bench(tasks: list, episodes: int, seed: int = 0, workers: int = 1,
     return reports
 
 
-def _request(task: str, seed: int, room: str | int | None, randomize_visuals: bool) -> EpisodeRequest:
+def _request(run: tuple[str, str | None], seed: int, room: str | int | None, randomize_visuals: bool) -> EpisodeRequest:
     from humanoidgen.scenes.dressing import episode_dressing
 
-    return EpisodeRequest(task, seed, dressing=episode_dressing(room, randomize_visuals, seed))
+    task, plan = run
+    return EpisodeRequest(task, seed, plan, dressing=episode_dressing(room, randomize_visuals, seed))
 
 
-def _ray_bench(tasks: list, episodes: int, seed: int, workers: int | None, progress, address: str,
+def _ray_bench(tasks: list, runs: list, episodes: int, seed: int, workers: int | None, progress, address: str,
                room: str | int | None = None, randomize_visuals: bool = False) -> list[TaskReport]:
     from humanoidgen.episodes.ray_pool import PoolRunner, pool_for
     from humanoidgen.episodes.ray_session import connect
 
-    reqs = [_request(spec.name, seed + i, room, randomize_visuals) for spec in tasks for i in range(episodes)]
+    reqs = [_request(run, seed + i, room, randomize_visuals) for run in runs for i in range(episodes)]
     outs: list[dict] = []
     with connect(address, workers if address == "local" else None) as session:
         slots = session.cpu_slots(1.0)
@@ -118,6 +140,9 @@ def _record(req: EpisodeRequest, out: dict) -> dict:
     record = {"seed": req.seed, "success": out["success"], "error": out["error"]}
     if req.dressing is not None:
         record["dressing"] = req.dressing  # the room and look, whole (as collection's index records it)
+    models = models_record(req.task, req.seed)
+    if models is not None:
+        record["models"] = models  # each object's model, as collection's index records it
     return record
 
 

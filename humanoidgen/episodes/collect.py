@@ -15,7 +15,7 @@ from pathlib import Path
 
 from humanoidgen.episodes.dataset import EpisodeStore
 from humanoidgen.episodes.recorder import RecorderConfig
-from humanoidgen.episodes.task_episode import EpisodeRequest, run_task_episode, start_worker
+from humanoidgen.episodes.task_episode import EpisodeRequest, models_record, run_task_episode, start_worker
 from humanoidgen.sim.action import ACTION_JOINTS
 from humanoidgen.sim.cameras import CAMERA_NAMES
 
@@ -52,6 +52,9 @@ def attempt(req: EpisodeRequest, worker=None) -> tuple[dict, dict | None]:
     }
     if req.dressing is not None:
         record["dressing"] = req.dressing  # the room and look, whole: the episode re-renders from it
+    models = models_record(req.task, req.seed)
+    if models is not None:
+        record["models"] = models  # each object's model: the episode runs and renders again on them (--model)
     if result.success and req.recorder is not None and not arrays:
         record["success"] = False  # nothing to keep: a success is only counted with its recording
         record["error"] = "the episode succeeded but its replay recorded nothing"

@@ -57,6 +57,17 @@ def load_spec(task: str):
     return load_task(task)
 
 
+def models_record(task: str, seed: int | None) -> dict | None:
+    """The record's `models` (`tasks.models.episode_models`): which model each object of the episode was on,
+    when the task has imported ones; None otherwise or for a task that cannot be loaded (its attempt says why)."""
+    from humanoidgen.tasks.models import episode_models
+
+    try:
+        return episode_models(load_spec(task), seed)
+    except (KeyError, ValueError, FileNotFoundError):
+        return None
+
+
 def plan_file(task: str, spec, plan_path: str | None) -> Path:
     """The plan a request runs: the given file or folder, else the task's reference plan."""
     if plan_path is not None:

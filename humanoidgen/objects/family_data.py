@@ -136,6 +136,12 @@ def _check_family(info: FamilyFile, path: Path, params_model: type[ModelFile]) -
     for where, axis in refs:
         if axis not in axes:
             raise FamilyDataError(f"{path}: {where}: no axis {axis!r} in axes (known: {sorted(axes)})")
+    named = {p.name for p in info.points} | {o.point for o in info.operations} | {f.point for f in info.functions}
+    for i, rule in enumerate(info.usable):
+        for point in filter(None, (rule.point, rule.from_point)):
+            if point not in named:
+                raise FamilyDataError(f"{path}: usable.{i}: no point {point!r} in the family's points "
+                                      f"(known: {sorted(named)})")
 
 
 def _model_files(folder: Path, packaged: bool) -> list[Path]:

@@ -45,9 +45,12 @@ WRAP_PAD_OFFSET = 0.014  # the body's surface this far out of the palm plane
 WRAP_HEIGHT = 0.005  # towards the index: between the thumb and the middle of the fingers
 
 
-def wrap_point(side: Side, width: float) -> np.ndarray:
-    """Where on the hand (wrist frame) the near surface point of a wrapped round body of this diameter goes."""
-    return np.array([WRAP_NEAR_EDGE_X + width / 2, PALM_SIGN[side] * WRAP_PAD_OFFSET, WRAP_HEIGHT])
+def wrap_point(side: Side, width: float, across: float | None = None) -> np.ndarray:
+    """Where on the hand (wrist frame) the near surface point of a wrapped body goes: `width` its extent along
+    the approach, `across` its extent along the fingers (a flat bottle's broad face against the palm; None: round).
+    Its edge nearest the thumb then lies just past the thumb, whatever its shape."""
+    along = width if across is None else across
+    return np.array([WRAP_NEAR_EDGE_X + along / 2, PALM_SIGN[side] * WRAP_PAD_OFFSET, WRAP_HEIGHT])
 
 
 def hand_axes(side: Side) -> dict[str, np.ndarray]:

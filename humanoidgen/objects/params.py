@@ -78,6 +78,26 @@ class FunctionSpec(_Strict):
     requires: str | None = None
 
 
+class UsableRule(_Strict):
+    """What an imported model must offer for the family's tasks to use it (objects/imported/usable.py): its point
+    at least `min_height` above its base, or standing at least `min_out` out of `from_point` toward the robot
+    (-x), closed. `why` says what fails otherwise; a model that fails is not drawn by --randomize-models."""
+
+    point: str
+    min_height: float | None = Field(default=None, gt=0.0, le=2.0)
+    min_out: float | None = Field(default=None, gt=0.0, le=1.0)
+    from_point: str | None = None
+    why: str = Field(min_length=1)
+
+    @model_validator(mode="after")
+    def _one_measure(self) -> UsableRule:
+        if (self.min_height is None) == (self.min_out is None):
+            raise ValueError("give one of min_height and min_out")
+        if (self.min_out is None) != (self.from_point is None):
+            raise ValueError("min_out needs from_point (and only min_out takes it)")
+        return self
+
+
 class FamilyFile(_Strict):
     """A family's `family.yaml`."""
 
@@ -91,6 +111,7 @@ class FamilyFile(_Strict):
     operations: list[OperationSpec]
     functions: list[FunctionSpec] = Field(default_factory=list)
     openness: list[OpennessSpec] = Field(default_factory=list)  # articulated families: one per joint
+    usable: list[UsableRule] = Field(default_factory=list)
 
     @model_validator(mode="after")
     def _openness_for_articulated(self) -> "FamilyFile":

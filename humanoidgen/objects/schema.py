@@ -59,6 +59,9 @@ class OperationAnnotation(_Strict):
     # For a grasp around a round body (bottle, can, cup): its diameter at the point (m). The hand then wraps it
     # against the finger pads, clear of the opposed thumb, instead of closing on it at the palm's grasp point.
     width: float | None = Field(default=None, gt=0.0, le=0.12)
+    # For a wrap of a body that is not round (a flat bottle): its horizontal extent across the approach (m), which
+    # lies along the fingers; None: round, the same as `width`.
+    across: float | None = Field(default=None, gt=0.0, le=0.15)
 
 
 class FunctionAnnotation(_Strict):

@@ -234,7 +234,9 @@ def grasp_or_pinch(env, side: Side, obj_name: str, obj_id: int, operation: str,
 
 def _ways(env, side: Side, obj_name: str, obj_id: int, operation: str, ops: list[OperationAnnotation],
           openness: float | None, finger_offset: float) -> list[Generated]:
-    turns = WRAP_TURNS_DEG if operation == "grasp" and all(op.width is not None for op in ops) else (0,)
+    # (a body that is not round, `across` set, is wrapped only from its annotated directions)
+    turns = WRAP_TURNS_DEG if operation == "grasp" and all(op.width is not None and op.across is None
+                                                           for op in ops) else (0,)
     return [g for turn in turns for op in ops
             for g in _grip_variants(env, side, obj_name, obj_id, operation, op, openness, turn, finger_offset)]
 
@@ -254,7 +256,7 @@ def _grip_variants(env, side: Side, obj_name: str, obj_id: int, operation: str, 
     hand_point = get_point_in_env(env, f"{kind}_point_base_{side}_hand")
     wrap = kind == "grasp" and op.width is not None
     if wrap:  # a round body goes against the finger pads, past the thumb (hands.wrap_point)
-        hand_point = wrist_point_in_env(env, side, wrap_point(side, op.width))
+        hand_point = wrist_point_in_env(env, side, wrap_point(side, op.width, op.across))
     if finger_offset:
         hand_point = hand_point + finger_offset * get_axis_in_env(env, f"{side}_grasp_wrist_2_palm_axis")
     target = get_point_in_env(env, op.point, obj_name, obj_id, openness=openness)

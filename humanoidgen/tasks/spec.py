@@ -15,8 +15,7 @@ from typing import Annotated, Any, Literal
 import numpy as np
 from pydantic import AfterValidator, Field, field_validator, model_validator
 
-from humanoidgen.objects import library
-from humanoidgen.objects.imported.model_file import FIRST_IMPORTED_TYPE_ID as IMPORTED_TYPE_IDS
+from humanoidgen.objects import library, stand_ins
 from humanoidgen.tasks.bounds import (
     AXES as _AXES,
     MAX_OFFSET_M,
@@ -39,6 +38,7 @@ _ALIAS = re.compile(r"^[a-z][a-z_]*[a-z]$")
 # carry their own bounds in predicates.py.
 _PREDICATE_LENGTHS = {"xy_tol", "z_tol", "z_gap", "margin", "base_gap", "min_height", "tol"}
 _PREDICATE_POSITIONS = {"target_xy"}
+_MODEL_TARGET = re.compile(r"^([a-z_]+)(?:\[(\d+)\])?$")  # a family ("cup") or one object of it ("cup[0]")
 
 
 def _check_predicate(pred: Any) -> Any:
@@ -172,8 +172,10 @@ class TaskSpec(_Strict):
     # control steps; None: time_limit_s at the control rate
     max_steps: int | None = Field(default=None, gt=0, le=round(MAX_TIME_LIMIT_S * 50))
     plan: str | None = None  # a reference plan (.py) next to the YAML, written separately
-    # Families whose model each episode draws from its imported models (hgen ... --randomize-models): the draw
-    # comes from the episode's seed (its own stream: the poses drawn are those without it) and is in the layout.
+    # Families ("cup") or objects ("bottle[1]") whose model each episode draws from the family's imported models
+    # (hgen ... --randomize-models): the draw comes from the episode's seed on a stream of its own, once per
+    # episode, so the poses drawn are those without it and pinning the drawn models (--model bottle[1]=NAME)
+    # gives the same episode.
     randomize_models: list[str] = Field(default_factory=list, max_length=16)
     # Named target poses of objects, for the paper's action="target" / "target1" / "target2" (tasks/targets.py).
     targets: list[TargetSpec] = Field(default_factory=list, max_length=64)
@@ -181,7 +183,8 @@ class TaskSpec(_Strict):
     @field_validator("randomize_models")
     @classmethod
     def _model_families(cls, v: list[str]) -> list[str]:
-        unknown = sorted(set(v) - set(library.families()))
+        unknown = sorted({r for r in v if _MODEL_TARGET.match(r) is None
+                          or _MODEL_TARGET.match(r).group(1) not in library.families()})
         if unknown:
             raise ValueError(f"randomize_models: unknown families {unknown}")
         return v
@@ -242,8 +245,9 @@ class TaskSpec(_Strict):
         from humanoidgen.tasks.scene import overlapping_pairs
 
         rng = np.random.default_rng(seed)
+        models = self._draw_models(seed)
         for _ in range(SAMPLE_ATTEMPTS):
-            layout = self._draw(rng)
+            layout = self._with_drawn(self._draw(rng), models)
             if not overlapping_pairs(layout, skip=self._follow_pairs()):
                 return layout
         raise ValueError(f"{self.name}: no overlap-free layout in {SAMPLE_ATTEMPTS} draws for seed {seed}")
@@ -277,18 +281,32 @@ class TaskSpec(_Strict):
                 openness = float(op)
             out.append(ResolvedObject(type=o.type, type_id=o.type_id, pos=pos,
                                       yaw=math.radians(o.yaw_deg) + d[2], openness=openness))
-        return self._draw_models(out, rng)
+        return out
 
-    def _draw_models(self, layout: list[ResolvedObject], rng: np.random.Generator) -> list[ResolvedObject]:
-        """Each object of a family in `randomize_models` gets a model drawn from the family's imported ones."""
+    def _with_drawn(self, layout: list[ResolvedObject], models: dict[int, int]) -> list[ResolvedObject]:
+        """The layout on the drawn models; contents (`follow`) move with their container's storage point."""
+        from humanoidgen.tasks.contents import moved, storage_shift
+
+        out = [r.model_copy(update={"type_id": models[i]}) if i in models else r for i, r in enumerate(layout)]
+        for i, o in enumerate(self.objects):
+            p = o.follow
+            if p is not None and p in models:
+                shift = storage_shift(self.objects[p].type, self.objects[p].type_id, models[p])
+                if shift is not None:
+                    out[i] = out[i].model_copy(update={"pos": moved(out[i].pos, out[p].yaw, shift)})
+        return out
+
+    def _draw_models(self, seed: int) -> dict[int, int]:
+        """Object index -> the type_id drawn for it, for each object that `randomize_models` names (by its family
+        or by itself), from the family's models that may stand in for it (`stand_ins.drawable_models`)."""
         if not self.randomize_models:
-            return layout
-        mrng = np.random.default_rng(int(rng.integers(2**63)) ^ 0x5EED)
-        out = []
-        for r in layout:
-            if r.type in self.randomize_models:
-                ids = [m.type_id for m in library.family(r.type).models() if m.type_id >= IMPORTED_TYPE_IDS]
+            return {}
+        mrng = np.random.default_rng([int(seed) % 2**63, 0x5EED])
+        out, counts = {}, {}
+        for i, o in enumerate(self.objects):
+            k = counts[o.type] = counts.get(o.type, -1) + 1
+            if o.type in self.randomize_models or f"{o.type}[{k}]" in self.randomize_models:
+                ids = [m.type_id for m in stand_ins.drawable_models(o.type, like=o.type_id)]
                 if ids:
-                    r = r.model_copy(update={"type_id": int(mrng.choice(ids))})
-            out.append(r)
+                    out[i] = int(mrng.choice(ids))
         return out

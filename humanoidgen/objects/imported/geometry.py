@@ -18,10 +18,19 @@ MIN_SIZE, MAX_SIZE = 0.01, 1.5
 
 @dataclass(frozen=True)
 class Units:
-    """How to scale a file's coordinates to metres: `scale` times, or to a largest extent of `size` m."""
+    """How to scale a file's coordinates to metres: `scale` times, or to a largest extent of `size` m; then, with
+    `fit` (lo, hi), into that range of largest extents (the family's: `sizing.family_size_range`)."""
 
     scale: float | None = None
     size: float | None = None
+    fit: tuple[float, float] | None = None
+
+
+def fit_factor(largest: float, fit: tuple[float, float] | None) -> float:
+    """The factor that brings a largest extent of `largest` m into the range `fit` (1 inside it, or without one)."""
+    if fit is None or largest <= 0.0:
+        return 1.0
+    return min(max(largest, fit[0]), fit[1]) / largest
 
 
 def up_rotation(up: UpAxis) -> np.ndarray:

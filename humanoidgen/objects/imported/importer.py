@@ -7,7 +7,7 @@ from __future__ import annotations
 import hashlib
 import shutil
 import tempfile
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -18,7 +18,8 @@ from humanoidgen.objects.imported import model_file as mf
 from humanoidgen.objects.imported.collision import coarse, convex_parts
 from humanoidgen.objects.imported.formats import ImportError_, SourceModel
 from humanoidgen.objects.imported.registry import format_for
-from humanoidgen.objects.imported.geometry import UpAxis, Units, check_mesh, to_metres, up_rotation
+from humanoidgen.objects.imported.sizing import family_size_range, fit_note
+from humanoidgen.objects.imported.geometry import UpAxis, Units, check_mesh, fit_factor, to_metres, up_rotation
 from humanoidgen.objects.imported.transfer import LOW_CONFIDENCE, TransferResult, transfer
 
 
@@ -43,6 +44,7 @@ class ImportRequest:
     package: str | None = None  # for the library: where the file came from, and under what licence
     licence: str | None = None
     sha256: str | None = None  # the library's digest of the files (default: the file's own sha256)
+    fit_family: bool = False  # scale the model into its family's size range (sizing.py)
 
 
 @dataclass
@@ -70,6 +72,8 @@ def import_model(req: ImportRequest) -> ImportReport:
     if target.exists() and not req.force:
         raise ImportError_(f"{target} already exists: pass --force to replace it, or --name another")
     src = fmt.load(path)
+    if req.fit_family:
+        req = replace(req, units=replace(req.units, fit=family_size_range(req.family)))
     articulated = fams[req.family].articulated
     if src.articulated != articulated:
         want = "an articulated model (URDF/MJCF with a joint)" if articulated else "a rigid mesh"
@@ -149,13 +153,16 @@ def _commit(tmp: Path, target: Path) -> None:
 
 def upright_mesh(mesh: trimesh.Trimesh, req: ImportRequest, default_up: str, where: str) -> tuple[trimesh.Trimesh,
                                                                                                    float, str]:
-    """The mesh in metres with its up axis on +z (the scale and the up axis used)."""
+    """The mesh in metres with its up axis on +z (the scale and the up axis used), in the size range of
+    `req.units.fit` if there is one."""
     check_mesh(mesh, where, req.allow_open)
     up = req.up or default_up
     factor = to_metres(mesh, req.units, where)
+    factor *= fit_factor(float(np.max(mesh.extents)) * factor, req.units.fit)
     out = trimesh.Trimesh(np.asarray(mesh.vertices, float) * factor @ up_rotation(up).T, mesh.faces,
                           visual=mesh.visual, process=False)
     return out, factor, up
+
 
 
 def _import_rigid(src: SourceModel, req: ImportRequest, name: str, type_id: int, path: Path, tmp: Path):
@@ -163,6 +170,7 @@ def _import_rigid(src: SourceModel, req: ImportRequest, name: str, type_id: int,
 
     where = str(path)
     mesh, factor, up = upright_mesh(src.links[0].mesh, req, src.default_up, where)
+    fitted = factor / to_metres(src.links[0].mesh, req.units, where) if req.units.fit is not None else None
     description = req.description or f"{name.replace('_', ' ')} (imported {path.name})"
     tr = transfer(mesh, req.family, type_id, description)
     mesh.apply_transform(tr.transform)
@@ -184,10 +192,12 @@ def _import_rigid(src: SourceModel, req: ImportRequest, name: str, type_id: int,
         source=mf.SourceInfo(file=path.name, sha256=req.sha256 or _sha256(path),
                              format=path.suffix.lower().lstrip("."),
                              package=req.package, licence=req.licence),
-        scale=factor, up=up, material=template["material"], rgba=_rgba(mesh, template["rgba"], textured),
+        scale=factor, fitted=fitted, up=up, material=template["material"],
+        rgba=_rgba(mesh, template["rgba"], textured),
         links=[mf.LinkFile(name="base", mass=mass, collision_parts=len(parts), textured=textured)])
     warnings = [f"{p.name}: confidence {p.confidence:.2f} ({p.rule}); check it, and fix it in "
-                f"{mf.OVERRIDE_FILE} if needed" for p in tr.low()] + tr.notes
+                f"{mf.OVERRIDE_FILE} if needed" for p in tr.low()] + tr.notes \
+        + fit_note(fitted or 1.0, req.family, req.units.fit)
     if 2 * len(tr.low()) >= len(tr.points) - 1:
         warnings.append(f"most points are unsure: is the object upright? --up names the file's up axis "
                         f"(used: {up}; the default is z, y for glTF)")

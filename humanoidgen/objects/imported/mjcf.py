@@ -25,18 +25,20 @@ class MjcfFormat:
         mujoco.mj_forward(model, data)
         links: list[SourceLink] = []
         names: dict[int, str] = {}
+        frame: dict[int, int] = {}  # body -> the body whose frame its link uses (a welded body: its link's)
         for b in range(1, model.nbody):
             mesh = _body_mesh(model, b)
             jnt = [j for j in range(model.njnt) if model.jnt_bodyid[j] == b
                    and int(model.jnt_type[j]) in (int(mujoco.mjtJoint.mjJNT_HINGE), int(mujoco.mjtJoint.mjJNT_SLIDE))]
             parent = int(model.body_parentid[b])
             pname = names.get(parent)
+            # Frames are taken relative to the link's own body, not the parent body: a body welded in between
+            # may be turned (LIBERO's short cabinet turns its case by a quaternion, the drawers with it).
             if not jnt and pname is not None:  # welded: part of its parent's link
-                T = _rel(model, data, parent, b)
-                mesh.apply_transform(T)
+                mesh.apply_transform(_rel(model, data, frame[parent], b))
                 owner = next(l for l in links if l.name == pname)
                 owner.mesh = trimesh.util.concatenate([owner.mesh, mesh])
-                names[b] = pname
+                names[b], frame[b] = pname, frame[parent]
                 continue
             name = model.body(b).name or f"body{b}"
             joint = None
@@ -46,9 +48,9 @@ class MjcfFormat:
                 lo, hi = model.jnt_range[j] if model.jnt_limited[j] else (0.0, 1.57 if kind == "hinge" else 0.2)
                 joint = SourceJoint(model.joint(j).name or f"joint{j}", kind, tuple(model.jnt_axis[j]), float(lo),
                                     float(hi))
-            T = _rel(model, data, parent, b) if pname is not None else _world(data, b)
+            T = _rel(model, data, frame[parent], b) if pname is not None else _world(data, b)
             links.append(SourceLink(name, mesh, pname, T, joint))
-            names[b] = name
+            names[b], frame[b] = name, b
         if not links or not any(l.joint for l in links):
             raise ImportError_(f"{path}: the MJCF has no hinge or slide joint: import a rigid mesh instead")
         return SourceModel([l for l in links if len(l.mesh.faces) or l.joint])

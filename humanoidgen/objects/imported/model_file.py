@@ -65,6 +65,8 @@ class ImportedModelFile(_Strict):
     description: str
     source: SourceInfo
     scale: float = Field(gt=0.0)
+    # the part of `scale` that brought the model into its family's size range (sizing.py); None: not fitted
+    fitted: float | None = Field(default=None, gt=0.0)
     up: str
     material: str
     rgba: tuple[float, float, float, float]

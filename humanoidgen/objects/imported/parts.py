@@ -27,7 +27,8 @@ import trimesh
 from humanoidgen.objects.imported import model_file as mf
 from humanoidgen.objects.imported.collision import coarse, convex_parts
 from humanoidgen.objects.imported.formats import ImportError_, SourceModel
-from humanoidgen.objects.imported.geometry import to_metres, up_rotation
+from humanoidgen.objects.imported.geometry import fit_factor, to_metres, up_rotation
+from humanoidgen.objects.imported.sizing import fit_note
 from humanoidgen.objects.imported.template import ray_hits
 from humanoidgen.objects.imported.transfer import LOW_CONFIDENCE, PointResult, TransferResult
 from humanoidgen.objects.schema import Articulation, KeyPoint, ObjectAnnotations
@@ -96,6 +97,11 @@ def import_articulated(src: SourceModel, req, name: str, type_id: int, path):
         raise ImportError_(f"{path}: the model has no mesh with faces")
     factor = to_metres(allmesh, req.units, str(path))
     links = _links(src, factor, R_up)
+    placed = [l.mesh for l in links if len(l.mesh.faces)]
+    fitted = fit_factor(float(np.max(trimesh.util.concatenate(placed).extents)), req.units.fit)
+    if fitted != 1.0:  # into the family's size range, measured on the links placed at their joints' zero
+        factor *= fitted
+        links = _links(src, factor, R_up)
     movers = [l for l in links if l.kind == MAIN_KIND[family]]
     if not movers:
         raise ImportError_(f"{path}: family {family} needs a {'prismatic' if family == 'drawer' else 'revolute'} "
@@ -157,11 +163,12 @@ def import_articulated(src: SourceModel, req, name: str, type_id: int, path):
         source=mf.SourceInfo(file=path.name, sha256=req.sha256 or _sha(path),
                              format=path.suffix.lower().lstrip("."),
                              package=req.package, licence=req.licence),
-        scale=factor, up=req.up or "z", material="wood", rgba=(0.7, 0.6, 0.5, 1.0), links=link_files,
-        articulation=ann.articulation)
+        scale=factor, fitted=fitted if req.units.fit is not None else None, up=req.up or "z", material="wood",
+        rgba=(0.7, 0.6, 0.5, 1.0), links=link_files, articulation=ann.articulation)
     tr = TransferResult(np.eye(4), ann, results, 0.0, yaw)
     warnings = [f"{p.name}: confidence {p.confidence:.2f} ({p.rule}); check it, and fix it in {mf.OVERRIDE_FILE}"
                 for p in results if p.confidence < LOW_CONFIDENCE]
+    warnings += fit_note(fitted, family, req.units.fit)
     return info, ann, tr, arrays, warnings
 
 

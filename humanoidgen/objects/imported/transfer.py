@@ -42,6 +42,9 @@ RIM_POINTS = {"rim", "lip"}
 TOP_POINTS = {"top", "pinch", "support"}
 BOTTOM_POINTS = {"pinch_bottom", "base"}
 HANDLE_POINTS = {"handle_left", "handle_right", "grip_left", "grip_right"}
+_STANDS_OUT, _STANDS_OUT_M = 1.18, 0.004  # a surface farther from the axis than this times the body's radius
+# at its height, plus this much, stands out of the body (a handle)
+NOT_ROUND = 0.1  # a body whose extent across a grasp differs from its width by more than this fraction is flat
 
 
 @dataclass
@@ -52,6 +55,7 @@ class PointResult:
     rule: str
     found: bool
     width: float | None = None
+    across: float | None = None  # a side point's horizontal extent across the approach, where not round
 
 
 @dataclass
@@ -102,7 +106,7 @@ def _standing_out(samples: np.ndarray, axis: np.ndarray) -> np.ndarray:
     idx = np.clip(np.digitize(z, bins) - 1, 0, 11)
     body = np.array([np.percentile(r[idx == k], 40) if np.any(idx == k) else 0.0 for k in range(12)])
     ref = np.maximum(body[idx], np.median(body[body > 0]) if np.any(body > 0) else 0.0)
-    return r > 1.18 * ref + 0.004
+    return r > _STANDS_OUT * ref + _STANDS_OUT_M
 
 
 def _handle_yaw(samples: np.ndarray, axis: np.ndarray, n_handles: int) -> float | None:
@@ -263,13 +267,31 @@ def _annotations(tann: ObjectAnnotations, results: list[PointResult], family: st
     points = [KeyPoint(name=r.name, position=tuple(round(float(v), 5) for v in r.position)) for r in results]
     ops = []
     for o in tann.operations:
-        w = o.width
+        w, across = o.width, None
         if w is not None and by[o.point].width is not None:
             w = round(float(min(max(by[o.point].width, 0.01), 0.12)), 4)
-        ops.append(o.model_copy(update={"width": w}))
+            if by[o.point].across is not None:
+                across = round(float(min(max(by[o.point].across, 0.01), 0.15)), 4)
+        ops.append(o.model_copy(update={"width": w, "across": across}))
     return ObjectAnnotations(family=family, type_id=type_id, description=description,
                              bbox_min=tuple(float(v) for v in lo), bbox_max=tuple(float(v) for v in hi),
                              points=points, axes=tann.axes, operations=ops, functions=tann.functions)
+
+
+def _across(f: _Frame, z: float, d: np.ndarray, r: float, width: float) -> float | None:
+    """The body's horizontal extent across the approach `d` at height z, where it is not round (it differs from
+    `width` by more than NOT_ROUND), else None. Surfaces that stand out of the body (a handle) do not count."""
+    at = np.abs(f.samples[:, 2] - z) < 0.01
+    ref = float(np.percentile(np.linalg.norm(f.samples[at, :2] - f.axis, axis=1), 40)) if at.sum() >= 10 else r
+    limit = _STANDS_OUT * max(r, ref) + _STANDS_OUT_M
+    sides = []
+    for sgn in (1.0, -1.0):
+        hits = [h for h in f.ray([*f.axis, z], [-sgn * d[1], sgn * d[0], 0.0]) if h <= limit]
+        if not hits:
+            return None
+        sides.append(float(hits[-1]))
+    across = sum(sides)
+    return across if abs(across - width) > NOT_ROUND * width else None
 
 
 def _snap(name: str, p: np.ndarray, geo, tmesh: trimesh.Trimesh, f: _Frame, family: str) -> PointResult:
@@ -286,10 +308,12 @@ def _snap(name: str, p: np.ndarray, geo, tmesh: trimesh.Trimesh, f: _Frame, fami
             hits = f.ray([*f.axis, z], [d[0], d[1], 0.0])
             if len(hits):
                 r = float(hits[-1])
-                back = f.ray([*f.axis, z], [-d[0], -d[1], 0.0])
+                # The diameter across: the far wall is the last surface the ray back meets within the body's
+                # radius; beyond it stands a handle (a mug grasped opposite its handle is 8 cm wide, not 12).
+                back = [h for h in f.ray([*f.axis, z], [-d[0], -d[1], 0.0]) if h <= _STANDS_OUT * r + _STANDS_OUT_M]
                 width = r + float(back[-1]) if len(back) else 2 * r
                 return PointResult(name, np.array([*(f.axis + d * r), z]), 1.0, "surface at relative height",
-                                   True, width)
+                                   True, width, _across(f, z, d, r, width))
         else:
             rel = f.samples[:, :2] - f.axis
             r = np.linalg.norm(rel, axis=1)
