@@ -139,7 +139,9 @@ def main() -> int:
                 "action_hz": 10, "commit": commit.strip(), "cpu_count": os.cpu_count(), "machine": platform.machine(),
                 "minutes": round((time.perf_counter() - t0) / 60, 1)}
     out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text(json.dumps({"settings": settings, "rows": rows}, indent=1))
+    cache = args.data_root / "ranges.json"
+    ranges = {t: r for t, r in json.loads(cache.read_text()).items() if t in tasks} if cache.exists() else {}
+    out.write_text(json.dumps({"settings": settings, "rows": rows, "plan_ranges": ranges}, indent=1))
     plot(rows, out.with_suffix(".png"))
     above = sorted({r["task"] for r in rows if r["success_mean"] > PASS_LIMIT})
     print(f"wrote {out} and {out.with_suffix('.png')}; tasks with a baseline above 10%: {', '.join(above) or 'none'}")

@@ -108,3 +108,38 @@ def test_the_demonstrations_range_is_read_back_from_a_trained_normalizer():
     rng = demo_range(Model(), "demos")
     np.testing.assert_allclose(rng.low, [0.0, 2.0, 5.0], atol=1e-5)
     np.testing.assert_allclose(rng.high, [1.0, 4.5, 5.0], atol=1e-5)
+
+
+def _random_passes(task_yaml: str, action_range, episodes: list[int]) -> list[bool]:
+    """The random baseline's verdict on evaluation seed 0's episodes `episodes` (scenes 100000 + i, draws seeded
+    i: as `hgen policy eval --policy random` meets them)."""
+    from humanoidgen.policies.rollout import rollout
+
+    env = HumanoidTaskEnv(task_yaml, config=blind(TaskEnvConfig()))
+    try:
+        model = baseline_policy("random", action_range)
+        return [rollout(model, env, 100_000 + i, torch.Generator().manual_seed(i), "cpu")[0] for i in episodes]
+    finally:
+        env.close()
+
+
+def test_open_box_easy_now_fails_the_random_baseline_where_it_passed(tmp_path):
+    """open_box_easy's success moved from openness 0.9 (upright) to 0.95 (flipped over to its stop: the paper's
+    "flip the box lid up"): on four scenes where random targets in the reference plans' action range had
+    flicked the lid just past upright, the same draws now fail, and the old threshold still passes them."""
+    import shutil
+    from pathlib import Path
+
+    from humanoidgen.tasks.registry import load_task
+
+    root = Path(__file__).parents[1]
+    ranges = json.loads((root / "bench" / "results" / "baselines.json").read_text())["plan_ranges"]["open_box_easy"]
+    rng = ActionRange.of(ranges["low"], ranges["high"], "reference plans")
+    scenes = [4, 10, 13, 19]  # bench/results/baselines.json: random passed these at 0.9
+    spec_dir = root / "humanoidgen" / "tasks" / "specs"
+    assert [s.value for s in load_task("open_box_easy").success] == [0.95]
+    old = tmp_path / "open_box_easy.yaml"
+    old.write_text((spec_dir / "open_box_easy.yaml").read_text().replace("value: 0.95}", "value: 0.9}"))
+    shutil.copy(spec_dir / "open_box_easy.py", tmp_path)
+    assert _random_passes("open_box_easy", rng, scenes) == [False] * 4
+    assert _random_passes(str(old), rng, scenes) == [True] * 4
