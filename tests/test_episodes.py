@@ -190,6 +190,8 @@ def test_cli_run_tasks_and_dataset_commands(collected, tmp_path):
     assert json.loads(out.read_text())["success"] is True
     res = runner.invoke(app, ["run", "block_stack_singel"])
     assert res.exit_code == 1 and "block_stack_single" in res.output  # suggests the close match
+    res = runner.invoke(app, ["run", "block_stack_single", "--video", str(tmp_path / "v.mp4"), "--video-camera", "nope"])
+    assert res.exit_code == 1 and "unknown camera 'nope'" in res.output
     res = runner.invoke(app, ["dataset", "info", str(one)])
     assert res.exit_code == 0 and "2 episodes kept" in res.output
     video = tmp_path / "ep.mp4"

@@ -179,3 +179,45 @@ def test_the_parent_of_an_episode_imports_no_planner():
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300, cwd=ROOT, env=env)
     assert r.returncode == 0, r.stderr[-2000:]
     assert r.stdout.strip().splitlines()[-1] == "[]"
+
+
+ORDER = textwrap.dedent('''
+    import json, os, sys
+    os.environ["HGEN_SANDBOX_WARM"] = json.dumps({"call": "humanoidgen.episodes.episode_worker:prebuild",
+                                                 "data": {"task": sys.argv[1], "seed": 3, "dressing": None}})
+    import humanoidgen.sandbox.forkserver  # (as the server: it names the environment variable)
+    from humanoidgen.sim import scene
+
+    later = ("pyseccomp", "pydrake.solvers", "ompl", "humanoidgen.planning.planner", "numba")
+    seen = []
+    build = scene.SceneBuilder.build
+
+    def recorded(self):
+        seen.extend(m for m in later if m in sys.modules)  # what the other thread had imported by then
+        return build(self)
+
+    scene.SceneBuilder.build = recorded
+    import humanoidgen.sandbox.preload  # noqa: F401  (the server's warm-up)
+    print(json.dumps({"at_compile": seen, "after": [m for m in later if m in sys.modules]}))
+''')
+
+
+def test_the_server_builds_the_scene_spec_before_its_other_imports(tmp_path):
+    """The server's other thread holds back its imports (Drake, OMPL, the planner, the kernel) until the scene's
+    spec is built and its compile started (`scene.before_compile`): sharing Python's lock with them, the spec
+    took twice as long and the compile, the longest part, started that much later."""
+    script = tmp_path / "order.py"
+    script.write_text(ORDER)
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")]))
+    r = subprocess.run([sys.executable, str(script), TASK], capture_output=True, text=True, timeout=600, cwd=ROOT,
+                       env=env)
+    assert r.returncode == 0, r.stderr[-3000:]
+    out = json.loads(r.stdout.strip().splitlines()[-1])
+    assert out["at_compile"] == [] and len(out["after"]) == 5, out
+
+
+def test_before_compile_is_called_before_each_compile(monkeypatch):
+    calls = []
+    monkeypatch.setattr("humanoidgen.sim.scene.before_compile", lambda: calls.append("before"))
+    SceneBuilder().build()
+    assert calls == ["before"]

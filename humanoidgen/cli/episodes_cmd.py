@@ -107,14 +107,17 @@ def run(
     from humanoidgen.episodes.episode_worker import VideoSpec
     from humanoidgen.episodes.plans import PlanFormatError
     from humanoidgen.episodes.task_episode import EpisodeRequest, run_task_episode
-    from humanoidgen.episodes.video import VideoWriter
-    from humanoidgen.sim.cameras import CAMERA_NAMES
 
     check_output_path(video, "--video")
     check_output_path(json_out, "--json")
-    if video is not None and video_camera not in CAMERA_NAMES:
-        _fail(f"unknown camera {video_camera!r}; cameras: {', '.join(CAMERA_NAMES)}")
-    writer = VideoWriter(video, video_camera) if video is not None else None
+    writer = None
+    if video is not None:  # (imageio: only for a video)
+        from humanoidgen.episodes.video import VideoWriter
+        from humanoidgen.sim.cameras import CAMERA_NAMES
+
+        if video_camera not in CAMERA_NAMES:
+            _fail(f"unknown camera {video_camera!r}; cameras: {', '.join(CAMERA_NAMES)}")
+        writer = VideoWriter(video, video_camera)
     req = EpisodeRequest(task, seed, str(script) if script else None, step_timeout_s=step_timeout,
                          video=VideoSpec(video_camera, writer.width, writer.height, writer.fps) if writer else None,
                          dressing=dressing)

@@ -4,7 +4,7 @@ here, because the server must come up; the worker that needs a module then repor
 
 Two cores' worth of work, done side by side (bench/startup.py; `docs/results/recording.md`, start-up):
 - a thread compiles a scene as soon as MuJoCo and the scene modules are imported (MuJoCo's compile releases
-  the GIL): what the server was started to build (`forkserver.ENV_WARM`; `hgen run`: its episode's scene,
+  the GIL; this thread waits until it has built the scene's spec and started the compile, `scene.before_compile`): what the server was started to build (`forkserver.ENV_WARM`; `hgen run`: its episode's scene,
   `episode_worker.prebuild`, which that episode's worker then takes instead of building it), or else the
   bare robot at its table. Either fills MuJoCo's process-wide cache of processed meshes, which every forked
   worker inherits (a scene's compile drops from about 1.05 s to 0.25 s);
@@ -78,12 +78,26 @@ def _load_kernel() -> None:
         broadphase.warm_up()
 
 
+def _build_scene(warm: str | None, compiling: threading.Event) -> None:
+    try:
+        _compile_scene(warm)
+    finally:
+        compiling.set()  # (a scene that failed before its compile)
+
+
 def _warm() -> None:
     warm = os.environ.pop(ENV_WARM, None)
     _import(_FOR_THE_SCENE)
-    scene = threading.Thread(target=_compile_scene, args=(warm,), name="hgen-warm-scene")
+    compiling = threading.Event()
+    scene_module = importlib.import_module("humanoidgen.sim.scene")
+    scene_module.before_compile = compiling.set
+    scene = threading.Thread(target=_build_scene, args=(warm, compiling), name="hgen-warm-scene")
     scene.start()
     try:
+        # The scene's spec first (Python's lock shared with these imports would take it twice as long, and the
+        # compile, the longest part, would start that much later); these imports then run beside the compile.
+        compiling.wait()
+        scene_module.before_compile = None
         _import(_THE_REST)
         _load_kernel()
     finally:

@@ -172,9 +172,18 @@ class SceneBuilder:
 
     # -- compile -----------------------------------------------------------------------------------------
     def build(self) -> Scene:
+        if before_compile is not None:
+            before_compile()
         model = self.spec.compile()
         return Scene(model=model, objects=list(self._objects), geom_labels=_geom_labels(model, self._objects),
                      label_names=_label_names(self._objects))
+
+
+# Called right before each scene's compile in this process, where set. The workers' fork server sets it while
+# one of its threads builds a scene (`sandbox.preload`): its other thread holds back its own imports until the
+# scene's spec is built, instead of taking Python's lock from it every few milliseconds, and imports while the
+# compile runs without the lock.
+before_compile: Callable[[], None] | None = None
 
 
 def _geom_labels(model: mujoco.MjModel, objects: list[SceneObject]) -> np.ndarray:
