@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import json
 import os
+import subprocess
+import sys
 
 import pytest
 import trimesh
@@ -90,11 +92,18 @@ def test_the_record_pins_the_drawn_models_and_the_episode_comes_back_exactly(bot
     assert {"tall_tin", "short_tin"} <= drawable and len(seen) >= 2 and seen <= drawable
 
 
+def _hgen(*args: str) -> subprocess.CompletedProcess:
+    """An `hgen` command in a fresh process: its plan workers' server starts with this environment, the extra
+    models' folder in it (a server started earlier in this test process would not know of them)."""
+    return subprocess.run([sys.executable, "-m", "humanoidgen.cli.main", *args], env=dict(os.environ),
+                          capture_output=True, text=True, timeout=900)
+
+
 def test_bench_records_each_episodes_models(bottles, tmp_path):
     out = tmp_path / "bench.json"
-    r = CliRunner().invoke(app, ["bench", "--tasks", TASK, "--episodes", "1", "--seed", "2", "--model",
-                                 "bottle[0]=tall_tin", "--randomize-models", "--json", str(out)])
-    assert r.exit_code == 0, r.output
+    r = _hgen("bench", "--tasks", TASK, "--episodes", "1", "--seed", "2", "--model", "bottle[0]=tall_tin",
+              "--randomize-models", "--json", str(out))
+    assert r.returncode == 0, r.stdout[-2000:] + r.stderr[-2000:]
     (report,) = json.loads(out.read_text())
     (rec,) = report["records"]
     assert rec["models"]["bottle[0]"]["model"] == "tall_tin"
@@ -105,16 +114,14 @@ def test_bench_records_each_episodes_models(bottles, tmp_path):
 
 
 def test_collect_writes_each_episodes_models_into_its_index(bottles, tmp_path):
-    from humanoidgen.episodes.collect import collect
-    from humanoidgen.episodes.recorder import RecorderConfig
-    from humanoidgen.tasks.models import task_with_models
-
-    task, plan = task_with_models(TASK, [], True, tmp_path / "task")
-    stats = collect(task, 1, tmp_path / "data", seed=4, plan_path=str(plan),
-                    recorder=RecorderConfig(every=10, cameras=(), point_cloud=False))
-    assert stats.kept == 1
-    records = [json.loads(line) for line in (tmp_path / "data" / "index.jsonl").read_text().splitlines()]
-    assert records and all(r["models"] == episode_models(load_task(task), r["seed"]) for r in records)
+    out = tmp_path / "data"
+    r = _hgen("collect", TASK, "-n", "1", "--out", str(out), "--seed", "4", "--randomize-models", "--cameras",
+              "none", "--no-point-cloud", "--every", "10")
+    assert r.returncode == 0, r.stdout[-2000:] + r.stderr[-2000:]
+    task = load_task(str(tmp_path / ".data.task" / f"{TASK}.models.yaml"))  # the task as collected, beside it
+    records = [json.loads(line) for line in (out / "index.jsonl").read_text().splitlines()]
+    assert records and all(r["models"] == episode_models(task, r["seed"]) for r in records)
+    assert all(set(r["models"]) == {"bottle[0]", "bottle[1]"} for r in records)
 
 
 def test_the_gym_env_takes_models_and_says_which_it_drew(bottles):
