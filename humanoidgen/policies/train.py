@@ -7,6 +7,8 @@ schedule after warm-up, EMA weights, a tqdm bar (loss, epoch, ETA), kept checkpo
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import math
 import time
 from dataclasses import dataclass, field
@@ -85,7 +87,8 @@ def run_meta(demos: Demos, task: str | None) -> dict:
 
 
 def train(policy: str, data: Path, out: Path, overrides: dict | None = None, device: str = "auto",
-          resume: bool = False, task: str | None = None, progress: bool = True) -> TrainResult:
+          resume: bool = False, task: str | None = None, progress: bool = True,
+          on_start: Callable[[], None] | None = None) -> TrainResult:
     from diffusers.optimization import get_scheduler
     from tqdm import tqdm
 
@@ -113,6 +116,8 @@ def train(policy: str, data: Path, out: Path, overrides: dict | None = None, dev
     if state is not None and state["meta"]["task"] != meta["task"]:
         raise ck.CheckpointError(f"{latest} was trained on {state['meta']['task']!r}, this data is "
                                  f"{meta['task']!r}")
+    if on_start is not None:  # the data and the run folder are good: what is said now is not drowned by an error
+        on_start()
     torch.manual_seed(cfg.train.seed)
     model = ptype.model_cls()(cfg)
     inputs = policy_inputs(model, demos)
