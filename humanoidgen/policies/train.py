@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -85,7 +86,8 @@ def run_meta(demos: Demos, task: str | None) -> dict:
 
 
 def train(policy: str, data: Path, out: Path, overrides: dict | None = None, device: str = "auto",
-          resume: bool = False, task: str | None = None, progress: bool = True) -> TrainResult:
+          resume: bool = False, task: str | None = None, progress: bool = True,
+          on_start: Callable[[], None] | None = None) -> TrainResult:
     from diffusers.optimization import get_scheduler
     from tqdm import tqdm
 
@@ -146,6 +148,8 @@ def train(policy: str, data: Path, out: Path, overrides: dict | None = None, dev
                      lr_scheduler=sched.state_dict(), torch_rng=torch.get_rng_state(), losses=losses, epoch=epoch)
         return p
 
+    if on_start is not None:  # the data and settings are good: the first step is next (the CLI says its recipe)
+        on_start()
     bar = tqdm(total=(tc.epochs - first) * steps_per_epoch, unit="step", desc=f"train {policy}",
                disable=not progress, dynamic_ncols=True)
     t0 = time.perf_counter()
