@@ -208,7 +208,7 @@ def test_a_study_asked_for_more_epochs_resumes_a_finished_run(demos_zarr, tmp_pa
     assert not _finished(run, 3)  # asked for 3 epochs: it trains one more (it used to be evaluated at 2)
 
 
-def test_a_cpu_gets_the_cpu_sized_recipe_unless_paper_is_asked_for(demos_zarr, tmp_path, capsys):
+def test_a_cpu_gets_the_cpu_sized_recipe_unless_paper_is_asked_for(demos_zarr, tmp_path):
     """`hgen policy train --policy dp3` with no recipe on a CPU trains `fast` (and says so in one line), not the
     paper's 259 M-parameter GPU recipe; `--recipe paper` forces the paper's; a GPU gets the paper's."""
     from humanoidgen.cli.policy_cmd import _with_recipe
@@ -230,7 +230,6 @@ def test_a_cpu_gets_the_cpu_sized_recipe_unless_paper_is_asked_for(demos_zarr, t
                                  "--device", "cpu", "--epochs", "2", "--resume"])
     assert r.exit_code == 0, r.output
     assert json.loads((run / "config.json").read_text())["train"]["epochs"] == 2
-    capsys.readouterr()
-    paper, note = _with_recipe("dp3", "paper", {}, "cpu", False)  # forced: the configs' defaults, said nothing
-    assert policy_type("dp3").config(paper).train.batch_size == 256 and note == ""
+    paper, line = _with_recipe("dp3", "paper", {}, "cpu", False)  # forced: the configs' defaults, said nothing
+    assert policy_type("dp3").config(paper).train.batch_size == 256 and line == ""
     assert policy_type("dp3").config(paper).unet.down_dims == (512, 1024, 2048)

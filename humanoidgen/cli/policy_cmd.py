@@ -96,9 +96,9 @@ def train(
         torch.set_num_threads(threads)
     over = _overrides(epochs, batch_size, episodes, checkpoint_every, config)
     try:
-        over, note = _with_recipe(policy, recipe, over, device, resume)
+        over, line = _with_recipe(policy, recipe, over, device, resume)
         result = run_train(policy, data, out, over, device=device, resume=resume, task=task,
-                           on_start=(lambda: typer.echo(note)) if note else None)
+                           on_start=(lambda: typer.echo(line)) if line else None)
     except _errors() as exc:
         _fail(_one_line(exc))
         return
@@ -111,9 +111,9 @@ def train(
 
 
 def _with_recipe(policy: str, recipe: str | None, over: dict, device: str, resume: bool) -> tuple[dict, str]:
-    """The run's settings: the recipe's (named, or by device: `recipes.default_recipe`) under `over`, and one
-    line saying which when the device chose it (said once the data is read: a bad input stays one line). A
-    resumed run keeps its own settings unless a recipe is named."""
+    """(The run's settings: the recipe's (named, or by device: `recipes.default_recipe`) under `over`; the line
+    that says which, when the device chose it, to print once training starts, else ''). A resumed run keeps its
+    own settings unless a recipe is named."""
     from humanoidgen.policies.recipes import default_recipe, recipe_overrides
     from humanoidgen.policies.registry import policy_type
     from humanoidgen.policies.train import resolve_device
@@ -122,15 +122,15 @@ def _with_recipe(policy: str, recipe: str | None, over: dict, device: str, resum
         return over, ""
     name = recipe or default_recipe(resolve_device(device))
     over = recipe_overrides(name, policy, over)
-    if recipe is None:
-        ptype = policy_type(policy)
-        cfg = ptype.config(over)
-        size = sum(p.numel() for p in ptype.model_cls()(cfg).parameters()) / 1e6
-        why = "no CUDA device: the CPU-sized 'fast' recipe" if name == "fast" else "CUDA: the paper's recipe"
-        return over, (f"{why} ({size:.1f} M parameters, U-Net {'/'.join(map(str, cfg.unet.down_dims))}, batch "
-                      f"{cfg.train.batch_size}, {cfg.train.epochs} epochs); "
-                      + ("--recipe paper trains the paper's" if name == "fast" else "--recipe fast for a smaller one"))
-    return over, ""
+    if recipe is not None:
+        return over, ""
+    ptype = policy_type(policy)
+    cfg = ptype.config(over)
+    size = sum(p.numel() for p in ptype.model_cls()(cfg).parameters()) / 1e6
+    why = "no CUDA device: the CPU-sized 'fast' recipe" if name == "fast" else "CUDA: the paper's recipe"
+    return over, (f"{why} ({size:.1f} M parameters, U-Net {'/'.join(map(str, cfg.unet.down_dims))}, batch "
+                  f"{cfg.train.batch_size}, {cfg.train.epochs} epochs); "
+                  + ("--recipe paper trains the paper's" if name == "fast" else "--recipe fast for a smaller one"))
 
 
 @app.command()
@@ -262,10 +262,10 @@ def bench(
     except _errors() as exc:
         _fail(_one_line(exc))
         return
-    by_policy = {p: settings for p, (settings, _) in chosen.items()}
-    for p, (_, note) in chosen.items():
-        if note:
-            typer.echo(f"{p}: {note}")
+    by_policy = {p: o for p, (o, _) in chosen.items()}
+    for p, (_, line) in chosen.items():
+        if line:
+            typer.echo(f"{p}: {line}")
     cfg = StudyConfig(tasks=task_list, demos=tuple(int(d) for d in demos.split(",")),
                       policies=policy_list, data_root=data_root,
                       runs_root=runs_root, overrides=by_policy, eval_episodes=episodes,

@@ -7,10 +7,9 @@ schedule after warm-up, EMA weights, a tqdm bar (loss, epoch, ETA), kept checkpo
 
 from __future__ import annotations
 
-from collections.abc import Callable
-
 import math
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -116,8 +115,6 @@ def train(policy: str, data: Path, out: Path, overrides: dict | None = None, dev
     if state is not None and state["meta"]["task"] != meta["task"]:
         raise ck.CheckpointError(f"{latest} was trained on {state['meta']['task']!r}, this data is "
                                  f"{meta['task']!r}")
-    if on_start is not None:  # the data and the run folder are good: what is said now is not drowned by an error
-        on_start()
     torch.manual_seed(cfg.train.seed)
     model = ptype.model_cls()(cfg)
     inputs = policy_inputs(model, demos)
@@ -151,6 +148,8 @@ def train(policy: str, data: Path, out: Path, overrides: dict | None = None, dev
                      lr_scheduler=sched.state_dict(), torch_rng=torch.get_rng_state(), losses=losses, epoch=epoch)
         return p
 
+    if on_start is not None:  # the data and settings are good: the first step is next (the CLI says its recipe)
+        on_start()
     bar = tqdm(total=(tc.epochs - first) * steps_per_epoch, unit="step", desc=f"train {policy}",
                disable=not progress, dynamic_ncols=True)
     t0 = time.perf_counter()
