@@ -19,7 +19,7 @@ from humanoidgen.envs.config import TaskEnvConfig
 from humanoidgen.policies.baselines import ActionRange
 from humanoidgen.policies.registry import BASELINE_NAMES, baseline_policy
 from humanoidgen.policies.report import EvalReport
-from humanoidgen.policies.rollout import MAX_EPISODES_PER_SEED, EvalError, run_episodes
+from humanoidgen.policies.rollout import EvalError, check_scenes, run_episodes
 
 
 def blind(cfg: TaskEnvConfig) -> TaskEnvConfig:
@@ -67,10 +67,7 @@ def evaluate_baseline(name: str, task: str, episodes: int = 20, seeds: tuple[int
 
     if name not in BASELINE_NAMES:
         raise EvalError(f"unknown baseline {name!r}; baselines: {', '.join(BASELINE_NAMES)}")
-    if not 1 <= episodes <= MAX_EPISODES_PER_SEED:
-        raise EvalError(f"--episodes must be in 1..{MAX_EPISODES_PER_SEED}, got {episodes}")
-    if not seeds or any(s < 0 for s in seeds):
-        raise EvalError("--seeds must be non-negative integers, e.g. 0,1,2")
+    check_scenes(episodes, seeds)
     own = env is None
     if own:
         env = HumanoidTaskEnv(task, config=blind(env_config or TaskEnvConfig()),

@@ -18,6 +18,7 @@ from humanoidgen.policies.rollout import (  # noqa: F401 (evaluation's names, re
     EpisodeOutcome,
     EvalError,
     _video,
+    check_scenes,
     env_config_for,
     final_detail,
     policy_obs,
@@ -41,10 +42,7 @@ def evaluate(run: Path, task: str | None = None, episodes: int = 20, seeds: tupl
 
     from humanoidgen.envs.task_env import HumanoidTaskEnv
 
-    if not 1 <= episodes <= MAX_EPISODES_PER_SEED:
-        raise EvalError(f"--episodes must be in 1..{MAX_EPISODES_PER_SEED}, got {episodes}")
-    if not seeds or any(s < 0 for s in seeds):
-        raise EvalError("--seeds must be non-negative integers, e.g. 0,1,2")
+    check_scenes(episodes, seeds)
     device = resolve_device(device)
     paths = [Path(p) for p in checkpoints] if checkpoints else ck.run_checkpoints(run)
     loaded = [(p, *ck.load_policy(p, device)) for p in paths]

@@ -21,6 +21,14 @@ class EvalError(ValueError):
     pass
 
 
+def check_scenes(episodes: int, seeds) -> None:
+    """The evaluation scenes asked for exist: episodes per seed in range (they number the scenes), seeds >= 0."""
+    if not 1 <= episodes <= MAX_EPISODES_PER_SEED:
+        raise EvalError(f"--episodes must be in 1..{MAX_EPISODES_PER_SEED}, got {episodes}")
+    if not seeds or any(s < 0 for s in seeds):
+        raise EvalError("--seeds must be non-negative integers, e.g. 0,1,2")
+
+
 @dataclass
 class EpisodeOutcome:
     checkpoint: str
