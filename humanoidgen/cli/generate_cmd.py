@@ -143,11 +143,11 @@ def prompt(
     os.environ.setdefault("MUJOCO_GL", "egl")
     if kind not in ("script", "scene", "mcts"):
         _fail(f"unknown --kind {kind!r}: choose script, scene or mcts")
-    from humanoidgen.generation import prompt_preview
+    from humanoidgen.generation import prompt_preview, prompts
 
     with _reported_errors():
         if kind == "scene":
-            text = prompt_preview.scene_prompt(_description_of(task))
+            text = prompts.scene_prompt(_description_of(task))
         else:
             view = prompt_preview.scene_view(task, seed)
             if kind == "script":

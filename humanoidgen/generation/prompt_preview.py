@@ -46,8 +46,3 @@ def script_prompt(view: SceneView) -> str:
     from humanoidgen.generation.script_gen import step_names
 
     return prompts.script_prompt(view.description, view.scene, view.hands, step_names())
-
-
-def scene_prompt(description: str) -> str:
-    """The prompt of `hgen generate scene` for a description in words."""
-    return prompts.scene_prompt(description)
