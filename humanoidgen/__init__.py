@@ -7,3 +7,8 @@ import os
 os.environ.setdefault("MUJOCO_GL", "egl")
 
 __version__ = "0.1.0"
+
+# `gymnasium.make("humanoidgen/<task>-v0")` works after `import humanoidgen`, without importing gymnasium here.
+from humanoidgen import gym_ids as _gym_ids  # noqa: E402
+
+_gym_ids.install()
