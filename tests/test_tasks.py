@@ -147,7 +147,8 @@ def _raw(name: str = "open_drawer") -> dict:
     (lambda r: r.update(colour="red"), "colour"),
     (lambda r: r.update(arms="three"), "arms"),
     (lambda r: r["objects"][0].update(type="drawr"), "valid types: barrier, bottle, bowl, box"),
-    (lambda r: r["objects"][0].update(type_id=7), "valid type_ids: [0, 1]"),
+    # The own models come first; imported ones (when the object library is fetched) follow them.
+    (lambda r: r["objects"][0].update(type_id=7), "valid type_ids: [0, 1"),
     (lambda r: r["objects"][0].update(size=3), "objects.0.size"),
     (lambda r: r["randomization"].update(position=[0.1, 0.2]), "randomization.position"),
     (lambda r: r["randomization"].update(per_object=[3]), "randomization.per_object"),
