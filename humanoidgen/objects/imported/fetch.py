@@ -12,7 +12,7 @@ import sys
 import tempfile
 import zipfile
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import yaml
@@ -32,7 +32,9 @@ class FetchError_(RuntimeError):
 
 class SourceTerms(_Strict):
     licence: str
-    verified: bool  # the licence was read from the package or its upstream's published terms
+    # use, change and share allowed, commercially too, with attribution at most (MIT, zlib, CC-BY); a source
+    # that is not (HOPE's CC BY-NC-SA) is fetched only when the user asks for it by name of its terms
+    permissive: bool
     attribution: str
 
 
@@ -93,18 +95,24 @@ class FetchReport:
     kept: list[str]
     failed: list[str]
     folder: Path
+    # models left out for their licence, by source: {"hope (CC-BY-NC-SA-4.0)": 26}
+    skipped: dict[str, int] = field(default_factory=dict)
 
 
-def fetch_library(assets_root: Path, wheels: Path, verified_only: bool = False, only: set[str] | None = None,
+def fetch_library(assets_root: Path, wheels: Path, include_noncommercial: bool = False, only: set[str] | None = None,
                   log: Callable[[str], None] = print) -> FetchReport:
     """Download, verify and import the library's models into `assets_root/object_library`."""
     from humanoidgen.objects.imported.importer import ImportRequest, import_model
 
     man = manifest()
     out = Path(assets_root) / LIBRARY_DIR
-    chosen = [m for m in man.models if (not verified_only or man.sources[m.source].verified)
+    chosen = [m for m in man.models if (include_noncommercial or man.sources[m.source].permissive)
               and (only is None or m.name in only or m.family in only)]
     report = FetchReport([], [], [], out)
+    for m in man.models:
+        if m not in chosen and (only is None or m.name in only or m.family in only):
+            key = f"{m.source} ({man.sources[m.source].licence})"
+            report.skipped[key] = report.skipped.get(key, 0) + 1
     todo = [m for m in chosen if not _present(out, m)]
     report.kept = [m.name for m in chosen if m not in todo]
     needed = sorted({e.package for m in todo for e in m.extracts()})
