@@ -233,3 +233,23 @@ def test_a_cpu_gets_the_cpu_sized_recipe_unless_paper_is_asked_for(demos_zarr, t
     paper, line = _with_recipe("dp3", "paper", {}, "cpu", False)  # forced: the configs' defaults, said nothing
     assert policy_type("dp3").config(paper).train.batch_size == 256 and line == ""
     assert policy_type("dp3").config(paper).unet.down_dims == (512, 1024, 2048)
+
+
+def test_randomized_evaluation_reports_its_scenes_and_the_study_rows_say_which(demos_zarr, tmp_path):
+    """`evaluate(..., randomize=True)` runs the policy and its baselines on the same scene seeds dressed from
+    their seeds (issue 37 item 2); the study gives each condition a row and plots randomized dashed."""
+    from humanoidgen.policies.bench import format_row, plot
+
+    run = tmp_path / "dp3"
+    train("dp3", demos_zarr, run, _with(TINY_DP3, epochs=1), device="cpu", progress=False)
+    report = evaluate(run, "close_drawer", episodes=1, seeds=(0,), device="cpu", progress=False, max_steps=2,
+                      randomize=True)
+    assert report.scenes == "randomized" and report.to_dict()["scenes"] == "randomized"
+    assert "(randomized scenes)" in report.summary()
+    assert all(b.scenes == "randomized" for b in report.baselines.values())
+    assert [o.scene_seed for o in report.outcomes] == [100_000]
+    rows = [{"task": "close_drawer", "policy": "dp3", "demos": 2, "scenes": s, "success_mean": m,
+             "success_std": 0.0, "train_seconds": None, "final_loss": 0.1, "baseline_random": 0.0} for s, m in
+            (("clean", 0.5), ("randomized", 0.1))]
+    assert "randomized" in format_row(rows[1]) and "clean" in format_row(rows[0])
+    assert plot(rows, tmp_path / "study.png") and (tmp_path / "study.png").stat().st_size > 0

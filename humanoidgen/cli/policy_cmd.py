@@ -160,9 +160,12 @@ def eval(  # noqa: A001 - the command is called eval
     data: Path | None = typer.Option(None, "--data", help="With --policy random: draw targets within this zarr's "
                                                          "action range and at its action rate (default: the joint "
                                                          "limits, 10 Hz)."),
+    randomize: bool = typer.Option(False, "--randomize", help="Also evaluate on the same scenes randomized from "
+                                   "their seeds (a room and its table height, textures, lights, camera jitter, "
+                                   "distractors) and report clean and randomized side by side."),
 ) -> None:
     """Run the policy in its task and report success mean and std over seeds and checkpoints, with the random
-    and no-op baselines' on the same scenes beside it.
+    and no-op baselines' on the same scenes beside it; with --randomize, clean and randomized side by side.
 
     Example: hgen policy eval runs/cd_dp3 --task close_drawer --episodes 20 --seeds 0,1,2
 
@@ -184,42 +187,47 @@ def eval(  # noqa: A001 - the command is called eval
     if policy is not None and policy not in BASELINE_NAMES:
         _fail(f"--policy is for the baselines ({', '.join(BASELINE_NAMES)}); a trained {policy} is evaluated from "
               f"its run folder: hgen policy eval RUN")
+    reports = []
     try:
-        if policy is not None:
-            report = _baseline_report(policy, str(run), episodes, seed_list, data, max_steps, video)
-        else:
-            report = evaluate(run, task, episodes, seed_list, checkpoints=checkpoint or None, device=device,
-                              video_dir=video, max_steps=max_steps, ray_address=ray_address, ray_gpus=ray_gpus,
-                              action_steps=action_steps, baselines=baselines)
+        for randomized in ((False, True) if randomize else (False,)):
+            if policy is not None:
+                report = _baseline_report(policy, str(run), episodes, seed_list, data, max_steps, video, randomized)
+            else:
+                report = evaluate(run, task, episodes, seed_list, checkpoints=checkpoint or None, device=device,
+                                  video_dir=video, max_steps=max_steps, ray_address=ray_address, ray_gpus=ray_gpus,
+                                  action_steps=action_steps, baselines=baselines, randomize=randomized)
+            reports.append(report)
+            for (ckpt, seed), rate in report.rates().items():
+                typer.echo(f"{Path(ckpt).name} seed {seed} ({report.scenes}): {100 * rate:.0f}% of {episodes}")
     except _errors() as exc:
         _fail(_one_line(exc))
         return
-    for (ckpt, seed), rate in report.rates().items():
-        typer.echo(f"{Path(ckpt).name} seed {seed}: {100 * rate:.0f}% of {episodes}")
-    typer.echo(report.summary())
-    if report.baseline_line():
-        typer.echo(report.baseline_line())
+    for report in reports:  # side by side at the end, clean first
+        typer.echo(report.summary())
+        if report.baseline_line():
+            typer.echo(report.baseline_line())
     if out is not None:
         out.parent.mkdir(parents=True, exist_ok=True)
-        out.write_text(json.dumps(report.to_dict(), indent=2))
+        body = reports[0].to_dict() if len(reports) == 1 else {r.scenes: r.to_dict() for r in reports}
+        out.write_text(json.dumps(body, indent=2))
         typer.echo(f"wrote {out}")
 
 
 def _baseline_report(policy: str, task: str, episodes: int, seeds: tuple[int, ...], data: Path | None,
-                     max_steps: int | None, video: Path | None):
+                     max_steps: int | None, video: Path | None, randomize: bool = False):
     from humanoidgen.envs.config import TaskEnvConfig
     from humanoidgen.policies.baseline_eval import evaluate_baseline, zarr_range
 
-    action_range, cfg = None, TaskEnvConfig(max_steps=max_steps)
+    action_range, cfg = None, TaskEnvConfig(max_steps=max_steps, randomize=randomize)
     if data is not None:
         action_range, attrs = zarr_range(data)
         if attrs.get("task") not in (None, task):
             raise ValueError(f"{data} holds task {attrs['task']!r}, not {task!r}")
         cfg = TaskEnvConfig.from_recorder(dict(attrs.get("recorder") or {}), float(attrs.get("control_hz", 50.0)),
-                                          max_steps=max_steps)
+                                          max_steps=max_steps, randomize=randomize)
     report = evaluate_baseline(policy, task, episodes, seeds, env_config=cfg, action_range=action_range,
                                video_dir=video)
-    if policy == "random":
+    if policy == "random" and not randomize:
         typer.echo(f"random targets within {report.info['action_range']['source']}, each held "
                    f"{report.info['hold_actions']} actions")
     return report
@@ -244,6 +252,8 @@ def bench(
     workers: int = typer.Option(1, min=1, help="Collection workers for missing data."),
     baselines: bool = typer.Option(True, "--baselines/--no-baselines", help="The random and noop baselines on "
                                                                             "each row's scenes too."),
+    randomize: bool = typer.Option(False, "--randomize", help="Evaluate each run on clean and on randomized "
+                                   "scenes (a row for each, `scenes` clean|randomized)."),
 ) -> None:
     """The study: tasks x demos x policies, trained and evaluated; writes a table, a JSON and a plot.
 
@@ -253,6 +263,8 @@ def bench(
     """
     os.environ.setdefault("MUJOCO_GL", "egl")
     from humanoidgen.policies.bench import PAPER_TASKS, StudyConfig, format_row, run_study, write_results
+    from humanoidgen.policies.recipes import default_recipe
+    from humanoidgen.policies.train import resolve_device
 
     over = _overrides(epochs, None, None, None, config)
     task_list = PAPER_TASKS if tasks == "paper" else tuple(t.strip() for t in tasks.split(",") if t.strip())
@@ -270,7 +282,8 @@ def bench(
                       policies=policy_list, data_root=data_root,
                       runs_root=runs_root, overrides=by_policy, eval_episodes=episodes,
                       eval_seeds=tuple(int(s) for s in seeds.split(",")), device=device, collect_workers=workers,
-                      baselines=baselines)
+                      baselines=baselines, scenes=("clean", "randomized") if randomize else ("clean",),
+                      recipe=recipe or default_recipe(resolve_device(device)))
     try:
         rows = run_study(cfg)
     except _errors() as exc:

@@ -33,6 +33,11 @@ class TaskEnvConfig:
     render_camera: str = "front"
     render_width: int = 640
     render_height: int = 480
+    # Each reset dresses its scene from the seed, on RoboTwin 2.0's axes: a room around the table (walls,
+    # furniture, clutter: the background) whose work surface sets the table's height under the robot, table and
+    # floor colours and textures, lights, camera poses jittered within `scenes.visuals.CAMERA_JITTER`, and
+    # distractors on the table's far corners (as `hgen collect --room random --randomize-visuals` records).
+    randomize: bool = False
     extra: dict[str, Any] = field(default_factory=dict, compare=False)  # ignored recorder fields
 
     def __post_init__(self) -> None:

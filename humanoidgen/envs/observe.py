@@ -71,7 +71,7 @@ class Observer:
         return obs
 
 
-def render_model_for(spec, seed: int, sim: HumanoidEnv, cfg: TaskEnvConfig):
+def render_model_for(spec, seed: int, sim: HumanoidEnv, cfg: TaskEnvConfig, dressing=None):
     """The model a recording with these settings draws seed `seed`'s scene with (None: the simulator's own),
     built as the episode worker builds it."""
     if not (cfg.cameras or cfg.point_cloud):
@@ -84,5 +84,5 @@ def render_model_for(spec, seed: int, sim: HumanoidEnv, cfg: TaskEnvConfig):
     if faces == visual_faces():
         return None
     with visual_detail(faces):
-        scene, _ = build_layout(spec.sample_layout(seed), settle_s=0.0, aliases=spec.aliases())
+        scene, _ = build_layout(spec.sample_layout(seed), settle_s=0.0, aliases=spec.aliases(), dressing=dressing)
     return matching_render_model(sim.model, scene.model)

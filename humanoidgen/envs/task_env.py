@@ -72,13 +72,17 @@ class HumanoidTaskEnv(gym.Env):
 
         # No seed: a scene drawn from the evaluation range, never one collection uses by default.
         scene_seed = int(seed) if seed is not None else EVAL_SEED_BASE + int(self.np_random.integers(1 << 30))
-        _, sim = self._build_scene(self.spec_task, scene_seed)
+        dressing = self._dressing(scene_seed)
+        _, sim = self._build_scene(self.spec_task, scene_seed, dressing=dressing)
         if self.config.control_hz != sim.control_hz:  # as the episode worker does for another control rate
             sim = HumanoidEnv(sim.scene, control_hz=self.config.control_hz)
         self._close_renderers()
         self.sim, self.seed_used, self._steps = sim, scene_seed, 0
-        self._observer = Observer(sim, self.config, render_model_for(self.spec_task, scene_seed, sim, self.config))
+        self._observer = Observer(sim, self.config, render_model_for(self.spec_task, scene_seed, sim, self.config,
+                                                                     dressing))
         info = {"seed": scene_seed, **self._verdict()}
+        if dressing is not None:
+            info["dressing"] = dressing.to_dict()  # what the scene looked like, as episode metadata stores it
         from humanoidgen.tasks.models import episode_models
 
         models = episode_models(self.spec_task, scene_seed)
@@ -113,6 +117,14 @@ class HumanoidTaskEnv(gym.Env):
         self.sim = None
 
     # -- helpers -------------------------------------------------------------------------------------------
+    def _dressing(self, scene_seed: int):
+        """The randomized look and room of this scene (None: the clean tabletop), drawn from its seed."""
+        if not self.config.randomize:
+            return None
+        from humanoidgen.scenes.dressing import SceneDressing, episode_dressing
+
+        return SceneDressing.from_dict(episode_dressing("random", True, scene_seed))
+
     def _verdict(self) -> dict:
         from humanoidgen.tasks.judge import judge
 

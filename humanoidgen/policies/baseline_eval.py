@@ -79,7 +79,8 @@ def evaluate_baseline(name: str, task: str, episodes: int = 20, seeds: tuple[int
         info = {"hold_actions": model.cfg.n_action_steps} if name == "random" else {}
         if name == "random":
             info["action_range"] = action_range.to_dict()
-        report = EvalReport(env.task, name, [name], list(seeds), episodes, info=info)
+        report = EvalReport(env.task, name, [name], list(seeds), episodes, info=info,
+                            scenes="randomized" if env.config.randomize else "clean")
         with tqdm(total=len(seeds) * episodes, unit="episode", desc=f"baseline {name} {env.task}",
                   disable=not progress, dynamic_ncols=True) as bar:
             with torch.no_grad():

@@ -35,6 +35,8 @@ class StudyConfig:
     device: str = "auto"
     collect_workers: int = 1
     baselines: bool = True  # the random and noop baselines on each row's scenes (`baseline_eval`)
+    scenes: tuple[str, ...] = ("clean",)  # and/or "randomized": each run evaluated on each, one row per
+    recipe: str | None = None  # the recipe's name the runs were trained with (for the rows; `overrides` hold it)
 
 
 def _collect_child(task: str, n: int, folder: str, workers: int, resume: bool, progress: bool) -> None:
@@ -79,7 +81,6 @@ def ensure_data(task: str, n: int, cfg: StudyConfig, progress: bool = True) -> P
 
 
 def run_study(cfg: StudyConfig, progress: bool = True) -> list[dict]:
-    from humanoidgen.policies.eval import evaluate
     from humanoidgen.policies.train import train
 
     rows = []
@@ -96,23 +97,34 @@ def run_study(cfg: StudyConfig, progress: bool = True) -> list[dict]:
                     if result.interrupted:
                         raise KeyboardInterrupt
                 last = ck.run_checkpoints(run)[-1]
-                t0 = time.perf_counter()
-                report = evaluate(run, task, cfg.eval_episodes, cfg.eval_seeds, checkpoints=[last],
-                                  device=cfg.device, progress=progress, baselines=cfg.baselines)
-                state = ck.read(run / ck.LATEST)
-                row = {"task": task, "policy": policy, "demos": n, "success_mean": report.success_mean,
-                       "success_std": report.success_std, "rates": [r["success"] for r in report.to_dict()["rates"]],
-                       "epochs": int(state["epoch"]), "final_loss": float(state["losses"][-1]),
-                       "train_seconds": result.seconds if result else None,
-                       "seconds_per_epoch": result.seconds_per_epoch if result else None,
-                       "eval_seconds": time.perf_counter() - t0, "checkpoint": str(last),
-                       "episodes": [{"seed": o.seed, "scene_seed": o.scene_seed, "success": o.success,
-                                     "steps": o.steps, "final": o.final} for o in report.outcomes],
-                       **baseline_columns(report)}
-                rows.append(row)
-                if progress:
-                    print(format_row(row), flush=True)
+                for scenes in cfg.scenes:
+                    row = _evaluated_row(cfg, task, policy, n, run, last, result, scenes, progress)
+                    rows.append(row)
+                    if progress:
+                        print(format_row(row), flush=True)
     return rows
+
+
+def _evaluated_row(cfg: StudyConfig, task: str, policy: str, n: int, run: Path, last: Path, result,
+                   scenes: str, progress: bool = True) -> dict:
+    """One row of the study: the run's last checkpoint evaluated on `scenes` (clean or randomized)."""
+    from humanoidgen.policies.eval import evaluate
+
+    t0 = time.perf_counter()
+    report = evaluate(run, task, cfg.eval_episodes, cfg.eval_seeds, checkpoints=[last], device=cfg.device,
+                      progress=progress, baselines=cfg.baselines, randomize=scenes == "randomized")
+    state = ck.read(run / ck.LATEST)
+    return {"task": task, "policy": policy, "demos": n, "scenes": scenes,
+            "recipe": cfg.recipe,
+            "success_mean": report.success_mean,
+            "success_std": report.success_std, "rates": [r["success"] for r in report.to_dict()["rates"]],
+            "epochs": int(state["epoch"]), "final_loss": float(state["losses"][-1]),
+            "train_seconds": result.seconds if result else None,
+            "seconds_per_epoch": result.seconds_per_epoch if result else None,
+            "eval_seconds": time.perf_counter() - t0, "checkpoint": str(last),
+            "episodes": [{"seed": o.seed, "scene_seed": o.scene_seed, "success": o.success,
+                          "steps": o.steps, "final": o.final} for o in report.outcomes],
+            **baseline_columns(report)}
 
 
 def baseline_columns(report) -> dict:
@@ -130,7 +142,8 @@ def format_row(r: dict) -> str:
     train = f"{r['train_seconds'] / 60:.1f} min ({r['seconds_per_epoch']:.1f} s/epoch)" if r["train_seconds"] else "-"
     base = "".join(f"  {k[len('baseline_'):]} {100 * v:.0f}%" for k, v in r.items()
                    if k.startswith("baseline_") and isinstance(v, float))
-    return (f"{r['task']:<24} {r['policy']:<4} {r['demos']:>4} demos  success {100 * r['success_mean']:5.1f}% "
+    scenes = f" {r['scenes']:<10}" if "scenes" in r else ""
+    return (f"{r['task']:<24} {r['policy']:<4} {r['demos']:>4} demos{scenes}  success {100 * r['success_mean']:5.1f}% "
             f"+- {100 * r['success_std']:4.1f}  train {train}  loss {r['final_loss']:.4f}"
             + (f"  baselines:{base}" if base else ""))
 
@@ -157,10 +170,14 @@ def plot(rows: list[dict], path: Path) -> bool:
     fig, axes = plt.subplots(1, len(tasks), figsize=(4 * len(tasks), 3.4), squeeze=False)
     for ax, task in zip(axes[0], tasks):
         for policy in sorted({r["policy"] for r in rows if r["task"] == task}):
-            pts = sorted((r["demos"], 100 * r["success_mean"], 100 * r["success_std"]) for r in rows
-                         if r["task"] == task and r["policy"] == policy)
-            xs, ys, es = zip(*pts)
-            ax.errorbar(xs, ys, yerr=es, marker="o", capsize=3, label=policy.upper())
+            for scenes, style in (("clean", "-"), ("randomized", "--")):
+                pts = sorted((r["demos"], 100 * r["success_mean"], 100 * r["success_std"]) for r in rows
+                             if r["task"] == task and r["policy"] == policy and r.get("scenes", "clean") == scenes)
+                if not pts:
+                    continue
+                xs, ys, es = zip(*pts)
+                label = policy.upper() + (" randomized" if scenes == "randomized" else "")
+                ax.errorbar(xs, ys, yerr=es, marker="o", capsize=3, ls=style, label=label)
         for name, style in (("random", "--"), ("noop", ":")):
             vals = [100 * r[f"baseline_{name}"] for r in rows if r["task"] == task and f"baseline_{name}" in r]
             if vals:  # the baselines on the same scenes, the most any row saw

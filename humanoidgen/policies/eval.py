@@ -32,12 +32,14 @@ from humanoidgen.policies.train import resolve_device
 def evaluate(run: Path, task: str | None = None, episodes: int = 20, seeds: tuple[int, ...] = (0, 1, 2),
              checkpoints: list[Path] | None = None, device: str = "auto", video_dir: Path | None = None,
              progress: bool = True, max_steps: int | None = None, ray_address: str | None = None,
-             ray_gpus: float = 0.0, action_steps: int | None = None, baselines: bool = True) -> EvalReport:
+             ray_gpus: float = 0.0, action_steps: int | None = None, baselines: bool = True,
+             randomize: bool = False) -> EvalReport:
     """Evaluate a run's checkpoints (all kept ones, or `checkpoints`) on its task; `max_steps` shortens
     episodes below the task's time limit (for quick checks); `action_steps`: actions executed per prediction
     (default: each checkpoint's n_action_steps); `ray_address`: each episode a Ray task (`ray_eval`), with the
     same outcomes; `baselines`: the random and no-op baselines on the same scenes too (`report.baselines`;
-    random targets within the demonstrations' action range, as the first checkpoint's normalizer has it)."""
+    random targets within the demonstrations' action range, as the first checkpoint's normalizer has it);
+    `randomize`: the same scene seeds dressed from their seeds (`TaskEnvConfig.randomize`), baselines too."""
     from tqdm import tqdm
 
     from humanoidgen.envs.task_env import HumanoidTaskEnv
@@ -54,15 +56,16 @@ def evaluate(run: Path, task: str | None = None, episodes: int = 20, seeds: tupl
     if task is not None and task != trained:
         raise EvalError(f"{paths[0]} was trained on task {trained!r}, not {task!r}")
     policy = loaded[0][1].name
-    env_config = env_config_for(policy, loaded[0][1].cfg, loaded[0][2], max_steps)
-    report = EvalReport(trained, policy, [str(p) for p in paths], list(seeds), episodes)
+    env_config = env_config_for(policy, loaded[0][1].cfg, loaded[0][2], max_steps, randomize)
+    report = EvalReport(trained, policy, [str(p) for p in paths], list(seeds), episodes,
+                        scenes="randomized" if randomize else "clean")
     if ray_address is not None:
         from humanoidgen.policies.ray_eval import ray_outcomes
 
         with tqdm(total=len(paths) * len(seeds) * episodes, unit="episode", desc=f"eval {policy} {trained} (ray)",
                   disable=not progress, dynamic_ncols=True) as bar:
             report.outcomes = ray_outcomes(ray_address, paths, tuple(seeds), episodes, device, max_steps, video_dir,
-                                           bar, ray_gpus, action_steps)
+                                           bar, ray_gpus, action_steps, randomize)
     else:
         env = HumanoidTaskEnv(trained, config=env_config, render_mode="rgb_array" if video_dir is not None else None)
         bar = tqdm(total=len(paths) * len(seeds) * episodes, unit="episode", desc=f"eval {policy} {trained}",

@@ -12,26 +12,27 @@ from pathlib import Path
 _loaded: dict[tuple, tuple] = {}  # per Ray actor process: the checkpoint in use and its environment
 
 
-def _model_and_env(path: str, device: str, max_steps: int | None, render: bool, action_steps: int | None = None):
+def _model_and_env(path: str, device: str, max_steps: int | None, render: bool, action_steps: int | None = None,
+                   randomize: bool = False):
     from humanoidgen.envs.task_env import HumanoidTaskEnv
     from humanoidgen.policies import checkpoint as ck
     from humanoidgen.policies.rollout import env_config_for, with_action_steps
 
-    key = (path, os.path.getmtime(path), device, max_steps, render, action_steps)
+    key = (path, os.path.getmtime(path), device, max_steps, render, action_steps, randomize)
     if key not in _loaded:
         for _, env in _loaded.values():
             env.close()
         _loaded.clear()
         model, meta = ck.load_policy(Path(path), device)
         model = with_action_steps(model, action_steps)
-        env = HumanoidTaskEnv(meta["task"], config=env_config_for(model.name, model.cfg, meta, max_steps),
+        env = HumanoidTaskEnv(meta["task"], config=env_config_for(model.name, model.cfg, meta, max_steps, randomize),
                               render_mode="rgb_array" if render else None)
         _loaded[key] = (model, env)
     return _loaded[key]
 
 
 def remote_episode(path: str, seed: int, i: int, device: str, max_steps: int | None, video_dir: str | None,
-                   action_steps: int | None = None):
+                   action_steps: int | None = None, randomize: bool = False):
     """The body of one call on a Ray actor: one closed-loop episode, as an EpisodeOutcome."""
     try:  # see tests/conftest.py: torch's triton must be imported before an EGL context exists
         import diffusers.utils.torch_utils  # noqa: F401
@@ -44,7 +45,7 @@ def remote_episode(path: str, seed: int, i: int, device: str, max_steps: int | N
     from humanoidgen.policies.train import resolve_device
 
     device = resolve_device(device)
-    model, env = _model_and_env(path, device, max_steps, video_dir is not None, action_steps)
+    model, env = _model_and_env(path, device, max_steps, video_dir is not None, action_steps, randomize)
     number = MAX_EPISODES_PER_SEED * seed + i
     video = _video(Path(video_dir) if video_dir else None, Path(path), seed, i, env.config.action_hz)
     t0 = time.perf_counter()
@@ -59,7 +60,7 @@ def remote_episode(path: str, seed: int, i: int, device: str, max_steps: int | N
 
 def ray_outcomes(address: str, paths: list[Path], seeds: tuple[int, ...], episodes: int, device: str,
                  max_steps: int | None, video_dir: Path | None, bar, gpus_per_task: float = 0.0,
-                 action_steps: int | None = None) -> list:
+                 action_steps: int | None = None, randomize: bool = False) -> list:
     """Every (checkpoint, seed, episode) on Ray's warm actors; outcomes in the local order."""
     from humanoidgen.episodes.ray_pool import PoolRunner, pool_for
     from humanoidgen.episodes.ray_session import connect
@@ -70,7 +71,7 @@ def ray_outcomes(address: str, paths: list[Path], seeds: tuple[int, ...], episod
     with connect(address) as session:
         slots = session.cpu_slots(1.0)
         runner = PoolRunner(pool_for(session.ray, slots, gpus_per_task), slots, remote_episode,
-                            lambda it: (*it, device, max_steps, video, action_steps))
+                            lambda it: (*it, device, max_steps, video, action_steps, randomize))
         for _, outcome in runner.results(items):
             outcome.checkpoint = str(paths[[str(Path(p).resolve()) for p in paths].index(outcome.checkpoint)])
             outcomes.append(outcome)

@@ -20,6 +20,7 @@ class EvalReport:
     outcomes: list[EpisodeOutcome] = field(default_factory=list)
     info: dict = field(default_factory=dict)  # what else defines the run (a baseline's action range and hold)
     baselines: dict[str, EvalReport] = field(default_factory=dict)  # by name, on the same scenes
+    scenes: str = "clean"  # or "randomized": each scene dressed from its seed (`TaskEnvConfig.randomize`)
 
     def rates(self) -> dict[tuple[str, int], float]:
         """Success rate of each (checkpoint, seed)."""
@@ -38,7 +39,8 @@ class EvalReport:
 
     def summary(self) -> str:
         """'dp3 on close_drawer: success 68.3% +- 6.2 over 3 (checkpoint, seed) pairs'."""
-        return (f"{self.policy} on {self.task}: success {100 * self.success_mean:.1f}% +- "
+        where = " (randomized scenes)" if self.scenes == "randomized" else ""
+        return (f"{self.policy} on {self.task}{where}: success {100 * self.success_mean:.1f}% +- "
                 f"{100 * self.success_std:.1f} over {len(self.rates())} (checkpoint, seed) pairs")
 
     def baseline_line(self) -> str:
@@ -53,7 +55,8 @@ class EvalReport:
         return [o for o in self.outcomes if o.checkpoint == first]
 
     def to_dict(self) -> dict:
-        out = {"task": self.task, "policy": self.policy, "checkpoints": self.checkpoints, "seeds": self.seeds,
+        out = {"task": self.task, "policy": self.policy, "scenes": self.scenes, "checkpoints": self.checkpoints,
+               "seeds": self.seeds,
                "episodes": self.episodes, "success_mean": self.success_mean, "success_std": self.success_std,
                "rates": [{"checkpoint": c, "seed": s, "success": r} for (c, s), r in self.rates().items()],
                "outcomes": [asdict(o) for o in self.outcomes]}

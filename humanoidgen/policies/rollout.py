@@ -54,14 +54,17 @@ def with_action_steps(model, action_steps: int | None):
     return model
 
 
-def env_config_for(policy: str, cfg, meta: dict, max_steps: int | None = None) -> TaskEnvConfig:
-    """The environment observing what the policy was trained on, at the data's action rate."""
+def env_config_for(policy: str, cfg, meta: dict, max_steps: int | None = None,
+                   randomize: bool = False) -> TaskEnvConfig:
+    """The environment observing what the policy was trained on, at the data's action rate; `randomize`: in
+    scenes dressed from their seeds (`TaskEnvConfig.randomize`)."""
     rec = dict(meta.get("recorder") or {})
     hz = meta.get("control_hz", 50.0)
     if policy == "dp":
         return TaskEnvConfig.from_recorder(rec, hz, cameras=(cfg.camera,), depth=False, point_cloud=False,
-                                           max_steps=max_steps)
-    return TaskEnvConfig.from_recorder(rec, hz, cameras=(), depth=False, point_cloud=True, max_steps=max_steps)
+                                           max_steps=max_steps, randomize=randomize)
+    return TaskEnvConfig.from_recorder(rec, hz, cameras=(), depth=False, point_cloud=True, max_steps=max_steps,
+                                       randomize=randomize)
 
 
 def policy_obs(model, history: deque, device: str) -> dict[str, torch.Tensor]:
