@@ -184,3 +184,16 @@ def test_mcts_expansions_carry_the_picture(view_png: bytes) -> None:
                   config=MCTSConfig(expansions=2, verify=False, images=True)).run()
     assert len(sent) == 2 and all(pngs([{"content": c}]) == [view_png] for c in sent)
     assert all(e["image"] for e in result.log)
+
+
+def test_eval_and_mcts_commands_pass_images_on(tmp_path: Path, view_png: bytes) -> None:
+    with ScriptedServer(default="no code here") as srv:
+        res = CliRunner().invoke(app, ["eval", "--tasks", TASK, "--trials", "2", "--images", "--base-url",
+                                       srv.base_url])
+        assert res.exit_code == 0, res.output
+        res = CliRunner().invoke(app, ["script", TASK, "--seed", "1", "--mcts", "1", "--images", "--base-url",
+                                       srv.base_url, "--out", str(tmp_path / "plan.py")])
+        assert res.exit_code == 1 and "no successful plan" in res.output, res.output
+        seed0, seed1, mcts = srv.requests
+    assert [pngs(r["messages"]) for r in (seed1, mcts)] == [[view_png], [view_png]]  # trial i: the scene of seed i
+    assert pngs(seed0["messages"]) == [scene_png(TASK, 0)]
