@@ -250,7 +250,8 @@ class LLMClient:
             # picture is what this request adds, so name it and the way out.
             return LLMImagesRejected(
                 f"{cfg.base_url} (model {cfg.model}) rejected a prompt with a picture (--images): HTTP {status}: "
-                f"{' '.join(detail.split())}; if the model does not take images, run without --images or choose a vision model"
+                f"{' '.join(detail.split())}; if the model does not take images, run without --images or "
+                f"choose a vision model"
             )
         hint = (
             " (wrong model name, or base URL missing '/v1'?)" if status == 404 else ""
