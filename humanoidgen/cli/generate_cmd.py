@@ -43,6 +43,9 @@ _TIMEOUT = typer.Option(60.0, "--timeout", min=0.1, metavar="SECONDS",
 _MCTS = typer.Option(None, "--mcts", min=1, help="Search with MCTS, at most N LLM expansions (instead of "
                      "--attempts); the tree log (.tree.json) and picture (.tree.png) go next to the plan.")
 _WORKERS = typer.Option(1, "--workers", min=1, help="With --mcts: expansions run at once (one sandbox each).")
+_IMAGES = typer.Option(False, "--images", help="Send the head camera's view of the scene, its key points and axes "
+                       "drawn and labelled, as an image part (the endpoint's model must take images; see it with "
+                       "`hgen generate prompt TASK --images view.png`).")
 
 
 def _fail(message: str, code: int = 1) -> None:
@@ -91,6 +94,8 @@ def scene(
     log: Path = typer.Option(None, "--log", help="Write every turn (prompt, answer, problems, tokens) as JSON."),
     base_url: str = _BASE_URL, model: str = _MODEL, cache_dir: Path = _CACHE, record: Path = _RECORD,
     replay: Path = _REPLAY, retries: int = _RETRIES, timeout: float = _TIMEOUT,
+    images: bool = typer.Option(False, "--images", help="Repair prompts carry the head camera's view of the "
+                                "scene the last spec builds, annotated (the model must take images)."),
 ) -> None:
     """Generate a task spec (objects, layout, success predicates) from a description, validated in simulation.
 
@@ -103,7 +108,7 @@ def scene(
     LLMError, NotConfigured = _llm_errors()
     turns = None
     try:
-        spec, turns = generate_scene(description, client, max_repairs=max_repairs, out=out)
+        spec, turns = generate_scene(description, client, max_repairs=max_repairs, out=out, images=images)
     except SceneGenerationError as exc:
         turns = exc.log
         _fail(str(exc))
@@ -135,14 +140,20 @@ def prompt(
                              "scene (generate scene's) or mcts (the tree search's root expansion)."),
     seed: int = typer.Option(None, help="Scene seed (default: the task's default layout)."),
     out: Path = typer.Option(None, "--out", "-o", help="Write the prompt here instead of printing it."),
+    images: Path = typer.Option(None, "--images", help="Also write the picture that --images sends with this "
+                                "prompt (PNG) here."),
 ) -> None:
     """Print the exact prompt an LLM gets for a task, without an endpoint.
 
     Example: hgen generate prompt open_drawer --kind script --seed 3 > prompt.md
+    Example: hgen generate prompt open_drawer --seed 3 --images view.png (the picture --images sends)
     """
     os.environ.setdefault("MUJOCO_GL", "egl")
     if kind not in ("script", "scene", "mcts"):
         _fail(f"unknown --kind {kind!r}: choose script, scene or mcts")
+    if images is not None and kind == "scene":
+        _fail("--images: the first scene prompt has no picture (there is no scene yet); with --images, "
+              "generate scene shows the scene a spec builds in its repair prompts")
     from humanoidgen.generation import prompt_preview, prompts
 
     with _reported_errors():
@@ -157,12 +168,23 @@ def prompt(
                 from humanoidgen.mcts.prompt import root_prompt
 
                 text = root_prompt(view, step_names())
+        if images is not None:
+            _write_picture(task, seed, images)
     if out is None:
         typer.echo(text)
     else:
         out.parent.mkdir(parents=True, exist_ok=True)
         out.write_text(text)
         typer.echo(f"wrote {out} ({len(text)} characters)")
+
+
+def _write_picture(task: str, seed: int | None, path: Path) -> None:
+    from humanoidgen.generation.scene_image import HEIGHT, WIDTH, scene_png
+
+    png = scene_png(task, seed)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_bytes(png)
+    typer.echo(f"wrote {path} (the picture --images sends: {WIDTH}x{HEIGHT} PNG, {len(png)} bytes)", err=True)
 
 
 def _description_of(task: str) -> str:
@@ -187,7 +209,7 @@ def script(
     step_timeout: float = typer.Option(120.0, min=1.0, help="Seconds one step may run before it is stopped."),
     base_url: str = _BASE_URL, model: str = _MODEL, cache_dir: Path = _CACHE, record: Path = _RECORD,
     replay: Path = _REPLAY, retries: int = _RETRIES, mcts: int = _MCTS, workers: int = _WORKERS,
-    timeout: float = _TIMEOUT,
+    timeout: float = _TIMEOUT, images: bool = _IMAGES,
 ) -> None:
     """Generate a demonstration script for a task, run it in a sandbox, retry with the failure explained.
 
@@ -201,11 +223,11 @@ def script(
 
     client = _client(base_url, model, cache_dir, record, replay, retries, timeout)
     if mcts is not None:
-        _script_mcts(task, client, mcts, workers, seed, step_timeout, out, log)
+        _script_mcts(task, client, mcts, workers, seed, step_timeout, out, log, images)
         return
     with _reported_errors():
         result = generate_script(task, client, attempts=attempts, seed=seed, step_timeout_s=step_timeout,
-                                 out=out, log_path=log)
+                                 out=out, log_path=log, images=images)
     for a in result.attempts:
         verdict = "success" if a.success else a.failure.splitlines()[0] if a.failure else "failed"
         typer.echo(f"attempt {a.attempt}: {len(a.steps)} step(s) run, {a.tokens.get('total')} tokens: {verdict}")
@@ -215,12 +237,12 @@ def script(
 
 
 def _script_mcts(task: str, client, expansions: int, workers: int, seed: int | None, step_timeout: float,
-                 out: Path, log: Path | None) -> None:
+                 out: Path, log: Path | None, images: bool = False) -> None:
     from humanoidgen.mcts import search_plan
 
     with _reported_errors():
         result = search_plan(task, client, expansions=expansions, workers=workers, seed=seed, out=out,
-                             log_path=log, step_timeout_s=step_timeout)
+                             log_path=log, step_timeout_s=step_timeout, images=images)
     for e in result.log:
         verdict = "success" if e.get("success") else (e.get("failure") or {}).get("error", "no success yet")
         typer.echo(f"expansion {e['id'] + 1} at node {e['node']}: {len(e['new_nodes'])} new node(s), reward "
@@ -242,7 +264,7 @@ def eval_(
     step_timeout: float = typer.Option(120.0, min=1.0, help="Seconds one step may run."),
     base_url: str = _BASE_URL, model: str = _MODEL, cache_dir: Path = _CACHE, record: Path = _RECORD,
     replay: Path = _REPLAY, retries: int = _RETRIES, mcts: int = _MCTS, workers: int = _WORKERS,
-    timeout: float = _TIMEOUT,
+    timeout: float = _TIMEOUT, images: bool = _IMAGES,
 ) -> None:
     """Success rate and token cost of script generation per task.
 
@@ -257,10 +279,10 @@ def eval_(
     names = [t.strip() for t in tasks.split(",") if t.strip()]
     client = _client(base_url, model, cache_dir, record, replay, retries, timeout)
     if mcts is not None:
-        _eval_mcts(names, trials, client, mcts, workers, step_timeout, json_out)
+        _eval_mcts(names, trials, client, mcts, workers, step_timeout, json_out, images)
         return
     with _reported_errors():
-        rows = evaluate(names, trials, client, attempts=attempts, step_timeout_s=step_timeout)
+        rows = evaluate(names, trials, client, attempts=attempts, step_timeout_s=step_timeout, images=images)
     table = Table("task", "success rate", "mean tokens", "tokens per success", "mean attempts")
     for r in rows:
         table.add_row(r.task, f"{r.successes}/{r.trials} ({100 * r.success_rate:.0f}%)", f"{r.mean_tokens:.0f}",
@@ -271,7 +293,7 @@ def eval_(
 
 
 def _eval_mcts(names: list[str], trials: int, client, expansions: int, workers: int, step_timeout: float,
-               json_out: Path | None) -> None:
+               json_out: Path | None, images: bool = False) -> None:
     from rich.console import Console
     from rich.table import Table
 
@@ -279,7 +301,7 @@ def _eval_mcts(names: list[str], trials: int, client, expansions: int, workers: 
 
     with _reported_errors():
         rows = evaluate_mcts(names, trials, client, expansions=expansions, workers=workers,
-                             step_timeout_s=step_timeout)
+                             step_timeout_s=step_timeout, images=images)
     table = Table("task", "success rate", "tokens per run", "tokens per success", "distinct plans", "verified")
     for r in rows:
         table.add_row(r.task, f"{r.successes}/{r.trials} ({100 * r.success_rate:.0f}%)", f"{r.tokens_per_run:.0f}",

@@ -28,15 +28,15 @@ class EvalRow:
 
 def evaluate(tasks: list[str], trials: int, client: LLMClient, attempts: int = 1,
              step_timeout_s: float = 120.0, results: list[ScriptResult] | None = None,
-             worker: SandboxWorker | None = None) -> list[EvalRow]:
+             worker: SandboxWorker | None = None, images: bool = False) -> list[EvalRow]:
     """Trial i of a task generates a plan for the scene of seed i (so trials differ even with a cache).
     One sandbox worker (`worker`, else a new one) serves every trial. `results`, if given, collects each
-    trial's ScriptResult."""
+    trial's ScriptResult. `images`: prompts carry the scene's annotated picture (generate_script)."""
     rows = []
     with contextlib.nullcontext(worker) if worker is not None else SandboxWorker(setup) as worker:
         for task in tasks:
             runs = [generate_script(task, client, attempts=attempts, seed=i, worker=worker,
-                                    step_timeout_s=step_timeout_s) for i in range(trials)]
+                                    step_timeout_s=step_timeout_s, images=images) for i in range(trials)]
             if results is not None:
                 results.extend(runs)
             wins = sum(r.success for r in runs)

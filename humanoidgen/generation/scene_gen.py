@@ -12,7 +12,9 @@ import yaml
 
 from humanoidgen.generation import prompts
 from humanoidgen.generation.extract import ExtractError, extract_yaml
+from humanoidgen.generation.scene_image import SPEC_CAPTION
 from humanoidgen.llm import LLMClient
+from humanoidgen.llm.images import pngs, sha256, text_of, with_image
 from humanoidgen.tasks.registry import TaskSpecError, parse_task
 from humanoidgen.tasks.spec import TaskSpec
 
@@ -103,9 +105,11 @@ def spec_yaml(spec: TaskSpec) -> str:
 
 
 def generate_scene(description: str, client: LLMClient, max_repairs: int = 2,
-                   out: Path | None = None) -> tuple[TaskSpec, list[dict[str, Any]]]:
+                   out: Path | None = None, images: bool = False) -> tuple[TaskSpec, list[dict[str, Any]]]:
     """Ask for a spec, validate it, repair up to `max_repairs` times; write it to `out` when given.
-    Raises SceneGenerationError (with the log) when no turn produced a valid spec."""
+    Raises SceneGenerationError (with the log) when no turn produced a valid spec. `images`: a repair prompt
+    carries the annotated picture of the scene the last spec builds, when it builds (the first prompt has no
+    scene to show)."""
     messages = [{"role": "user", "content": prompts.scene_prompt(description)}]
     log: list[dict[str, Any]] = []
     for turn in range(max_repairs + 1):
@@ -116,19 +120,31 @@ def generate_scene(description: str, client: LLMClient, max_repairs: int = 2,
             spec, problems = validate_spec(text)
         except ExtractError as exc:
             text, spec, problems = "", None, [str(exc)]
-        log.append({"turn": turn, "prompt": messages[-1]["content"], "response": result.text,
+        sent = pngs(messages[-1:])
+        log.append({"turn": turn, "prompt": text_of(messages[-1]["content"]), "response": result.text,
                     "reasoning": result.reasoning, "yaml": text, "problems": problems,
                     "tokens": _tokens(result), "seconds": round(time.perf_counter() - t0, 3),
-                    "cached": result.cached})
+                    "cached": result.cached, "image": sha256(sent[0]) if sent else None})
         if spec is not None and not problems:
             if out is not None:
                 Path(out).parent.mkdir(parents=True, exist_ok=True)
                 Path(out).write_text(spec_yaml(spec))
             return spec, log
+        png = _picture(spec) if images and spec is not None and turn < max_repairs else None
         messages += [{"role": "assistant", "content": result.text},
-                     {"role": "user", "content": prompts.scene_repair_prompt(problems)}]
+                     {"role": "user", "content": with_image(prompts.scene_repair_prompt(problems), png, SPEC_CAPTION)}]
     raise SceneGenerationError(f"no valid task spec after {max_repairs} repair(s); last problems: "
                                f"{'; '.join(log[-1]['problems'])}", log)
+
+
+def _picture(spec: TaskSpec) -> bytes | None:
+    """The spec's scene as a picture, or None when it cannot be built (its problems say why)."""
+    from humanoidgen.generation.scene_image import scene_png
+
+    try:
+        return scene_png(spec, None)
+    except Exception:  # noqa: BLE001 - an LLM's spec may fail to build in many ways; the repair text reports it
+        return None
 
 
 def _tokens(result: Any) -> dict[str, Any]:

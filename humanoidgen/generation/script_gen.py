@@ -12,10 +12,12 @@ from typing import Any
 
 from humanoidgen.generation import prompts
 from humanoidgen.generation.extract import extract_steps, plan_text
+from humanoidgen.generation.scene_image import CAPTION, scene_png
 from humanoidgen.generation.scene_gen import _tokens
 from humanoidgen.episodes.replay_judge import ReplayJudge
 from humanoidgen.generation.worker import JUDGE, RESET, setup
 from humanoidgen.llm import LLMClient
+from humanoidgen.llm.images import pngs, sha256, text_of, with_image
 from humanoidgen.sandbox import CodeRejected, SandboxWorker, check_code
 from humanoidgen.tasks.spec import TaskSpec
 
@@ -51,6 +53,7 @@ class AttemptLog:
     llm_seconds: float = 0.0
     run_seconds: float = 0.0
     cached: bool = False
+    image: str | None = None  # sha256 of the picture sent with this attempt's prompt (--images), if any
 
 
 @dataclass
@@ -147,11 +150,12 @@ def _run_attempt(log: AttemptLog, steps: list[tuple[str, str]], names: list[str]
 
 def generate_script(task: TaskSpec | str | Path, client: LLMClient, attempts: int = 3, seed: int | None = None,
                     worker: SandboxWorker | None = None, step_timeout_s: float = DEFAULT_STEP_TIMEOUT_S,
-                    out: Path | None = None, log_path: Path | None = None) -> ScriptResult:
+                    out: Path | None = None, log_path: Path | None = None, images: bool = False) -> ScriptResult:
     """Generate and test a plan for `task` (a spec, a task name or a YAML path).
 
     `worker`: a SandboxWorker made with `worker.setup` to reuse (starting one costs seconds); by default
-    one is started and closed here. `out` receives the successful plan, `log_path` the attempt log."""
+    one is started and closed here. `out` receives the successful plan, `log_path` the attempt log. `images`:
+    the first prompt carries the annotated head-camera picture of the scene (scene_image) as an image part."""
     from humanoidgen.tasks.registry import load_task
 
     spec = task if isinstance(task, TaskSpec) else load_task(task)
@@ -160,7 +164,7 @@ def generate_script(task: TaskSpec | str | Path, client: LLMClient, attempts: in
     own = worker is None
     worker = worker or SandboxWorker(setup)
     result = ScriptResult(spec.name, seed, False, [])
-    messages: list[dict[str, str]] = []
+    messages: list[dict[str, Any]] = []
     judge: ReplayJudge | None = None  # the task's scene built here, on the first attempt that runs
     try:
         for k in range(1, attempts + 1):
@@ -170,16 +174,19 @@ def generate_script(task: TaskSpec | str | Path, client: LLMClient, attempts: in
                 worker.close()
             state = worker.call(RESET, spec_data, seed, timeout_s=RESET_TIMEOUT_S)
             if not messages:
-                messages = [{"role": "user", "content": prompts.script_prompt(
-                    spec.description, state["scene"], state["hands"], names)}]
+                text = prompts.script_prompt(spec.description, state["scene"], state["hands"], names)
+                png = scene_png(spec, seed) if images else None
+                messages = [{"role": "user", "content": with_image(text, png, CAPTION)}]
             else:
                 prev = result.attempts[-1]
                 messages += [{"role": "assistant", "content": prev.response},
                              {"role": "user", "content": prompts.script_retry_prompt(prev.failure)}]
             t0 = time.perf_counter()
             reply = client.chat(messages)
-            log = AttemptLog(k, messages[-1]["content"], reply.text, reply.reasoning, tokens=_tokens(reply),
-                             llm_seconds=round(time.perf_counter() - t0, 3), cached=reply.cached)
+            sent = pngs(messages[-1:])
+            log = AttemptLog(k, text_of(messages[-1]["content"]), reply.text, reply.reasoning, tokens=_tokens(reply),
+                             llm_seconds=round(time.perf_counter() - t0, 3), cached=reply.cached,
+                             image=sha256(sent[0]) if sent else None)
             result.attempts.append(log)
             steps = extract_steps(reply.text)
             if not steps:

@@ -5,6 +5,7 @@ from humanoidgen.llm.config import LLMConfig
 from humanoidgen.llm.errors import (
     LLMAuthError,
     LLMError,
+    LLMImagesRejected,
     LLMNotConfigured,
     LLMRateLimited,
     LLMReplayMissing,
@@ -20,6 +21,7 @@ __all__ = [
     "LLMClient",
     "LLMConfig",
     "LLMError",
+    "LLMImagesRejected",
     "LLMNotConfigured",
     "LLMRateLimited",
     "LLMReplayMissing",

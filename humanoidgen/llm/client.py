@@ -22,12 +22,14 @@ from humanoidgen.llm.errors import (
     LLMAuthError,
     LLMBadResponse,
     LLMError,
+    LLMImagesRejected,
     LLMNotConfigured,
     LLMRateLimited,
     LLMRequestError,
     LLMServerError,
     LLMUnreachable,
 )
+from humanoidgen.llm.images import has_images
 from humanoidgen.llm.redact import redact_text, watch_env
 from humanoidgen.llm.results import ChatResult, TokenUsage
 from humanoidgen.llm.store import Recorder, Replayer, ResponseCache, request_key
@@ -206,7 +208,7 @@ class LLMClient:
                 )
             ) from None
         except openai.APIStatusError as e:
-            raise self._status_error(e) from None
+            raise self._status_error(e, has_images(messages)) from None
         except openai.APIError as e:  # anything else the SDK rejects: still one clear line
             raise LLMBadResponse(f"unusable answer from {cfg.base_url}: {type(e).__name__}: {e}") from None
         latency = time.perf_counter() - t0
@@ -223,7 +225,7 @@ class LLMClient:
             finish_reason=choice.get("finish_reason"),
         )
 
-    def _status_error(self, e: openai.APIStatusError) -> Exception:
+    def _status_error(self, e: openai.APIStatusError, images: bool = False) -> Exception:
         cfg = self.config
         status = e.status_code
         detail = _short(e)
@@ -242,6 +244,14 @@ class LLMClient:
                     f"server error from {cfg.base_url} (HTTP {status}: {detail})"
                 ),
                 wait if status == 503 else None,
+            )
+        if images and status in (400, 415, 422):
+            # Endpoints word this differently ("unknown variant `image_url`", "not a multimodal model"); the
+            # picture is what this request adds, so name it and the way out.
+            return LLMImagesRejected(
+                f"{cfg.base_url} (model {cfg.model}) rejected a prompt with a picture (--images): HTTP {status}: "
+                f"{' '.join(detail.split())}; if the model does not take images, run without --images or "
+                f"choose a vision model"
             )
         hint = (
             " (wrong model name, or base URL missing '/v1'?)" if status == 404 else ""

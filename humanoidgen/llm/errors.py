@@ -43,5 +43,9 @@ class LLMRequestError(LLMError):
     """Other 4xx (bad request, unknown model, wrong path): retrying cannot help."""
 
 
+class LLMImagesRejected(LLMRequestError):
+    """A 4xx answer to a request with pictures (--images): most likely the model does not take images."""
+
+
 class LLMReplayMissing(LLMError):
     """Replay mode and the recording has no (more) responses for this request."""

@@ -6,7 +6,8 @@
 
 Each script entry serves one request, in order: a `Response` (reply, HTTP error, or with `raw` a body sent
 verbatim), a plain string (a reply), or a callable(request_json) -> Response | str, for conversation-aware
-scripts. `headers` add response headers (Retry-After, ...).
+scripts. `headers` add response headers (Retry-After, ...). `vision=False` makes a text-only endpoint: a request
+with an image part gets HTTP 400 as DeepSeek's API words it, without using a script entry.
 """
 
 from __future__ import annotations
@@ -60,13 +61,27 @@ def _words(s: str | None) -> int:
     return len((s or "").split())
 
 
+def _text(content: Any) -> str:
+    if isinstance(content, list):
+        return " ".join(str(p.get("text", "")) for p in content if isinstance(p, dict))
+    return content if isinstance(content, str) else ""
+
+
+def _has_image(req: dict[str, Any]) -> bool:
+    return any(isinstance(p, dict) and p.get("type") == "image_url"
+               for m in req.get("messages", []) if isinstance(m.get("content"), list) for p in m["content"])
+
+
+# What a text-only endpoint answers to an image part (DeepSeek's API, 2025).
+NO_VISION_BODY = {"error": {"message": "Failed to deserialize the JSON body into the target type: messages[0]: "
+                                       "unknown variant `image_url`, expected `text` at line 1 column 120",
+                            "type": "invalid_request_error", "param": None, "code": "invalid_request_error"}}
+
+
 def _openai_body(req: dict[str, Any], r: Response) -> dict[str, Any]:
     prompt = r.prompt_tokens
     if prompt is None:
-        prompt = sum(
-            _words(m.get("content") if isinstance(m.get("content"), str) else "")
-            for m in req.get("messages", [])
-        )
+        prompt = sum(_words(_text(m.get("content"))) for m in req.get("messages", []))
     reasoning = (
         r.reasoning_tokens if r.reasoning_tokens is not None else _words(r.reasoning)
     )
@@ -101,10 +116,12 @@ class ScriptedServer:
         responses: list[Entry] | None = None,
         default: Entry | None = None,
         api_key: str | None = None,
+        vision: bool = True,
     ) -> None:
         self.script: list[Entry] = list(responses or [])
         self.default = default  # served once the script is used up; None -> HTTP 500 "script exhausted"
         self.api_key = api_key  # if set, requests without "Bearer <api_key>" get 401
+        self.vision = vision  # False: requests with an image part get HTTP 400 (NO_VISION_BODY)
         # Every chat request in arrival order: JSON body, path, Authorization header.
         self.requests: list[dict[str, Any]] = []
         self.paths: list[str] = []
@@ -260,6 +277,9 @@ class _Handler(BaseHTTPRequestHandler):
                     }
                 },
             )
+            return
+        if not srv.vision and _has_image(req):
+            self._send(400, NO_VISION_BODY)  # unscripted, like the 401: the script entry is not consumed
             return
         r = srv._next(req)
         if r.delay_s:

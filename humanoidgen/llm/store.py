@@ -1,7 +1,8 @@
 """Response cache (one JSON file per request key) and JSONL record/replay.
 
 Only the request (model, messages, params) and the result are written, never headers or keys; both are
-redacted (`redact.redact`) on the way out, since a prompt or an answer may quote the key.
+redacted (`redact.redact`) on the way out, since a prompt or an answer may quote the key. Pictures (image parts)
+are written as PNG files beside the record (`images.stored`), the record keeping their sha256.
 """
 
 from __future__ import annotations
@@ -16,6 +17,7 @@ from pathlib import Path
 from typing import Any
 
 from humanoidgen.llm.errors import LLMReplayMissing
+from humanoidgen.llm.images import images_dir_of, stored
 from humanoidgen.llm.redact import redact
 from humanoidgen.llm.results import ChatResult
 
@@ -79,6 +81,7 @@ class ResponseCache:
             return None  # a corrupt entry is a miss, not a crash
 
     def put(self, key: str, request: dict[str, Any], result: ChatResult) -> None:
+        request = stored(request, self.dir / "images")
         entry = redact({"key": key, "request": request, "result": result.to_dict()})
         _atomic_write(
             self.path(key), json.dumps(entry, ensure_ascii=False, indent=1, default=str)
@@ -93,6 +96,7 @@ class Recorder:
 
     def append(self, key: str, request: dict[str, Any], result: ChatResult) -> None:
         self.path.parent.mkdir(parents=True, exist_ok=True)
+        request = stored(request, images_dir_of(self.path))
         line = json.dumps(
             redact({"key": key, "request": request, "result": result.to_dict()}),
             ensure_ascii=False,

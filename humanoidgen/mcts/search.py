@@ -18,7 +18,9 @@ from pathlib import Path
 from typing import Any
 
 from humanoidgen.generation.extract import plan_text
+from humanoidgen.generation.scene_image import CAPTION
 from humanoidgen.llm import LLMClient
+from humanoidgen.llm.images import sha256, with_image
 from humanoidgen.mcts.executor import Executor, outcome_text
 from humanoidgen.mcts.prompt import expansion_prompt
 from humanoidgen.mcts.stcr import Unit, closes_intent, intrinsic_reward, segment
@@ -32,6 +34,7 @@ class MCTSConfig:
     minimal_guidance: bool = False  # hide cube operation annotations in the prompt
     short_description: bool = False  # the short task description (block/pyramid stacking tasks)
     verify: bool = True  # re-run the found plan from a fresh reset
+    images: bool = False  # every expansion prompt carries the annotated picture of the scene at the start
 
 
 @dataclass
@@ -68,11 +71,17 @@ class MCTS:
         self.names = step_names()
         self.tree = tree
         self._lock = threading.Lock()
+        self._png: bytes | None = None  # the scene's picture (config.images), rendered once per search
 
     # -- setup ------------------------------------------------------------------------------------------
     def _prepare(self) -> None:
         """Reset every executor to the task's scene; a new tree gets a root with the set-up snapshot."""
         infos = [ex.reset(self.spec_data, self.seed) for ex in self.executors]
+        if self.config.images and self._png is None:
+            from humanoidgen.generation.scene_image import scene_png
+            from humanoidgen.tasks.registry import parse_task
+
+            self._png = scene_png(parse_task(self.spec_data, "<search>"), self.seed)
         if self.tree is None:
             ex = self.executors[0]
             verdict = ex.judge()
@@ -138,11 +147,13 @@ class MCTS:
         ex.restore(node.snapshot)
         restore_seconds = time.perf_counter() - t_restore
         t0 = time.perf_counter()
-        reply = self.client.chat([{"role": "user", "content": prompt}])
+        reply = self.client.chat([{"role": "user", "content": with_image(prompt, self._png, CAPTION)}])
         tokens = int(reply.usage.total or 0)
         entry: dict[str, Any] = {"id": k, "node": node.id, "path": path, "prompt": prompt, "response": reply.text,
                                  "tokens": tokens, "llm_seconds": round(time.perf_counter() - t0, 3),
                                  "cached": reply.cached, "new_nodes": []}
+        if self._png is not None:
+            entry["image"] = sha256(self._png)
         t_run = time.perf_counter()
         steps = segment(reply.text)
         cur, pending, failure, snap = node, [], None, node.snapshot

@@ -7,6 +7,8 @@ from __future__ import annotations
 import numpy as np
 from PIL import Image, ImageDraw
 
+from humanoidgen.objects.draw import Mark, draw_marks
+
 from humanoidgen.objects.library import add_object
 from humanoidgen.objects.articulated import set_openness
 from humanoidgen.objects.hands import hand_axes, hand_points
@@ -15,55 +17,21 @@ from humanoidgen.sim.cameras import CameraRig
 from humanoidgen.sim.env import HumanoidEnv
 from humanoidgen.sim.geometry import look_at_quat
 from humanoidgen.sim.layout import Side
-from humanoidgen.sim.pointcloud import intrinsics
 from humanoidgen.sim.scene import SceneBuilder
 
-COLORS = [(230, 25, 75), (60, 180, 75), (0, 130, 200), (245, 130, 48), (145, 30, 180), (70, 240, 240),
-          (240, 50, 230), (210, 245, 60), (250, 190, 212), (0, 128, 128)]
 INSPECT_CAM = "inspect"
-
-
-def project(points: np.ndarray, cam_pos: np.ndarray, cam_mat: np.ndarray, K: np.ndarray) -> np.ndarray:
-    """World points (N, 3) -> pixel coordinates (N, 2) of a MuJoCo camera (looks along -z, y up)."""
-    pc = (np.atleast_2d(points) - cam_pos) @ cam_mat  # camera-frame coordinates
-    z = -pc[:, 2]
-    u = K[0, 2] + K[0, 0] * pc[:, 0] / z
-    v = K[1, 2] - K[1, 1] * pc[:, 1] / z
-    return np.stack([u, v], axis=1)
-
-
-def _draw(img: Image.Image, items: list[tuple[str, np.ndarray, np.ndarray | None]], frame, width: int,
-          height: int, axis_len: float) -> Image.Image:
-    K = intrinsics(width, height, frame.fovy)
-    draw = ImageDraw.Draw(img)
-    for i, (label, p, axis) in enumerate(items):
-        color = COLORS[i % len(COLORS)]
-        (u, v), = project(p, frame.cam_pos, frame.cam_mat, K)
-        if axis is not None:
-            (u2, v2), = project(p + axis_len * axis, frame.cam_pos, frame.cam_mat, K)
-            draw.line([(u, v), (u2, v2)], fill=color, width=2)
-            draw.ellipse([u2 - 2, v2 - 2, u2 + 2, v2 + 2], fill=color)
-        draw.ellipse([u - 4, v - 4, u + 4, v + 4], fill=color, outline=(0, 0, 0))
-    y = 4
-    legend_w = 24 + 6 * max(len(label) for label, _, _ in items)
-    draw.rectangle([0, 0, legend_w, 8 + 12 * len(items)], fill=(255, 255, 255))
-    for i, (label, _, _) in enumerate(items):  # a legend instead of labels on top of each other
-        draw.rectangle([4, y, 12, y + 8], fill=COLORS[i % len(COLORS)])
-        draw.text((16, y - 2), label, fill=(0, 0, 0))
-        y += 12
-    return img
 
 
 def _object_items(env: HumanoidEnv, type_name: str, openness: float | None) -> list:
     ann = env.scene.object(type_name, 0).annotations
-    items = [("center", get_point_in_env(env, "center", type_name, 0, openness=openness), None)]
+    items = [Mark("center", get_point_in_env(env, "center", type_name, 0, openness=openness))]
     for op in ann.operations:
         p = get_point_in_env(env, op.point, type_name, 0, openness=openness)
-        items.append((f"{op.operation}: {op.point} (approach)", p,
+        items.append(Mark(f"{op.operation}: {op.point} (approach)", p,
                       get_axis_in_env(env, op.approach_axis, type_name, 0, openness=openness)))
     for fn in ann.functions:
         p = get_point_in_env(env, fn.point, type_name, 0, openness=openness)
-        items.append((f"{fn.function}: {fn.point} / {fn.axis}", p,
+        items.append(Mark(f"{fn.function}: {fn.point} / {fn.axis}", p,
                       get_axis_in_env(env, fn.axis, type_name, 0, openness=openness)))
     return items
 
@@ -120,8 +88,8 @@ def _show(type_name: str, type_id: int, ann, add, width: int, height: int) -> Im
             if o is not None:
                 set_openness(env.model, env.data, obj.body, obj.annotations, o)
             frame = rig.render(env.data, INSPECT_CAM, depth=False, segmentation=False)
-            img = _draw(Image.fromarray(frame.rgb), _object_items(env, type_name, o), frame, width, height,
-                        axis_len=0.4 * max(size, 0.08))
+            img = draw_marks(Image.fromarray(frame.rgb), _object_items(env, type_name, o), frame,
+                             axis_len=0.4 * max(size, 0.08))
             title = f"{type_name} type_id={type_id}" + ("" if o is None else f" openness={o}")
             ImageDraw.Draw(img).text((4, height - 14), title, fill=(0, 0, 0))
             panels.append(img)
@@ -145,7 +113,7 @@ def show_hand(side: Side, width: int = 640, height: int = 480) -> Image.Image:
     env, frame, rig = _render(builder, eye, target, width, height)
     rig.close()
     pts, axes = hand_points(side), hand_axes(side)
-    items = [(name, get_point_in_env(env, name), None) for name in pts]
+    items = [Mark(name, get_point_in_env(env, name)) for name in pts]
     base = get_point_in_env(env, f"palm_center_{side}_hand")
-    items += [(name, base, get_axis_in_env(env, name)) for name in axes]
-    return _draw(Image.fromarray(frame.rgb), items, frame, width, height, axis_len=0.08)
+    items += [Mark(name, base, get_axis_in_env(env, name)) for name in axes]
+    return draw_marks(Image.fromarray(frame.rgb), items, frame, axis_len=0.08)
