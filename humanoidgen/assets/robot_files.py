@@ -1,10 +1,11 @@
-"""Locate, verify and download the Unitree H1-2 robot model files.
+"""Locate, verify and download the default robot's model files (the Unitree H1-2 description).
 
 The robot description (URDF, MJCF, STL meshes; Apache-2.0, published by Unitree Robotics) is
-never committed to this repository. The package only carries the sha256 of every file
-(`h1_2.sha256`), so a download from any source can be checked byte for byte.
+never committed to this repository. The package only carries the sha256 of every file (the robot
+file's `model.checksums`, `robots/h1_2_inspire/h1_2.sha256`), so a download from any source can be
+checked byte for byte. Where the files come from and what they are called is the robot file's `model`.
 
-Layout: an *assets root* is a folder that contains `h1_2/`; the robot MJCF is
+Layout: an *assets root* is a folder that contains the model folder (`h1_2/`); the robot MJCF is
 `<root>/h1_2/h1_2.xml`.
 """
 
@@ -19,20 +20,20 @@ import urllib.error
 import urllib.parse
 import urllib.request
 from dataclasses import dataclass, field
-from importlib import resources
-from pathlib import Path, PurePosixPath
+from pathlib import Path
 
-ROBOT_DIR_NAME = "h1_2"
-ROBOT_MJCF_NAME = "h1_2.xml"
-UPSTREAM_COMMIT = "728ffa0f9ff309e52f5cfbc16fea5e5c0e146785"
-# Pinned to a commit, not a branch: the sums below describe exactly that revision.
-DEFAULT_BASE_URL = (
-    "https://raw.githubusercontent.com/unitreerobotics/avp_teleoperate/"
-    f"{UPSTREAM_COMMIT}/assets/{ROBOT_DIR_NAME}"
-)
+from humanoidgen.robots import default_robot
+from humanoidgen.robots.checksums import _safe_relpath, parse_sums, sha256_file  # noqa: F401 - re-exported
+
+_MODEL = default_robot().data.model
+ROBOT_DIR_NAME = _MODEL.folder
+ROBOT_MJCF_NAME = _MODEL.mjcf
+UPSTREAM_COMMIT = _MODEL.source.commit
+# Pinned to a commit, not a branch: the sums describe exactly that revision.
+DEFAULT_BASE_URL = _MODEL.source.url.format(commit=UPSTREAM_COMMIT)
+DOWNLOAD_MB = _MODEL.source.size_mb
 ENV_ASSETS = "HGEN_ASSETS"
 ENV_CACHE = "HGEN_CACHE"
-SUMS_RESOURCE = "h1_2.sha256"
 # Temp downloads carry this suffix so a later fetch can sweep leftovers of a hard kill.
 PART_SUFFIX = ".hgen-part"
 _CHUNK = 1 << 16
@@ -117,7 +118,7 @@ def resolve_assets_root() -> Path:
     raise AssetsNotFoundError(
         f"Robot model files (Unitree H1-2) not found. Looked for "
         f"'{ROBOT_DIR_NAME}/{ROBOT_MJCF_NAME}' in:\n  - ${ENV_ASSETS} (not set)\n{looked}\n"
-        f"Run `hgen assets fetch` to download them (about 49 MB) into the user cache, "
+        f"Run `hgen assets fetch` to download them (about {DOWNLOAD_MB:.0f} MB) into the user cache, "
         f"or set {ENV_ASSETS} to a folder that contains '{ROBOT_DIR_NAME}/'."
     )
 
@@ -130,49 +131,9 @@ def robot_mjcf_path() -> Path:
 # --------------------------------------------------------------------------- sums
 
 
-def _safe_relpath(name: str) -> str:
-    """Reject names that could write outside the robot folder (the sums file drives writes)."""
-    path = PurePosixPath(name)
-    if (
-        not name
-        or "\\" in name
-        or path.is_absolute()
-        or ".." in path.parts
-        or (path.parts and ":" in path.parts[0])  # e.g. a Windows drive 'C:'
-    ):
-        raise ValueError(f"unsafe file name in sums file: {name!r}")
-    return path.as_posix()
-
-
-def parse_sums(text: str) -> dict[str, str]:
-    """Parse `sha256sum` output (`<hex>  ./path`) into {relative path: hex digest}."""
-    sums: dict[str, str] = {}
-    for lineno, line in enumerate(text.splitlines(), 1):
-        if not line.strip() or line.lstrip().startswith("#"):
-            continue
-        digest, sep, name = line.strip().partition(" ")
-        name = name.lstrip(" *")  # '*' marks binary mode in sha256sum output
-        if not sep or len(digest) != 64 or any(c not in "0123456789abcdefABCDEF" for c in digest):
-            raise ValueError(f"bad line {lineno} in sums file: {line!r}")
-        if name.startswith("./"):
-            name = name[2:]
-        sums[_safe_relpath(name)] = digest.lower()
-    return sums
-
-
 def expected_sums() -> dict[str, str]:
     """The packaged sha256 of every robot file: {relative path: hex digest}."""
-    text = resources.files("humanoidgen.assets").joinpath(SUMS_RESOURCE).read_text("utf-8")
-    return parse_sums(text)
-
-
-def sha256_file(path: Path) -> str:
-    h = hashlib.sha256()
-    with open(path, "rb") as f:
-        # Chunked so memory stays flat whatever the mesh size.
-        for chunk in iter(lambda: f.read(_CHUNK), b""):
-            h.update(chunk)
-    return h.hexdigest()
+    return parse_sums(default_robot().sums_path.read_text("utf-8"))
 
 
 def verify(robot_dir: Path, sums: dict[str, str] | None = None) -> VerifyReport:
