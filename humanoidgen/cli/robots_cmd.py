@@ -51,6 +51,7 @@ def show(robot: str = typer.Argument("h1_2_inspire", help="A robot's name, folde
     typer.echo(f"{d.name} ({r.path}): {d.description}")
     m = d.model
     typer.echo(f"model: <assets>/{m.folder}/{m.mjcf} (urdf {m.urdf}), sums {m.checksums}, {m.source.license}")
+    typer.echo(f"source: {m.source.url.format(commit=m.source.commit)}")
     typer.echo(f"stands: {d.stand.root_body} at {list(d.stand.base_pos)}, feet {d.stand.feet_below_base} m below")
     typer.echo(f"action ({len(r.action_joints)}):")
     for part, slices in (("arm", r.arm_slices), ("hand", r.hand_slices)):

@@ -179,6 +179,9 @@ def _cross_check(robot: RobotFile, hand: HandFile, path: Path, hand_path: Path) 
     if robot.hands.hand_base != hand.frame.hand_base:
         raise RobotFileError(f"{path}: hands.hand_base: {hand.name}'s annotations ({hand_path.name}) assume the "
                              f"hand base at {hand.frame.hand_base.model_dump()} on its mount")
+    if robot.home.hands not in hand.postures:
+        raise RobotFileError(f"{path}: home.hands: {robot.home.hands!r} is not a posture of {hand_path.name} "
+                             f"({', '.join(hand.postures)})")
     if hand.followers == "urdf_mimic" and robot.model.urdf is None:
         raise RobotFileError(f"{path}: model.urdf: {hand.name}'s followers are coupled by the URDF's <mimic> tags "
                              f"({hand_path.name}): name the URDF")

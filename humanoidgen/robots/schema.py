@@ -168,6 +168,14 @@ class ArmActuators(_Strict):
     armature: float = Field(ge=0)
 
 
+class Home(_Strict):
+    """The posture an episode starts from: each arm's joint positions (rad, in `arms` order), a hand posture."""
+
+    left: list[float]
+    right: list[float]
+    hands: str  # a posture of the hand file
+
+
 class HandMount(_Strict):
     prefix: str = Field(min_length=1, pattern=r"^[A-Za-z0-9]+$")
     mount: str  # the body the hand hangs on (its palm)
@@ -204,6 +212,7 @@ class RobotFile(_Strict):
     torso_bodies: list[str] = []
     arm_actuators: ArmActuators
     arms: dict[Literal["left", "right"], list[ArmJoint]]
+    home: Home
     hands: Hands
     weld: list[str] = []
     no_collision: NoCollision = NoCollision()
@@ -215,6 +224,10 @@ class RobotFile(_Strict):
             raise ValueError("give arms and stand.operable_range for both sides, left and right")
         if len(self.arms["left"]) != len(self.arms["right"]) or not self.arms["left"]:
             raise ValueError("arms: left and right need the same, non-zero number of joints")
+        for side in SIDE_NAMES:
+            if len(getattr(self.home, side)) != len(self.arms[side]):
+                raise ValueError(f"home.{side}: {len(getattr(self.home, side))} values for {len(self.arms[side])} "
+                                 f"arm joints")
         joints = [j.joint for side in SIDE_NAMES for j in self.arms[side]]
         if len(set(joints)) != len(joints):
             raise ValueError("arms: a joint appears twice")
