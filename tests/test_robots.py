@@ -116,3 +116,12 @@ def test_hgen_robots_list_and_show():
     assert res.exit_code == 0 and "* h1_2_inspire" in res.output
     res = runner.invoke(app, ["robots", "show", "h1_2_inspire"])
     assert res.exit_code == 0 and "14-19 left hand" in res.output and "head on torso_link" in res.output
+
+
+def test_a_robot_outside_the_package_uses_the_packaged_hand(tmp_path: Path):
+    shutil.copytree(ROBOTS_DIR / "h1_2_inspire", tmp_path / "mine")
+    _edit(tmp_path / "mine" / "robot.yaml", lambda d: d.update(name="mine"))
+    r = load_robot(tmp_path / "mine")
+    assert r.name == "mine" and r.hand.path == ROBOTS_DIR / "hands" / "inspire.yaml"
+    _edit(tmp_path / "mine" / "robot.yaml", lambda d: d["hands"].update(type="shadow"))
+    assert "hands.type: no hand file" in check(tmp_path / "mine" / "robot.yaml")[0]

@@ -95,7 +95,7 @@ def _check_mimics(robot: Robot, model_dir: Path, joints: set[str]) -> list[str]:
 def check(path: Path | str, assets_root: Path | None = None, checksums: bool = True) -> list[str]:
     """Validate the robot file at `path` (and its hand file); with `assets_root`, against the model files too."""
     try:
-        robot = load_robot(path)
+        robot = load_robot(path, cached=False)
     except RobotFileError as exc:
         return [str(exc)]
     if assets_root is None:

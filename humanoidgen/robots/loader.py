@@ -1,8 +1,8 @@
 """Reading robot and hand files into a `Robot`: validated, cross-checked between the two files, with what code
 needs derived once (joint names per side, the action layout, the hand's points and axes per side).
 
-A robot is a folder `robots/<name>/` holding `robot.yaml`; the hand it names is `robots/hands/<type>.yaml`
-(beside the robot's folder). Loads are cached per path; reading the default robot costs a YAML read and a
+A robot is a folder `robots/<name>/` holding `robot.yaml`; the hand it names is `hands/<type>.yaml` beside the
+robot's folder, else the packaged `robots/hands/<type>.yaml`. Loads are cached per path; reading the default robot costs a YAML read and a
 validation, once per process. Every error is one line that names the file and the field.
 """
 
@@ -203,18 +203,22 @@ def robot_file_path(name_or_path: str | Path) -> Path:
 def _load(path: Path) -> Robot:
     data = _read(path, RobotFile)
     assert isinstance(data, RobotFile)
-    hand_path = path.parent.parent / HANDS_DIR_NAME / f"{data.hands.type}.yaml"
+    # The hand file beside the robot's folder, else the packaged one (hands are shared between robots).
+    beside = path.parent.parent / HANDS_DIR_NAME / f"{data.hands.type}.yaml"
+    hand_path = beside if beside.is_file() else ROBOTS_DIR / HANDS_DIR_NAME / f"{data.hands.type}.yaml"
     if not hand_path.is_file():
-        raise RobotFileError(f"{path}: hands.type: no hand file {hand_path}")
+        raise RobotFileError(f"{path}: hands.type: no hand file {beside} nor {hand_path}")
     hand = _read(hand_path, HandFile)
     assert isinstance(hand, HandFile)
     _cross_check(data, hand, path, hand_path)
     return Robot(data=data, hand=Hand(hand, hand_path), path=path)
 
 
-def load_robot(name_or_path: str | Path = DEFAULT_ROBOT) -> Robot:
-    """The robot named (or at this path), validated; cached."""
-    return _load(robot_file_path(name_or_path).resolve())
+def load_robot(name_or_path: str | Path = DEFAULT_ROBOT, cached: bool = True) -> Robot:
+    """The robot named (or at this path), validated; cached unless `cached=False` (a check reads the files as
+    they are now)."""
+    path = robot_file_path(name_or_path).resolve()
+    return _load(path) if cached else _load.__wrapped__(path)
 
 
 def default_robot() -> Robot:
