@@ -11,8 +11,8 @@ from pathlib import Path
 import humanoidgen
 
 ROOT = Path(humanoidgen.__file__).resolve().parent
-LAYERS = ["assets", "sim", "objects", "scenes", "planning", "tasks", "llm", "sandbox", "episodes", "generation",
-          "mcts", "envs", "policies", "cli"]
+LAYERS = ["robots", "assets", "sim", "objects", "scenes", "planning", "tasks", "llm", "sandbox", "episodes",
+          "generation", "mcts", "envs", "policies", "cli"]
 # Plan files and task specs are data that plan code reads, not modules of the package.
 NOT_MODULES = ("tasks/specs/",)
 

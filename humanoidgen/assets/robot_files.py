@@ -1,10 +1,11 @@
-"""Locate, verify and download the Unitree H1-2 robot model files.
+"""Locate, verify and download the default robot's model files (the Unitree H1-2 description).
 
 The robot description (URDF, MJCF, STL meshes; Apache-2.0, published by Unitree Robotics) is
-never committed to this repository. The package only carries the sha256 of every file
-(`h1_2.sha256`), so a download from any source can be checked byte for byte.
+never committed to this repository. The package only carries the sha256 of every file (the robot
+file's `model.checksums`, `robots/h1_2_inspire/h1_2.sha256`), so a download from any source can be
+checked byte for byte. Where the files come from and what they are called is the robot file's `model`.
 
-Layout: an *assets root* is a folder that contains `h1_2/`; the robot MJCF is
+Layout: an *assets root* is a folder that contains the model folder (`h1_2/`); the robot MJCF is
 `<root>/h1_2/h1_2.xml`.
 """
 
@@ -19,20 +20,43 @@ import urllib.error
 import urllib.parse
 import urllib.request
 from dataclasses import dataclass, field
-from importlib import resources
-from pathlib import Path, PurePosixPath
+from pathlib import Path
 
-ROBOT_DIR_NAME = "h1_2"
-ROBOT_MJCF_NAME = "h1_2.xml"
-UPSTREAM_COMMIT = "728ffa0f9ff309e52f5cfbc16fea5e5c0e146785"
-# Pinned to a commit, not a branch: the sums below describe exactly that revision.
-DEFAULT_BASE_URL = (
-    "https://raw.githubusercontent.com/unitreerobotics/avp_teleoperate/"
-    f"{UPSTREAM_COMMIT}/assets/{ROBOT_DIR_NAME}"
-)
+from humanoidgen.robots.checksums import _safe_relpath, parse_sums, sha256_file  # noqa: F401 - re-exported
+
+
+def _robot():
+    """The default robot, read on first use: importing this module (every `hgen` command does) stays cheap."""
+    from humanoidgen.robots import default_robot
+
+    return default_robot()
+
+
+# The robot file's `model`: ROBOT_DIR_NAME (<root>/h1_2/), ROBOT_MJCF_NAME, UPSTREAM_COMMIT, DEFAULT_BASE_URL
+# (pinned to a commit, not a branch: the sums describe exactly that revision), DOWNLOAD_MB.
+_MODEL_NAMES = {
+    "ROBOT_DIR_NAME": lambda m: m.folder,
+    "ROBOT_MJCF_NAME": lambda m: m.mjcf,
+    "UPSTREAM_COMMIT": lambda m: m.source.commit,
+    "DEFAULT_BASE_URL": lambda m: m.source.url.format(commit=m.source.commit),
+    "DOWNLOAD_MB": lambda m: m.source.size_mb,
+}
+
+
+def __getattr__(name: str):
+    if name in _MODEL_NAMES:
+        return _MODEL_NAMES[name](_robot().data.model)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def _dir_name() -> str:
+    return _robot().data.model.folder
+
+
+def _mjcf_name() -> str:
+    return _robot().data.model.mjcf
 ENV_ASSETS = "HGEN_ASSETS"
 ENV_CACHE = "HGEN_CACHE"
-SUMS_RESOURCE = "h1_2.sha256"
 # Temp downloads carry this suffix so a later fetch can sweep leftovers of a hard kill.
 PART_SUFFIX = ".hgen-part"
 _CHUNK = 1 << 16
@@ -91,7 +115,7 @@ def checkout_assets_dir() -> Path:
 
 def is_assets_root(path: Path) -> bool:
     """A folder counts as an assets root when it holds the robot MJCF."""
-    return (path / ROBOT_DIR_NAME / ROBOT_MJCF_NAME).is_file()
+    return (path / _dir_name() / _mjcf_name()).is_file()
 
 
 def resolve_assets_root() -> Path:
@@ -105,9 +129,9 @@ def resolve_assets_root() -> Path:
         if is_assets_root(root):
             return root
         raise AssetsNotFoundError(
-            f"{ENV_ASSETS} is set to '{root}', but '{root / ROBOT_DIR_NAME / ROBOT_MJCF_NAME}' "
+            f"{ENV_ASSETS} is set to '{root}', but '{root / _dir_name() / _mjcf_name()}' "
             f"does not exist. Point {ENV_ASSETS} at the folder that contains "
-            f"'{ROBOT_DIR_NAME}/', or unset it and run `hgen assets fetch`."
+            f"'{_dir_name()}/', or unset it and run `hgen assets fetch`."
         )
     candidates = [(cache_dir(), "user cache"), (checkout_assets_dir(), "beside the checkout")]
     for root, _ in candidates:
@@ -116,63 +140,23 @@ def resolve_assets_root() -> Path:
     looked = "\n".join(f"  - {root} ({why})" for root, why in candidates)
     raise AssetsNotFoundError(
         f"Robot model files (Unitree H1-2) not found. Looked for "
-        f"'{ROBOT_DIR_NAME}/{ROBOT_MJCF_NAME}' in:\n  - ${ENV_ASSETS} (not set)\n{looked}\n"
-        f"Run `hgen assets fetch` to download them (about 49 MB) into the user cache, "
-        f"or set {ENV_ASSETS} to a folder that contains '{ROBOT_DIR_NAME}/'."
+        f"'{_dir_name()}/{_mjcf_name()}' in:\n  - ${ENV_ASSETS} (not set)\n{looked}\n"
+        f"Run `hgen assets fetch` to download them (about {_robot().data.model.source.size_mb:.0f} MB) into the user cache, "
+        f"or set {ENV_ASSETS} to a folder that contains '{_dir_name()}/'."
     )
 
 
 def robot_mjcf_path() -> Path:
     """Path of the robot MJCF (`<root>/h1_2/h1_2.xml`)."""
-    return resolve_assets_root() / ROBOT_DIR_NAME / ROBOT_MJCF_NAME
+    return resolve_assets_root() / _dir_name() / _mjcf_name()
 
 
 # --------------------------------------------------------------------------- sums
 
 
-def _safe_relpath(name: str) -> str:
-    """Reject names that could write outside the robot folder (the sums file drives writes)."""
-    path = PurePosixPath(name)
-    if (
-        not name
-        or "\\" in name
-        or path.is_absolute()
-        or ".." in path.parts
-        or (path.parts and ":" in path.parts[0])  # e.g. a Windows drive 'C:'
-    ):
-        raise ValueError(f"unsafe file name in sums file: {name!r}")
-    return path.as_posix()
-
-
-def parse_sums(text: str) -> dict[str, str]:
-    """Parse `sha256sum` output (`<hex>  ./path`) into {relative path: hex digest}."""
-    sums: dict[str, str] = {}
-    for lineno, line in enumerate(text.splitlines(), 1):
-        if not line.strip() or line.lstrip().startswith("#"):
-            continue
-        digest, sep, name = line.strip().partition(" ")
-        name = name.lstrip(" *")  # '*' marks binary mode in sha256sum output
-        if not sep or len(digest) != 64 or any(c not in "0123456789abcdefABCDEF" for c in digest):
-            raise ValueError(f"bad line {lineno} in sums file: {line!r}")
-        if name.startswith("./"):
-            name = name[2:]
-        sums[_safe_relpath(name)] = digest.lower()
-    return sums
-
-
 def expected_sums() -> dict[str, str]:
     """The packaged sha256 of every robot file: {relative path: hex digest}."""
-    text = resources.files("humanoidgen.assets").joinpath(SUMS_RESOURCE).read_text("utf-8")
-    return parse_sums(text)
-
-
-def sha256_file(path: Path) -> str:
-    h = hashlib.sha256()
-    with open(path, "rb") as f:
-        # Chunked so memory stays flat whatever the mesh size.
-        for chunk in iter(lambda: f.read(_CHUNK), b""):
-            h.update(chunk)
-    return h.hexdigest()
+    return parse_sums(_robot().sums_path.read_text("utf-8"))
 
 
 def verify(robot_dir: Path, sums: dict[str, str] | None = None) -> VerifyReport:
@@ -238,7 +222,7 @@ def _fetch_hint(url: str, reason: str, base_url: str) -> str:
     return (
         f"could not download {url}: {reason}. Check the network connection, or pass "
         f"--base-url to use a mirror (currently '{base_url}'; it must serve the files of "
-        f"'{ROBOT_DIR_NAME}/' under that address)."
+        f"'{_dir_name()}/' under that address)."
     )
 
 
@@ -252,7 +236,7 @@ def _sweep_parts(robot_dir: Path) -> None:
 
 def fetch(
     dest_root: Path | None = None,
-    base_url: str = DEFAULT_BASE_URL,
+    base_url: str | None = None,
     progress: bool = True,
     timeout: float = 30,
 ) -> Path:
@@ -262,7 +246,8 @@ def fetch(
     Each download is verified before it is moved into place; a bad one raises ChecksumError.
     """
     dest_root = cache_dir() if dest_root is None else Path(dest_root).expanduser()
-    robot_dir = dest_root / ROBOT_DIR_NAME
+    robot_dir = dest_root / _dir_name()
+    base_url = __getattr__("DEFAULT_BASE_URL") if base_url is None else base_url
     sums = expected_sums()
     _sweep_parts(robot_dir)
     from tqdm import tqdm  # lazy: importing this module should stay cheap

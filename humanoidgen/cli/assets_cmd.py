@@ -36,12 +36,13 @@ def fetch(
         help="Assets root to fill (the files go to DEST/h1_2/). Default: the user cache.",
         file_okay=False,
     ),
-    base_url: str = typer.Option(
-        rf.DEFAULT_BASE_URL,
+    base_url: str | None = typer.Option(
+        None,
         "--base-url",
         help=(
             "Address of a folder serving the h1_2 files (a mirror, or file:///path/h1_2). "
-            f"Default: Unitree's GitHub repository at commit {rf.UPSTREAM_COMMIT[:7]}."
+            "Default: the robot file's model.source (Unitree's GitHub repository at a pinned commit; "
+            "`hgen robots show`)."
         ),
         show_default=False,
     ),

@@ -7,7 +7,16 @@ from pathlib import Path
 
 import typer
 
-from humanoidgen.cli import assets_cmd, dataset_cmd, episodes_cmd, fast_exit, generate_cmd, policy_cmd, sandbox_cmd
+from humanoidgen.cli import (
+    assets_cmd,
+    dataset_cmd,
+    episodes_cmd,
+    fast_exit,
+    generate_cmd,
+    policy_cmd,
+    robots_cmd,
+    sandbox_cmd,
+)
 
 
 class _Program(typer.Typer):
@@ -34,6 +43,7 @@ app = _Program(
     pretty_exceptions_show_locals=False,
 )
 app.add_typer(assets_cmd.app, name="assets")
+app.add_typer(robots_cmd.app, name="robots")
 app.command()(episodes_cmd.tasks)
 app.command()(episodes_cmd.run)
 app.command()(episodes_cmd.collect)

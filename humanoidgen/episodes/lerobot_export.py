@@ -28,6 +28,7 @@ from pathlib import Path
 import numpy as np
 
 from humanoidgen.episodes.dataset import DatasetError, EpisodeStore
+from humanoidgen.robots import default_robot
 
 CODEBASE_VERSION = "v3.0"
 CHUNKS_SIZE = 1000  # files per chunk folder
@@ -38,7 +39,7 @@ DATA_PATH = "data/" + CHUNK_FILE_PATTERN + ".parquet"
 VIDEO_PATH = "videos/{video_key}/" + CHUNK_FILE_PATTERN + ".mp4"
 EPISODES_PATH = "meta/episodes/" + CHUNK_FILE_PATTERN + ".parquet"
 QUANTILES = (0.01, 0.10, 0.50, 0.90, 0.99)
-ROBOT_TYPE = "unitree_h1_2_inspire"
+ROBOT_TYPE = default_robot().data.robot_type
 
 # Columns every LeRobot frame carries, after the dataset's own features.
 DEFAULT_FEATURES = {

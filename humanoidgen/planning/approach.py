@@ -37,7 +37,7 @@ from humanoidgen.planning.goal_targets import PoseTarget, pose_within
 from humanoidgen.planning.motion import JointPath, MotionError, first_collision, plan_arm_motion, track_poses
 from humanoidgen.planning.part_joint import grip_joint, moving_bodies
 from humanoidgen.planning.poses import Pose, screw_interpolate
-from humanoidgen.sim.layout import HAND_PREFIX, Side
+from humanoidgen.sim.layout import FINGERTIP_BODY, Side
 from humanoidgen.planning.context import PlanningContext
 from humanoidgen.planning.hand_ops import is_part
 
@@ -172,12 +172,12 @@ def other_ways_in(ctx: PlanningContext, side: Side, target: Pose) -> list[tuple[
 def fingertips_at(ctx: PlanningContext, side: Side, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Thumb and index tip positions with the arm at `q` and the fingers as they are now."""
     m = ctx.env.model
-    prefix = HAND_PREFIX[side]
+    tips = FINGERTIP_BODY[side]
     ctx.kin.set_arm(side, q)
     ctx.kin.forward()
     try:
-        return (ctx.kin.data.xpos[m.body(f"{prefix}_thumb_distal").id].copy(),
-                ctx.kin.data.xpos[m.body(f"{prefix}_index_intermediate").id].copy())
+        return (ctx.kin.data.xpos[m.body(tips["thumb"]).id].copy(),
+                ctx.kin.data.xpos[m.body(tips["index"]).id].copy())
     finally:
         ctx.kin.sync(ctx.env.data.qpos)
 

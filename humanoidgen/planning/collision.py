@@ -16,7 +16,7 @@ import numpy as np
 
 from humanoidgen.planning.broadphase import candidate_pairs
 from humanoidgen.planning.kinematics import Kinematics
-from humanoidgen.sim.layout import HAND_PREFIX, SIDES, Side, arm_bodies
+from humanoidgen.sim.layout import HAND_PREFIX, ROOT_BODY, SIDES, Side, arm_bodies
 
 FAR = 1.0  # reported distance for pairs too far apart to matter
 
@@ -279,7 +279,7 @@ class CollisionWorld:
         m = self.kin.model
         b = int(m.geom_bodyid[g])
         root = int(m.body_rootid[b])
-        return b if root == m.body("pelvis").id or root == 0 else root
+        return b if root == m.body(ROOT_BODY).id or root == 0 else root
 
     def describe_pair(self, pair: tuple[int, int]) -> str:
         m = self.kin.model

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from humanoidgen.sim.layout import HAND_PREFIX, OPERABLE_RANGE, OTHER_SIDE, SIDES, Side
+from humanoidgen.sim.layout import HAND_PREFIX, OPERABLE_RANGE, OTHER_SIDE, SIDES, TORSO_BODIES, WRIST_BODY, Side
 
 
 def _fmt_range(side: Side) -> str:
@@ -30,8 +30,8 @@ def body_label(env, body: int) -> str:
         return "the table"
     for side in SIDES:
         if name.startswith(f"{side}_") or name.startswith(HAND_PREFIX[side] + "_"):
-            return f"the {side} {'hand' if name.startswith(HAND_PREFIX[side] + '_') or 'wrist_yaw' in name else 'arm'}"
-    return "the torso" if "torso" in name or "pelvis" in name else name
+            return f"the {side} {'hand' if name.startswith(HAND_PREFIX[side] + '_') or name == WRIST_BODY[side] else 'arm'}"
+    return "the torso" if name in TORSO_BODIES else name
 
 
 def range_advice(side: Side, point: np.ndarray) -> str:

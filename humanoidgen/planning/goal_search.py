@@ -37,7 +37,7 @@ from humanoidgen.planning.motion import track_poses
 from humanoidgen.planning.part_joint import PartFollow, part_stays, follow_articulation, follow_openness, grip_joint
 from humanoidgen.planning import regrip_request as regrip
 from humanoidgen.planning.poses import Pose
-from humanoidgen.sim.layout import HAND_PREFIX, Side
+from humanoidgen.sim.layout import HAND_PREFIX, ROOT_BODY, Side
 from humanoidgen.planning import approach
 from humanoidgen.planning import part_grip
 from humanoidgen.planning.context import PlanningContext
@@ -282,7 +282,7 @@ def wider_goal(ctx: PlanningContext, side: Side, gen, tried: list, ignored_befor
     if gen is None or getattr(gen, "approach_axis", None) is None:
         return failed, gen, 0.0
     robot = {ctx.env.model.body(b).id for b in range(ctx.env.model.nbody)
-             if int(ctx.env.model.body_rootid[b]) == ctx.env.model.body("pelvis").id}
+             if int(ctx.env.model.body_rootid[b]) == ctx.env.model.body(ROOT_BODY).id}
     if failed.contacts and any(b2 in robot for _, b2, _ in failed.contacts):
         return failed, gen, 0.0  # the other arm or the body in the way: turning the wrist does not clear it
     cones = [(CONE_DEG, ROLL_DEG), (WIDE_CONE_DEG, WIDE_ROLL_DEG)]

@@ -6,7 +6,7 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
-from humanoidgen.sim.layout import HAND_PREFIX, Side
+from humanoidgen.sim.layout import HAND_PREFIX, WRIST_BODY, Side
 from humanoidgen.sim.scene import Scene, SceneObject
 
 
@@ -23,7 +23,7 @@ def finger_contacts(model: mujoco.MjModel, data: mujoco.MjData, side: Side, body
     """Which fingers of `side` touch the object `body`: a subset of thumb, index, middle, ring, pinky, palm."""
     root = model.body(body).id
     prefix = HAND_PREFIX[side] + "_"
-    palm = f"{side}_wrist_yaw_link"
+    palm = WRIST_BODY[side]
     touched: set[str] = set()
     for c in data.contact[: data.ncon]:
         for mine, other in ((c.geom1, c.geom2), (c.geom2, c.geom1)):
@@ -40,7 +40,7 @@ def finger_contacts(model: mujoco.MjModel, data: mujoco.MjData, side: Side, body
 def hand_touches(scene: Scene, model: mujoco.MjModel, data: mujoco.MjData, side: Side) -> dict[str, set[str]]:
     """What `side`'s hand touches now: {"cube 1": {"index", "thumb"}, "the table": {"palm"}, ...}."""
     prefix = HAND_PREFIX[side] + "_"
-    palm = f"{side}_wrist_yaw_link"
+    palm = WRIST_BODY[side]
     names = {model.body(o.body).id: f"{o.type_name} {o.obj_id}" for o in scene.objects}
     table = model.body("table").id if "table" in [model.body(b).name for b in range(model.nbody)] else -1
     out: dict[str, set[str]] = {}

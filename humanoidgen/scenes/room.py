@@ -16,11 +16,12 @@ from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
+from humanoidgen.robots import default_robot
 from humanoidgen.scenes.frames import Rigid, apply_point, frame, o_to_o_prime
 
-# The H1-2's pelvis stands 1.03 m above its feet (upstream model); at the tabletop table the pelvis is level
-# with the table top, so that table is 1.03 m high.
-PELVIS_HEIGHT = 1.03
+# The robot's root body stands this far above its feet (the robot file's `stand.feet_below_base`: 1.03 m for the
+# H1-2's pelvis); at the tabletop table the root body is level with the table top, so that table is that high.
+PELVIS_HEIGHT = default_robot().data.stand.feet_below_base
 DEFAULT_SURFACE_HEIGHT = PELVIS_HEIGHT
 # Work-surface heights a room may have. The robot's height is fixed, so a surface dz higher than the
 # tabletop table puts the base dz lower relative to the task (and the arms reach it from dz lower).

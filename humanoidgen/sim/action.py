@@ -7,7 +7,8 @@ Order (index: meaning), all values are joint angles in radians:
     14-19  left hand  thumb yaw, thumb pitch, index, middle, ring, pinky (proximal joints; larger = more closed)
     20-25  right hand same order
 
-The hands' other joints follow their proximal joint through the URDF's mimic couplings.
+The hands' other joints follow their proximal joint through the URDF's mimic couplings. The layout is derived
+from the robot file (`robots.Robot.action_joints`: the arms, left then right, then the hands, left then right).
 """
 
 from __future__ import annotations
@@ -16,19 +17,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from humanoidgen.sim.layout import ARM_JOINTS, HAND_JOINTS, SIDES, Side
-
-ACTION_DIM = 26
-ARM_SLICE: dict[Side, slice] = {"left": slice(0, 7), "right": slice(7, 14)}
-HAND_SLICE: dict[Side, slice] = {"left": slice(14, 20), "right": slice(20, 26)}
+from humanoidgen.sim.layout import ROBOT, SIDES, Side
 
 # Joint names in action order: what each action entry drives.
-ACTION_JOINTS: tuple[str, ...] = (
-    *ARM_JOINTS["left"],
-    *ARM_JOINTS["right"],
-    *HAND_JOINTS["left"],
-    *HAND_JOINTS["right"],
-)
+ACTION_JOINTS: tuple[str, ...] = ROBOT.action_joints
+ACTION_DIM = len(ACTION_JOINTS)
+ARM_SLICE: dict[Side, slice] = {side: ROBOT.arm_slices[side] for side in SIDES}
+HAND_SLICE: dict[Side, slice] = {side: ROBOT.hand_slices[side] for side in SIDES}
+_PARTS = ", ".join(f"{sl[s].stop - sl[s].start} {s} {part}" for sl, part in ((ARM_SLICE, "arm"), (HAND_SLICE, "hand"))
+                   for s in SIDES)
 
 
 class ActionError(ValueError):
@@ -58,7 +55,7 @@ def validate_action(action: object) -> np.ndarray:
         raise ActionError(f"action must be a sequence of {ACTION_DIM} numbers: {exc}") from None
     if a.shape != (ACTION_DIM,):
         raise ActionError(
-            f"action must have shape ({ACTION_DIM},) (7 left arm, 7 right arm, 6 left hand, 6 right hand), "
+            f"action must have shape ({ACTION_DIM},) ({_PARTS}), "
             f"got shape {a.shape}"
         )
     bad = np.flatnonzero(~np.isfinite(a))

@@ -1,8 +1,9 @@
 """The six cameras: where they sit, and rendering RGB, depth and segmentation from them.
 
-Head: a RealSense D435-like first-person camera on the torso (about 43 degrees vertical field of view, the
-colour stream's fx = fy ~ 615 px at 640x480). Two wrist cameras look past each hand's fingers. Three
-third-person cameras watch the table from the front, the left and the right.
+On the robot (its robot file's `cameras`): a RealSense D435-like first-person head camera on the torso (about
+43 degrees vertical field of view, the colour stream's fx = fy ~ 615 px at 640x480), and two wrist cameras
+looking past each hand's fingers. Three third-person cameras watch the table from the front, the left and the
+right.
 """
 
 from __future__ import annotations
@@ -14,9 +15,7 @@ import mujoco
 import numpy as np
 
 from humanoidgen.sim.geometry import look_at_quat
-from humanoidgen.sim.layout import ROBOT_BASE_POS, WRIST_BODY
-
-D435_FOVY_DEG = 42.6
+from humanoidgen.sim.layout import ROBOT
 
 
 @dataclass(frozen=True)
@@ -31,16 +30,9 @@ class CameraSpec:
     up: tuple[float, float, float] = (0.0, 0.0, 1.0)
 
 
-_BASE = ROBOT_BASE_POS
 CAMERAS: tuple[CameraSpec, ...] = (
-    # On the torso: the head camera sits above the shoulders and looks down at the work area.
-    CameraSpec("head", eye=(0.09, 0.0, 0.66), target=(0.5, 0.0, 0.0), fovy=D435_FOVY_DEG, body="torso_link"),
-    # On the back of each hand (wrist-yaw link frame: fingers along +x, the palm faces -y on the left hand and +y
-    # on the right), looking past the fingertips; "up" in the image is the back of the hand.
-    CameraSpec("left_wrist", eye=(0.09, 0.10, 0.0), target=(0.40, -0.10, 0.0), fovy=75.0, body=WRIST_BODY["left"],
-               up=(0.0, 1.0, 0.0)),
-    CameraSpec("right_wrist", eye=(0.09, -0.10, 0.0), target=(0.40, 0.10, 0.0), fovy=75.0,
-               body=WRIST_BODY["right"], up=(0.0, -1.0, 0.0)),
+    # On the robot, in its body's frame (the robot file's `cameras`).
+    *(CameraSpec(c.name, eye=c.eye, target=c.target, fovy=c.fovy, body=c.body, up=c.up) for c in ROBOT.data.cameras),
     CameraSpec("front", eye=(0.55, 0.0, 0.65), target=(-0.45, 0.0, 0.05), fovy=55.0),
     CameraSpec("left", eye=(-0.30, 1.05, 0.55), target=(-0.35, 0.0, 0.02), fovy=55.0),
     CameraSpec("right", eye=(-0.30, -1.05, 0.55), target=(-0.35, 0.0, 0.02), fovy=55.0),

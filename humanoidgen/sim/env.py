@@ -9,17 +9,12 @@ import numpy as np
 
 from humanoidgen.sim.action import ACTION_DIM, ACTION_JOINTS, ARM_SLICE, HAND_SLICE, validate_action
 from humanoidgen.sim.geometry import mat_to_quat
-from humanoidgen.sim.layout import ARM_JOINTS, HAND_BASE_FRAME, HAND_JOINTS, Side
+from humanoidgen.sim.layout import ARM_JOINTS, HAND_BASE_FRAME, HAND_JOINTS, ROBOT, SIDES, Side
 from humanoidgen.sim.scene import Scene
 
-# Initial arm posture (radians, action order): palms 26 cm above the table at x = -0.45, y = +-0.20, fingers
-# forward and slightly down, palms turned down and inward (found with `sim.ik`; the right arm mirrors the left).
-# High enough that the fingertips (about 25 cm up) clear standing bottles, open lids and laptop screens.
-INIT_ARM_QPOS: dict[Side, tuple[float, ...]] = {
-    "left": (-0.436, -0.0105, 0.0815, -0.5255, 1.463, 0.47, -1.0925),
-    "right": (-0.436, 0.0105, -0.0815, -0.5255, -1.463, 0.47, 1.0925),
-}
-OPEN_HAND = (0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
+# Initial posture (radians, action order): the robot file's `home` (each arm's joints; the hands' posture, open).
+INIT_ARM_QPOS: dict[Side, tuple[float, ...]] = {side: tuple(getattr(ROBOT.data.home, side)) for side in SIDES}
+OPEN_HAND = ROBOT.hand.postures[ROBOT.data.home.hands]
 DEFAULT_CONTROL_HZ = 50.0
 MAX_CONTROL_HZ = 500.0
 

@@ -1,81 +1,28 @@
-"""The Unitree H1-2 upper body with two Inspire hands, built with MjSpec from the upstream MJCF.
+"""The robot at its table, built with MjSpec from the upstream MJCF as its robot file says (default: the Unitree
+H1-2 with two Inspire hands, `robots/h1_2_inspire/robot.yaml`).
 
 What changes against upstream, and why:
-- the floating base, the legs and the torso are welded: the robot stands at a table and only its arms move;
-- the upstream torque motors are replaced by position actuators on the 14 arm joints and the 12 actuated
-  hand joints (the 26-D action), with gains sized to each joint's torque limit;
+- the joints the file's `weld` lists are deleted (the floating base, the legs and the torso): the robot stands at a
+  table and only its arms move;
+- the upstream torque motors are replaced by position actuators on the arm joints and the hands' actuated
+  joints (the action), with the gains of the robot file (`arms`) and the hand file (`actuators`);
 - each hand's follower joints are tied to their driver by equality constraints read from the URDF's mimic tags;
 - arms and hands get gravity compensation, as the real robot's low-level controller provides it;
-- a site per hand marks the end-effector frame the planner API names (`l_hand_base_link`, `r_hand_base_link`).
+- a site per hand marks the end-effector frame the planner API names (`hands.<side>.frame`).
 - visual geoms draw decimated copies of the meshes (`sim.meshes`); meshes no geom uses then are dropped.
 """
 
 from __future__ import annotations
 
-import xml.etree.ElementTree as ET
-from dataclasses import dataclass
 from pathlib import Path
 
 import mujoco
 import numpy as np
 
+from humanoidgen.robots import Robot
+from humanoidgen.robots.mimic import Mimic, read_mimics  # noqa: F401 - re-exported
+from humanoidgen.sim.layout import ROBOT, SIDES
 from humanoidgen.sim.meshes import DEFAULT_MAX_FACES, visual_mesh
-from humanoidgen.sim.layout import (
-    ARM_JOINTS,
-    HAND_BASE_FRAME,
-    HAND_BASE_ON_WRIST_POS,
-    HAND_BASE_ON_WRIST_QUAT,
-    HAND_JOINTS,
-    HAND_PREFIX,
-    ROBOT_BASE_POS,
-    SIDES,
-    WRIST_BODY,
-    arm_bodies,
-)
-
-# Position gains (N·m/rad) by joint group; damping is set for a well-damped response with the armature below.
-ARM_KP = {"shoulder": 400.0, "elbow": 250.0, "wrist": 80.0}
-ARM_KV_RATIO = 0.1  # kv = ratio * kp
-ARM_ARMATURE = 0.02
-HAND_KP = 3.0
-HAND_KV = 0.05
-HAND_ARMATURE = 0.0005
-HAND_DAMPING = 0.02
-
-
-@dataclass(frozen=True)
-class Mimic:
-    """follower = multiplier * driver + offset (URDF <mimic>)."""
-
-    follower: str
-    driver: str
-    multiplier: float
-    offset: float
-
-
-def read_mimics(urdf_path: Path) -> list[Mimic]:
-    """Read every <mimic> tag of a URDF."""
-    root = ET.parse(urdf_path).getroot()
-    mimics = []
-    for joint in root.iter("joint"):
-        tag = joint.find("mimic")
-        if tag is not None:
-            mimics.append(
-                Mimic(
-                    follower=joint.attrib["name"],
-                    driver=tag.attrib["joint"],
-                    multiplier=float(tag.attrib.get("multiplier", 1.0)),
-                    offset=float(tag.attrib.get("offset", 0.0)),
-                )
-            )
-    return mimics
-
-
-def _arm_kp(joint: str) -> float:
-    for key, kp in ARM_KP.items():
-        if key in joint:
-            return kp
-    raise KeyError(joint)
 
 
 def driver_ctrl_range(spec: mujoco.MjSpec, driver: str, mimics: list[Mimic]) -> tuple[float, float]:
@@ -90,50 +37,51 @@ def driver_ctrl_range(spec: mujoco.MjSpec, driver: str, mimics: list[Mimic]) -> 
     return float(lo), float(hi)
 
 
-def _weld_everything_but_arms(spec: mujoco.MjSpec) -> None:
-    movable = {j for side in SIDES for j in ARM_JOINTS[side]}
-    movable |= {j.name for j in spec.joints if j.name[:2] in ("L_", "R_")}
+def _weld(spec: mujoco.MjSpec, robot: Robot) -> None:
+    welded = set(robot.data.weld)
     for joint in list(spec.joints):
-        if joint.name not in movable:
+        if joint.name in welded:
             spec.delete(joint)
 
 
-def _disable_static_collisions(spec: mujoco.MjSpec) -> None:
-    """Legs and pelvis can never touch anything the arms reach; keep them out of collision detection."""
-    for name in ("left_hip_yaw_link", "right_hip_yaw_link"):
+def _disable_static_collisions(spec: mujoco.MjSpec, robot: Robot) -> None:
+    """Bodies that can never touch anything the arms reach (legs, pelvis): out of collision detection."""
+    for name in robot.data.no_collision.subtrees:
         for geom in spec.body(name).find_all(mujoco.mjtObj.mjOBJ_GEOM):
             geom.contype = 0
             geom.conaffinity = 0
-    for geom in spec.body("pelvis").geoms:
-        geom.contype = 0
-        geom.conaffinity = 0
+    for name in robot.data.no_collision.bodies:
+        for geom in spec.body(name).geoms:
+            geom.contype = 0
+            geom.conaffinity = 0
 
 
-def _add_actuators(spec: mujoco.MjSpec, mimics: list[Mimic]) -> None:
+def _add_actuators(spec: mujoco.MjSpec, mimics: list[Mimic], robot: Robot) -> None:
     for act in list(spec.actuators):
         spec.delete(act)
+    arm, hand = robot.data.arm_actuators, robot.hand.data.actuators
     for side in SIDES:
-        for name in ARM_JOINTS[side]:
+        for entry in robot.data.arms[side]:
+            name, kp = entry.joint, entry.kp
             joint = spec.joint(name)
-            kp = _arm_kp(name)
-            joint.armature = ARM_ARMATURE
+            joint.armature = arm.armature
             act = spec.add_actuator(name=name, target=name, trntype=mujoco.mjtTrn.mjTRN_JOINT)
-            act.set_to_position(kp=kp, kv=ARM_KV_RATIO * kp)
+            act.set_to_position(kp=kp, kv=arm.kv_ratio * kp)
             act.ctrlrange = joint.range
             act.ctrllimited = True
             act.forcerange = joint.actfrcrange
             act.forcelimited = True
-        for name in HAND_JOINTS[side]:
+        for name in robot.hand_joints[side]:
             act = spec.add_actuator(name=name, target=name, trntype=mujoco.mjtTrn.mjTRN_JOINT)
-            act.set_to_position(kp=HAND_KP, kv=HAND_KV)
+            act.set_to_position(kp=hand.kp, kv=hand.kv)
             act.ctrlrange = driver_ctrl_range(spec, name, mimics)
             act.ctrllimited = True
             act.forcerange = spec.joint(name).actfrcrange
             act.forcelimited = True
     for joint in spec.joints:
-        if joint.name[:2] in ("L_", "R_"):
-            joint.armature = HAND_ARMATURE
-            joint.damping[0] = HAND_DAMPING  # MuJoCo 4 keeps polynomial damping coefficients
+        if robot.is_hand_name(joint.name):
+            joint.armature = hand.armature
+            joint.damping[0] = hand.damping  # MuJoCo 4 keeps polynomial damping coefficients
 
 
 def _add_mimic_equalities(spec: mujoco.MjSpec, mimics: list[Mimic]) -> None:
@@ -147,44 +95,45 @@ def _add_mimic_equalities(spec: mujoco.MjSpec, mimics: list[Mimic]) -> None:
         eq.solref = [0.005, 1.0]
 
 
-def _add_hand_frames(spec: mujoco.MjSpec) -> None:
+def _add_hand_frames(spec: mujoco.MjSpec, robot: Robot) -> None:
+    base = robot.data.hands.hand_base
     for side in SIDES:
-        spec.body(WRIST_BODY[side]).add_site(
-            name=HAND_BASE_FRAME[side],
-            pos=HAND_BASE_ON_WRIST_POS,
-            quat=HAND_BASE_ON_WRIST_QUAT,
+        spec.body(robot.hand_mount(side)).add_site(
+            name=robot.hand_frame(side),
+            pos=base.pos,
+            quat=base.quat,
             size=[0.005, 0.005, 0.005],
             group=5,
         )
 
 
-def _enable_gravity_compensation(spec: mujoco.MjSpec) -> None:
+def _enable_gravity_compensation(spec: mujoco.MjSpec, robot: Robot) -> None:
     for side in SIDES:
-        for body in arm_bodies(side):
+        for body in robot.arm_links[side]:
             spec.body(body).gravcomp = 1.0
     for body in spec.bodies:
-        if body.name.startswith(tuple(f"{HAND_PREFIX[s]}_" for s in SIDES)):
+        if robot.is_hand_name(body.name):
             body.gravcomp = 1.0
 
 
-def _exclude_finger_self_contacts(spec: mujoco.MjSpec) -> None:
+def _exclude_finger_self_contacts(spec: mujoco.MjSpec, robot: Robot) -> None:
     """Neighbouring fingers of one hand sit millimetres apart; their convex hulls overlap when curled.
 
     The thumb keeps its contacts with the fingers (pinch and grasp need them); only finger-finger pairs of the
-    four parallel fingers, and each finger with the palm, are excluded.
+    hand's parallel fingers (on different fingers), and each of their links with the palm, are excluded, and
+    the thumb's links with the palm.
     """
+    fingers = robot.hand.data.fingers
     for side in SIDES:
-        p = HAND_PREFIX[side]
-        palm = WRIST_BODY[side]
-        fingers = ("index", "middle", "ring", "pinky")
-        links = [f"{p}_{f}_{seg}" for f in fingers for seg in ("proximal", "intermediate")]
-        for i, a in enumerate(links):
+        palm = robot.hand_mount(side)
+        links = [(f, robot.hand_link(side, link)) for f in robot.hand.data.parallel_fingers for link in fingers[f]]
+        for i, (fa, a) in enumerate(links):
             spec.add_exclude(bodyname1=palm, bodyname2=a)
-            for b in links[i + 1 :]:
-                if a.split("_")[1] != b.split("_")[1]:
+            for fb, b in links[i + 1 :]:
+                if fa != fb:
                     spec.add_exclude(bodyname1=a, bodyname2=b)
-        for seg in ("proximal_base", "proximal", "intermediate", "distal"):
-            spec.add_exclude(bodyname1=palm, bodyname2=f"{p}_thumb_{seg}")
+        for link in fingers[robot.hand.data.thumb]:
+            spec.add_exclude(bodyname1=palm, bodyname2=robot.hand_link(side, link))
 
 
 ROBOT_COLLISION_GROUP = 3  # hidden in renders: cameras draw the visual meshes only
@@ -223,41 +172,46 @@ def _drop_unused_meshes(spec: mujoco.MjSpec) -> None:
             spec.delete(mesh)
 
 
-def cache_visual_meshes(assets_root: Path, max_faces: int) -> None:
+def _model_dir(assets_root: Path, robot: Robot) -> Path:
+    return Path(assets_root) / robot.data.model.folder
+
+
+def cache_visual_meshes(assets_root: Path, max_faces: int, robot: Robot = ROBOT) -> None:
     """Decimate (and cache on disk) the robot's visual meshes at `max_faces`, so that a process that cannot
     write, the locked plan worker, later finds them there instead of decimating them in memory each time."""
-    robot_dir = Path(assets_root) / "h1_2"
-    spec = mujoco.MjSpec.from_file(str(robot_dir / "h1_2.xml"))
+    robot_dir = _model_dir(assets_root, robot)
+    spec = mujoco.MjSpec.from_file(str(robot_dir / robot.data.model.mjcf))
     files = {m.name: m.file for m in spec.meshes}
     for name in sorted({g.meshname for g in spec.geoms if g.type == mujoco.mjtGeom.mjGEOM_MESH
                         and g.contype == 0 and g.conaffinity == 0}):
         visual_mesh(robot_dir / "meshes" / Path(files[name]).name, max_faces)
 
 
-def build_robot_spec(assets_root: Path, visual_max_faces: int = DEFAULT_MAX_FACES) -> mujoco.MjSpec:
-    """Load the upstream H1-2 MJCF and turn it into the table-top robot described in the module docstring."""
-    robot_dir = Path(assets_root) / "h1_2"
-    spec = mujoco.MjSpec.from_file(str(robot_dir / "h1_2.xml"))
-    mimics = read_mimics(robot_dir / "h1_2.urdf")
+def build_robot_spec(assets_root: Path, visual_max_faces: int = DEFAULT_MAX_FACES, robot: Robot = ROBOT
+                     ) -> mujoco.MjSpec:
+    """Load the robot's upstream MJCF and turn it into the table-top robot described in the module docstring."""
+    robot_dir = _model_dir(assets_root, robot)
+    spec = mujoco.MjSpec.from_file(str(robot_dir / robot.data.model.mjcf))
+    mimics = read_mimics(robot_dir / robot.data.model.urdf) if robot.hand.data.followers == "urdf_mimic" else []
     for sensor in list(spec.sensors):  # the IMU's noise would make runs depend on the RNG
         spec.delete(sensor)
-    spec.body("pelvis").pos = ROBOT_BASE_POS
-    _weld_everything_but_arms(spec)
-    _disable_static_collisions(spec)
-    _add_actuators(spec, mimics)
+    spec.body(robot.data.stand.root_body).pos = np.array(robot.data.stand.base_pos)
+    _weld(spec, robot)
+    _disable_static_collisions(spec, robot)
+    _add_actuators(spec, mimics, robot)
     _add_mimic_equalities(spec, mimics)
-    _add_hand_frames(spec)
-    _enable_gravity_compensation(spec)
-    _exclude_finger_self_contacts(spec)
+    _add_hand_frames(spec, robot)
+    _enable_gravity_compensation(spec, robot)
+    _exclude_finger_self_contacts(spec, robot)
     _split_visual_and_collision(spec, robot_dir, visual_max_faces)
     _drop_unused_meshes(spec)
     return spec
 
 
-def foot_height(model: mujoco.MjModel, data: mujoco.MjData) -> float:
+def foot_height(model: mujoco.MjModel, data: mujoco.MjData, robot: Robot = ROBOT) -> float:
     """Lowest point of the robot's feet, for placing the floor under them."""
     zs = []
-    for name in ("left_ankle_roll_link", "right_ankle_roll_link"):
+    for name in robot.data.stand.feet:
         bid = model.body(name).id
         zs.append(data.xpos[bid][2])
     return float(np.min(zs))

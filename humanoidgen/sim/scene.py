@@ -16,7 +16,7 @@ import numpy as np
 
 from humanoidgen.assets.robot_files import resolve_assets_root
 from humanoidgen.sim.cameras import add_cameras
-from humanoidgen.sim.layout import ROBOT_BASE_POS, TABLE_THICKNESS, TABLE_TOP_Z, TABLE_X, TABLE_Y
+from humanoidgen.sim.layout import ROBOT, ROBOT_BASE_POS, ROOT_BODY, TABLE_THICKNESS, TABLE_TOP_Z, TABLE_X, TABLE_Y
 from humanoidgen.sim.meshes import floor_grid, visual_faces
 from humanoidgen.sim.robot import build_robot_spec
 
@@ -25,8 +25,8 @@ LABEL_BACKGROUND = 0
 LABEL_ROBOT = 1
 FIRST_OBJECT_LABEL = 2
 
-# The upstream model's feet stand 1.03 m below the pelvis.
-FLOOR_Z = ROBOT_BASE_POS[2] - 1.03
+# The upstream model's feet stand this far below its root body (the robot file's `stand.feet_below_base`).
+FLOOR_Z = ROBOT_BASE_POS[2] - ROBOT.data.stand.feet_below_base
 # Contacts need a small step for a pinched cube to hold still; 2 ms is the largest that keeps it so.
 DEFAULT_TIMESTEP = 0.002
 
@@ -96,7 +96,7 @@ class SceneBuilder:
         self._add_lights()
         add_cameras(self.spec)
         base_dz = self.surface_height - (TABLE_TOP_Z - FLOOR_Z)
-        self.spec.body("pelvis").pos = (ROBOT_BASE_POS - [0.0, 0.0, base_dz]).tolist()
+        self.spec.body(ROOT_BODY).pos = (ROBOT_BASE_POS - [0.0, 0.0, base_dz]).tolist()
         if self.dressing is not None:
             self.dressing(self.spec)
 
@@ -187,7 +187,7 @@ before_compile: Callable[[], None] | None = None
 
 
 def _geom_labels(model: mujoco.MjModel, objects: list[SceneObject]) -> np.ndarray:
-    robot_root = model.body("pelvis").id
+    robot_root = model.body(ROOT_BODY).id
     by_body = {model.body(o.body).id: o.label for o in objects}
     labels = np.full(model.ngeom, LABEL_BACKGROUND, dtype=np.int32)
     for g in range(model.ngeom):

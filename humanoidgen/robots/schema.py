@@ -1,0 +1,241 @@
+"""The schema of a robot file (`robots/<robot>/robot.yaml`) and of a hand file (`robots/hands/<hand>.yaml`),
+validated by pydantic. Field by field in docs/guides/robots.md. Checks that need both files, or the model files,
+are in `robots.loader` and `robots.check`."""
+
+from __future__ import annotations
+
+import math
+from typing import Literal
+
+from pydantic import BaseModel, ConfigDict, Field, field_validator, model_validator
+
+Vec3 = tuple[float, float, float]
+Quat = tuple[float, float, float, float]
+SIDE_NAMES = ("left", "right")
+
+
+class _Strict(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True, defer_build=True)
+
+
+class Pose(_Strict):
+    pos: Vec3
+    quat: Quat  # w, x, y, z
+
+    @field_validator("quat")
+    @classmethod
+    def _unit(cls, v: Quat) -> Quat:
+        n = math.sqrt(sum(c * c for c in v))
+        if abs(n - 1.0) > 1e-6:
+            raise ValueError(f"quaternion must be unit length, got |{list(v)}| = {n:.6f}")
+        return v
+
+
+# --------------------------------------------------------------------------- hand file
+
+
+class HandJoint(_Strict):
+    stem: str = Field(min_length=1)  # the model's joint is "<prefix>_<stem>"
+    dof: str = Field(min_length=1)  # the action entry's name
+
+
+class HandActuators(_Strict):
+    kp: float = Field(gt=0)
+    kv: float = Field(ge=0)
+    armature: float = Field(ge=0)
+    damping: float = Field(ge=0)
+
+
+class HandFrame(_Strict):
+    hand_base: Pose  # where the annotations' frame puts the hand's base
+    palm_sign: dict[Literal["left", "right"], Literal[-1.0, 1.0]]
+
+    @field_validator("palm_sign")
+    @classmethod
+    def _both(cls, v: dict) -> dict:
+        if set(v) != set(SIDE_NAMES):
+            raise ValueError("give palm_sign for left and right")
+        return v
+
+
+class Annotation(_Strict):
+    name: str = Field(min_length=1, pattern=r"\{side\}")
+    description: str = Field(min_length=1)
+
+
+class HandPoint(Annotation):
+    position: Vec3
+
+
+class HandAxis(Annotation):
+    direction: Vec3
+
+    @field_validator("direction")
+    @classmethod
+    def _unit(cls, v: Vec3) -> Vec3:
+        n = math.sqrt(sum(c * c for c in v))
+        if abs(n - 1.0) > 1e-3:
+            raise ValueError(f"axis direction must be unit length, got |{list(v)}| = {n:.4f}")
+        return v
+
+
+class PalmAnnotations(_Strict):
+    point: str
+    normal: str
+
+
+class Wrap(_Strict):
+    near_edge_x: float
+    pad_offset: float
+    height: float
+
+
+class HandFile(_Strict):
+    name: str = Field(min_length=1)
+    description: str = ""
+    joints: list[HandJoint] = Field(min_length=1)
+    followers: Literal["urdf_mimic", "none"]
+    fingers: dict[str, list[str]] = Field(min_length=1)
+    parallel_fingers: list[str]
+    thumb: str
+    actuators: HandActuators
+    postures: dict[str, list[float]]
+    frame: HandFrame
+    points: list[HandPoint] = Field(min_length=1)
+    axes: list[HandAxis] = Field(min_length=1)
+    palm: PalmAnnotations
+    wrap: Wrap
+
+    @model_validator(mode="after")
+    def _consistent(self) -> "HandFile":
+        n = len(self.joints)
+        for name, values in self.postures.items():
+            if len(values) != n:
+                raise ValueError(f"postures.{name}: {len(values)} values for {n} actuated joints")
+        for f in (*self.parallel_fingers, self.thumb):
+            if f not in self.fingers:
+                raise ValueError(f"finger {f!r} is not one of fingers: {', '.join(self.fingers)}")
+        for what, items in (("points", self.points), ("axes", self.axes)):
+            names = [a.name for a in items]
+            if len(set(names)) != len(names):
+                raise ValueError(f"{what}: a name appears twice")
+        if self.palm.point not in {p.name for p in self.points}:
+            raise ValueError(f"palm.point {self.palm.point!r} is not one of the points")
+        if self.palm.normal not in {a.name for a in self.axes}:
+            raise ValueError(f"palm.normal {self.palm.normal!r} is not one of the axes")
+        return self
+
+
+# --------------------------------------------------------------------------- robot file
+
+
+class ModelSource(_Strict):
+    url: str = Field(pattern=r"^(https?|file)://")  # "{commit}" is replaced by `commit`
+    commit: str = ""
+    license: str = Field(min_length=1)
+    size_mb: float = Field(gt=0)
+
+
+class ModelFiles(_Strict):
+    folder: str = Field(min_length=1, pattern=r"^[A-Za-z0-9_.-]+$")
+    mjcf: str = Field(min_length=1)
+    urdf: str | None = None
+    checksums: str = Field(min_length=1)
+    source: ModelSource
+
+
+class Range(_Strict):
+    x: tuple[float, float]
+    y: tuple[float, float]
+
+
+class Stand(_Strict):
+    root_body: str
+    base_pos: Vec3
+    feet_below_base: float = Field(gt=0)
+    feet: list[str] = Field(min_length=1)
+    operable_range: dict[Literal["left", "right"], Range]
+
+
+class ArmJoint(_Strict):
+    joint: str
+    link: str
+    kp: float = Field(gt=0)
+
+
+class ArmActuators(_Strict):
+    kv_ratio: float = Field(ge=0)
+    armature: float = Field(ge=0)
+
+
+class Home(_Strict):
+    """The posture an episode starts from: each arm's joint positions (rad, in `arms` order), a hand posture."""
+
+    left: list[float]
+    right: list[float]
+    hands: str  # a posture of the hand file
+
+
+class HandMount(_Strict):
+    prefix: str = Field(min_length=1, pattern=r"^[A-Za-z0-9]+$")
+    mount: str  # the body the hand hangs on (its palm)
+    frame: str  # the end-effector site's name, as the planner API names it
+
+
+class Hands(_Strict):
+    type: str = Field(min_length=1)
+    hand_base: Pose
+    left: HandMount
+    right: HandMount
+
+
+class NoCollision(_Strict):
+    subtrees: list[str] = []
+    bodies: list[str] = []
+
+
+class Camera(_Strict):
+    name: str = Field(min_length=1)
+    body: str | None = None  # None: the world
+    eye: Vec3
+    target: Vec3
+    fovy: float = Field(gt=0, lt=180)
+    up: Vec3 = (0.0, 0.0, 1.0)
+
+
+class RobotFile(_Strict):
+    name: str = Field(min_length=1)
+    description: str = ""
+    robot_type: str = Field(min_length=1)
+    model: ModelFiles
+    stand: Stand
+    torso_bodies: list[str] = []
+    arm_actuators: ArmActuators
+    arms: dict[Literal["left", "right"], list[ArmJoint]]
+    home: Home
+    hands: Hands
+    weld: list[str] = []
+    no_collision: NoCollision = NoCollision()
+    cameras: list[Camera] = []
+
+    @model_validator(mode="after")
+    def _consistent(self) -> "RobotFile":
+        if set(self.arms) != set(SIDE_NAMES) or set(self.stand.operable_range) != set(SIDE_NAMES):
+            raise ValueError("give arms and stand.operable_range for both sides, left and right")
+        if len(self.arms["left"]) != len(self.arms["right"]) or not self.arms["left"]:
+            raise ValueError("arms: left and right need the same, non-zero number of joints")
+        for side in SIDE_NAMES:
+            if len(getattr(self.home, side)) != len(self.arms[side]):
+                raise ValueError(f"home.{side}: {len(getattr(self.home, side))} values for {len(self.arms[side])} "
+                                 f"arm joints")
+        joints = [j.joint for side in SIDE_NAMES for j in self.arms[side]]
+        if len(set(joints)) != len(joints):
+            raise ValueError("arms: a joint appears twice")
+        if twice := set(joints) & set(self.weld):
+            raise ValueError(f"weld: {sorted(twice)[0]} is an arm joint")
+        names = [c.name for c in self.cameras]
+        if len(set(names)) != len(names):
+            raise ValueError("cameras: a name appears twice")
+        if self.hands.left.prefix == self.hands.right.prefix:
+            raise ValueError("hands: left and right need different prefixes")
+        return self
