@@ -23,6 +23,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+import mujoco
 import numpy as np
 
 from humanoidgen.episodes.recorder import EpisodeRecorder, RecorderConfig
@@ -41,6 +42,12 @@ CHANGED = "the plan changed the simulation outside the robot's commands"
 # times the limit; bench/results/time_budget_rerun.json). The budget is there to stop floods (a plan that makes
 # the replay simulate without end), not to grade a plan's pace.
 PLAN_TIME_FACTOR = 2.0
+# MuJoCo's answer to a simulation that went unstable (NaN, inf or huge values in qpos/qvel/qacc) is to reset it
+# to the model's qpos0 and carry on, with time restarting: for a closing task qpos0 is the goal (a drawer, box
+# or laptop shut), so a replay that blew up would be judged a success. Any of these warnings rejects the episode.
+UNSTABLE_WARNINGS = (mujoco.mjtWarning.mjWARN_BADQPOS, mujoco.mjtWarning.mjWARN_BADQVEL,
+                     mujoco.mjtWarning.mjWARN_BADQACC)
+UNSTABLE = "the simulation went unstable under the plan's commands (MuJoCo reset it to the model's start)"
 
 
 @dataclass
@@ -129,8 +136,11 @@ class Replay:
 
     def _apply(self, action: np.ndarray) -> None:
         env = self.env
+        before, t = unstable_count(env.data), env.time - self.start_time
         env.step(action)
         self.steps += 1
+        if unstable_count(env.data) != before and self.problem is None:  # (the reset restarted env.time)
+            self.problem = f"{UNSTABLE} at t={t:.2f} s; nothing it did is kept"
         if self._last is not None and np.array_equal(action, self._last):
             self._held += 1
         else:
@@ -162,7 +172,8 @@ class Replay:
         if settle and self.problem is None and self._last is not None:
             dofs = object_dofs(env.scene)
             extra = 0
-            while self._held < self.rest_steps and moving_objects(env.data.qvel, env.data.qacc, dofs):
+            while (self.problem is None and self._held < self.rest_steps
+                   and moving_objects(env.data.qvel, env.data.qacc, dofs)):
                 self._apply(self._last)
                 extra += 1
             if extra:
@@ -188,6 +199,11 @@ class Replay:
                 verdict.configurations = np.stack(self.recorder.configurations)
                 verdict.model_stat = model_stat(env.model)
         return verdict
+
+
+def unstable_count(data) -> int:
+    """How many times MuJoCo has found `data` unstable (and reset it) since the counts were last cleared."""
+    return sum(int(data.warning[w].number) for w in UNSTABLE_WARNINGS)
 
 
 def _rows(x: object, width: int, single: bool = False) -> np.ndarray | None:
