@@ -33,7 +33,7 @@ def test_the_reset_would_close_the_drawer():
     assert all(c["ok"] for c in verdict.checks), verdict.checks  # the predicates alone say "closed"
     assert verdict.problem is not None and verdict.problem.startswith(UNSTABLE)
     assert not verdict.ok
-    assert "unstable" in verdict.all_checks()[-1]["detail"]
+    assert "huge velocities" in verdict.all_checks()[-1]["detail"]
 
 
 def test_the_replay_stops_at_the_unstable_step():
