@@ -14,8 +14,8 @@ base = env.joint_positions()
 nan_base = base.copy()
 nan_base[3] = float('nan')
 odd = [np.matrix(base), np.ma.masked_array(nan_base, mask=np.isnan(nan_base)), np.rec.fromarrays([base]),
-       np.array([lambda: 0.1] * 26, dtype=object), np.array(list(base), dtype=object),
-       "__import__('os').system('true')", "1e0," * 26, bytes(208), np.frombuffer(base.tobytes(), np.float32)]
+       np.array([lambda: 0.1] * 26, dtype='O'), np.array(list(base), dtype='O'),
+       "import os; os.system('true')", "1e0," * 26, np.zeros(208, np.uint8).tobytes(), np.frombuffer(base.tobytes(), np.float32)]
 for k in range(60):
     try:
         planner.on_step(odd[k % len(odd)])
