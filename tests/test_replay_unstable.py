@@ -10,9 +10,16 @@ import os
 os.environ.setdefault("MUJOCO_GL", "egl")
 
 import numpy as np  # noqa: E402
+import pytest  # noqa: E402
 
 from humanoidgen.episodes.replay import UNSTABLE, Replay  # noqa: E402
 from humanoidgen.tasks.registry import load_task  # noqa: E402
+
+
+@pytest.fixture(autouse=True)
+def _elsewhere(tmp_path, monkeypatch):
+    """MuJoCo writes its warnings to MUJOCO_LOG.TXT in the working directory: not into the checkout."""
+    monkeypatch.chdir(tmp_path)
 
 
 def _blown_up_replay(task: str) -> Replay:
