@@ -20,7 +20,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from humanoidgen.sim.action import ACTION_DIM
+from humanoidgen.sim.action import ACTION_DIM, validate_action
 
 CHUNK = 50  # control steps per streamed chunk: one second at 50 Hz, about 40 kB with the configurations
 STREAM_KEY = "replay"  # stream payloads {"replay": {"actions": (k, 26), "qpos": (k, nq)}}
@@ -38,7 +38,10 @@ class ActionLog:
         self._sent = 0
 
     def __call__(self, action: np.ndarray) -> None:
-        self.actions.append(np.array(action, np.float64))
+        # Checked as it comes (shape (26,), finite numbers): plan code can call the hook itself, and an odd
+        # command (a 27-long array, a column, a string) is refused here with its reason, in the plan's step,
+        # instead of breaking the log's next chunk with a message about stacking arrays.
+        self.actions.append(validate_action(action).copy())
         self.qpos.append(self.data.qpos.copy())
         if self.send is not None and len(self.actions) - self._sent >= CHUNK:
             self.flush()

@@ -23,6 +23,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
+import mujoco
 import numpy as np
 
 from humanoidgen.episodes.recorder import EpisodeRecorder, RecorderConfig
@@ -41,6 +42,16 @@ CHANGED = "the plan changed the simulation outside the robot's commands"
 # times the limit; bench/results/time_budget_rerun.json). The budget is there to stop floods (a plan that makes
 # the replay simulate without end), not to grade a plan's pace.
 PLAN_TIME_FACTOR = 2.0
+# MuJoCo's answer to a simulation that went unstable (NaN, inf or huge values in qpos/qvel/qacc) is to reset it
+# to the model's qpos0 and carry on, with time restarting: for a closing task qpos0 is the goal (a drawer, box
+# or laptop shut), so a replay that blew up would be judged a success. A full contact or constraint buffer
+# drops contacts (things pass through each other). Any of these warnings rejects the episode.
+BROKEN_WARNINGS = {mujoco.mjtWarning.mjWARN_BADQPOS: "NaN or huge positions: MuJoCo reset it to the model's start",
+                   mujoco.mjtWarning.mjWARN_BADQVEL: "NaN or huge velocities: MuJoCo reset it to the model's start",
+                   mujoco.mjtWarning.mjWARN_BADQACC: "NaN or huge accelerations: MuJoCo reset it to the model's start",
+                   mujoco.mjtWarning.mjWARN_CONTACTFULL: "its contact buffer was full: contacts were dropped",
+                   mujoco.mjtWarning.mjWARN_CNSTRFULL: "its constraint buffer was full: constraints were dropped"}
+UNSTABLE = "the simulation broke under the plan's commands"
 
 
 @dataclass
@@ -129,8 +140,13 @@ class Replay:
 
     def _apply(self, action: np.ndarray) -> None:
         env = self.env
+        before, t = warning_counts(env.data), env.time - self.start_time
         env.step(action)
         self.steps += 1
+        after = warning_counts(env.data)
+        if after != before and self.problem is None:  # (a reset restarted env.time: t is from before)
+            why = next(text for (w, text), a, b in zip(BROKEN_WARNINGS.items(), after, before) if a != b)
+            self.problem = f"{UNSTABLE} at t={t:.2f} s ({why}); nothing it did is kept"
         if self._last is not None and np.array_equal(action, self._last):
             self._held += 1
         else:
@@ -162,7 +178,8 @@ class Replay:
         if settle and self.problem is None and self._last is not None:
             dofs = object_dofs(env.scene)
             extra = 0
-            while self._held < self.rest_steps and moving_objects(env.data.qvel, env.data.qacc, dofs):
+            while (self.problem is None and self._held < self.rest_steps
+                   and moving_objects(env.data.qvel, env.data.qacc, dofs)):
                 self._apply(self._last)
                 extra += 1
             if extra:
@@ -188,6 +205,11 @@ class Replay:
                 verdict.configurations = np.stack(self.recorder.configurations)
                 verdict.model_stat = model_stat(env.model)
         return verdict
+
+
+def warning_counts(data) -> tuple[int, ...]:
+    """How many times MuJoCo has raised each of BROKEN_WARNINGS on `data` since the counts were last cleared."""
+    return tuple(int(data.warning[w].number) for w in BROKEN_WARNINGS)
 
 
 def _rows(x: object, width: int, single: bool = False) -> np.ndarray | None:

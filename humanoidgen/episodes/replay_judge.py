@@ -18,6 +18,7 @@ import numpy as np
 
 from humanoidgen.episodes.action_log import unpack
 from humanoidgen.episodes.replay import Replay, ReplayVerdict
+from humanoidgen.sandbox.outcome import plain
 
 STATE = mujoco.mjtState.mjSTATE_INTEGRATION
 CACHED_STATES = 64
@@ -93,5 +94,5 @@ class ReplayJudge:
         failed "replay" check when rejected), "events" (the worker's log, for feedback only), "status"}."""
         verdict, extra = self.judge(reply)
         raw = reply.get("events") if isinstance(reply, dict) else None
-        events = [str(e)[:500] for e in raw[:2000]] if isinstance(raw, list) else []
+        events = [plain(str(e), 500, newlines=False) for e in raw[:2000]] if isinstance(raw, list) else []
         return {"checks": verdict.all_checks(), "events": events + verdict.events, "status": extra.get("status", [])}

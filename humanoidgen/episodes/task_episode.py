@@ -23,6 +23,7 @@ from humanoidgen.episodes.recorder import RecorderConfig
 from humanoidgen.episodes.replay import OverTime, ReplayVerdict, over_time
 from humanoidgen.episodes.replay_twin import TwinReplay
 from humanoidgen.episodes.result import EpisodeResult, StepResult
+from humanoidgen.sandbox.outcome import plain
 
 DEFAULT_STEP_TIMEOUT_S = 300.0
 START_TIMEOUT_S = 300.0  # the worker building the task's scene and parsing the plan
@@ -210,7 +211,7 @@ def _steps(req: EpisodeRequest, spec, worker, replay: TwinReplay):
             raise PlanFormatError(exc.outcome.message) from None
         raise RuntimeError(f"the plan worker could not start the episode: {exc}") from None
     try:
-        plan = [(str(s["title"]), str(s["code"])) for s in plan]
+        plan = [(plain(str(s["title"]), 500, newlines=False), str(s["code"])) for s in plan]
     except (TypeError, KeyError) as exc:
         raise RuntimeError(f"the plan worker sent a malformed plan ({exc})") from None
     steps: list[StepResult] = []
@@ -270,7 +271,7 @@ def _events(raw, have: int) -> list[str]:
     """At most what is left of MAX_EVENTS planner events from the worker's list, each cut short."""
     if not isinstance(raw, list):
         return []
-    return [str(e)[:MAX_EVENT_CHARS] for e in raw[:max(MAX_EVENTS - have, 0)]]
+    return [plain(str(e), MAX_EVENT_CHARS, newlines=False) for e in raw[:max(MAX_EVENTS - have, 0)]]
 
 
 def _finished(task: str, seed: int | None, steps: list[StepResult], ran: bool, end: dict,

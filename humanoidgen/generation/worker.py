@@ -61,6 +61,7 @@ def setup() -> dict[str, Any]:
     from humanoidgen.tasks.judge import judge
     from humanoidgen.episodes.runner import step_namespace
     from humanoidgen.objects.describe import describe_scene
+    from humanoidgen.sim.action import validate_action
     from humanoidgen.sim.fingerprint import fingerprint
     from humanoidgen.planning.planner import HumanoidMotionPlanner
     from humanoidgen.planning.settling import wait_until_still
@@ -75,7 +76,9 @@ def setup() -> dict[str, Any]:
         spec = parse_task(spec_data, "<generated>")
         scene, env = build_scene(spec, seed)
         actions: list[np.ndarray] = []  # the robot's commands since the reset, for the parent's replay
-        planner = HumanoidMotionPlanner(env, seed=seed or 0, on_step=lambda a: actions.append(np.array(a, float)),
+        # (checked as they come, as the episode's log does: an odd command is refused in the plan's step)
+        planner = HumanoidMotionPlanner(env, seed=seed or 0,
+                                        on_step=lambda a: actions.append(validate_action(a).copy()),
                                         targets=scene.targets)
         handle._bind(planner)
         state.update(spec=spec, env=env, planner=planner, actions=actions)

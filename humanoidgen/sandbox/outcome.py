@@ -5,6 +5,7 @@ step are read defensively (a hostile exception's `__str__` may raise or lie)."""
 from __future__ import annotations
 
 import contextlib
+import re
 import traceback
 from dataclasses import dataclass
 from typing import Any
@@ -45,6 +46,22 @@ def exit_text(code: int | None) -> str:
     return f"exit code {code}"
 
 
+# C0/C1 control characters (escape sequences that move the cursor, erase lines or retitle a terminal; carriage
+# returns and backspaces that overwrite what was printed) and the invisible format characters that reorder text
+# (bidi overrides): text a plan wrote may reach a console, and must not be able to repaint it. Tabs and (where
+# asked) newlines stay.
+_CONTROL = re.compile("[\x00-\x08\x0b-\x1f\x7f-\x9f\u200b-\u200f\u202a-\u202e\u2060-\u2069\ufeff]")
+
+
+def plain(x: Any, n: int, newlines: bool = True) -> str:
+    """`x` if it is a string (else ""), at most `n` characters, each control character shown as U+FFFD and,
+    without `newlines`, each newline as a space."""
+    if not isinstance(x, str):
+        return ""
+    x = _CONTROL.sub("\ufffd", x[:n])
+    return x if newlines else x.replace("\n", " ")
+
+
 def outcome_of_reply(reply: Any) -> StepOutcome | None:
     """A StepOutcome from a decoded reply, trusting none of its types; None if it is not a reply."""
     if not isinstance(reply, dict) or reply.get("kind") != "reply" or not isinstance(reply.get("outcome"), dict):
@@ -52,7 +69,7 @@ def outcome_of_reply(reply: Any) -> StepOutcome | None:
     o = reply["outcome"]
 
     def text(x: Any, n: int) -> str:
-        return x[:n] if isinstance(x, str) else ""
+        return plain(x, n)
 
     line = o.get("line")
     return StepOutcome(ok=o.get("ok") is True, error_type=text(o.get("error_type"), 100) or None,
