@@ -110,14 +110,16 @@ def secure_taker(ctx: PlanningContext, giver: Side, obj: SceneObject) -> None:
 def would_fall(ctx: PlanningContext, giver: Side, taker: Side, obj: SceneObject, moved: float) -> str:
     """Why the giver keeps the object, for the plan's author: what the trial showed and one thing to do instead."""
     label = f"{obj.type_name} {obj.obj_id}"
-    grip = ctx.hands[taker].grip or "pinch"
+    hand = ctx.hands[taker]
+    grip = hand.grip or "pinch"
+    if hand.closing == "pinch" and grip != "pinch":  # a grasp that closed as a pinch (the whole hand did not fit)
+        grip = f"{grip} (closed as a pinch)"
     mass = float(ctx.env.model.body_subtreemass[ctx.env.model.body(obj.body).id])
-    how = "two fingertips" if grip == "pinch" else "its grasp"
-    return (f"the {taker} hand's {grip} would not hold {label} alone ({mass:.2f} kg): let go by the {giver} hand "
-            f"in a trial, it fell out of {how} ({moved * 1000:.0f} mm), so the {giver} hand keeps holding it. Where "
-            f"the {giver} hand's grip leaves no room for the {taker} hand's grasp, hand it over through the table: "
-            f"the {giver} hand sets {label} down (action='move' or a target on the table), lets go, and the "
-            f"{taker} hand grasps it there")
+    return (f"the {taker} hand's {grip} would not hold {label} alone ({mass:.2f} kg): in a trial with the {giver} "
+            f"hand let go, the {taker} hand's thumb and fingers no longer held it (it had moved {moved * 1000:.0f} mm "
+            f"after {TRIAL_S:g} s), so the {giver} hand keeps holding it. Where the {giver} hand's grip leaves no "
+            f"room for the {taker} hand's grasp, hand it over through the table: the {giver} hand sets {label} down "
+            f"(action='move' or a target on the table), lets go, and the {taker} hand grasps it there")
 
 
 def _in_hand(ctx: PlanningContext, side: Side, obj: SceneObject) -> np.ndarray:
