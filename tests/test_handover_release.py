@@ -99,3 +99,22 @@ def test_open_hand_of_the_giver_asks_first(monkeypatch):
     assert asked == [("right", 0)]
     planner.open_hand("left")  # nobody else holds it: no hand-over
     assert asked == [("right", 0)]
+
+
+@pytest.mark.slow
+def test_where_the_taker_would_drop_it_the_giver_keeps_it(monkeypatch):
+    """No deeper grip holds alone and the trial lets the object fall out of the taker's fingers: open_hand fails
+    with what the trial showed and a way to do it instead; the giver still holds the object and nothing moved."""
+    from humanoidgen.planning.errors import PlanningError
+
+    env, planner, cube = _mid_air()
+    assert handover.release_trial(planner.ctx, "right", "left", cube)[1]  # the real pinch: held
+    monkeypatch.setattr(handover, "holds_alone", lambda *a: False)
+    monkeypatch.setattr(handover, "release_trial", lambda *a: (0.104, False))
+    qpos = env.data.qpos.copy()
+    with pytest.raises(PlanningError) as err:
+        planner.open_hand("right")
+    msg = str(err.value)
+    assert "open_hand" in msg and "would not hold cube 0 alone" in msg and "no longer held it (it had moved 104 mm" in msg
+    assert "through the table" in msg  # the one thing to do instead
+    assert planner.holding["right"] is cube and np.array_equal(env.data.qpos, qpos)

@@ -116,7 +116,14 @@ def coordinate_arms(ctx: PlanningContext, samples: dict[Side, np.ndarray]) -> di
         if clear(left_first["left"], left_first["right"]):
             ctx.log[-1].message = "moved the arms one after the other to keep them apart"
             return left_first
-        raise PlanningError("move_to_pose_with_screw", "the two arms' motions would collide with each other")
+        # The other order: the right arm may be the one in the way (leaving a hand-over, it goes home first).
+        right_first = {"left": np.vstack([np.repeat(left[:1], len(right), 0), left]), "right": right}
+        if clear(right_first["left"], right_first["right"]):
+            ctx.log[-1].message = "moved the arms one after the other (right first) to keep them apart"
+            return right_first
+        raise PlanningError("move_to_pose_with_screw", "the two arms' motions would collide with each other, "
+                            "together and one after the other: move one hand first to a pose out of the other's "
+                            "way (e.g. its *_hand_init_pose), then the other, in two calls")
     finally:
         ctx.kin.sync(ctx.env.data.qpos)
 

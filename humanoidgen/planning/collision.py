@@ -38,6 +38,10 @@ class CollisionWorld:
     ignored_bodies: set[int] = field(default_factory=set)
     influence: float = 0.05  # pairs farther apart than this are not measured
     held_slack: float = 0.006
+    # The obstacles (root bodies) a held object may touch with `held_slack`: what it is lifted from and what it is
+    # set down on; None: every obstacle. A move sets it (`held_touch_only`): slack against everything let a
+    # pinched block's path graze an open drawer's wall on its way over it, which knocked it out of the fingers.
+    held_touch: frozenset[int] | None = None
     # Hand parts meant to touch something: mover geom -> (obstacle geoms, slack). Their distances to those
     # obstacles count `slack` more, so they may come that much closer than everything else (fingertips that
     # must reach the table side of a low object). Set through `allow_touch`.
@@ -136,6 +140,30 @@ class CollisionWorld:
         finally:
             self.touch = saved
 
+    @contextmanager
+    def held_touch_only(self, roots: frozenset[int] | None) -> Iterator[None]:
+        """Within the block, a held object's slack applies only against the obstacles of these root bodies."""
+        saved = self.held_touch
+        try:
+            self.held_touch = roots
+            yield
+        finally:
+            self.held_touch = saved
+
+    def held_near(self, side: Side, within: float) -> frozenset[int]:
+        """The root bodies of the obstacles closer than `within` to the object `side` holds, at the scratch state."""
+        if side not in self.kin.attached:
+            return frozenset()
+        held = self.kin.attached[side][0]
+        movers, obstacles = self._geom_lists(side)
+        mine = movers[self._geom_body[movers] == held]
+        m, d = self.kin.model, self.kin.data
+        near = set()
+        for i, j in self._near_pairs(mine, obstacles):
+            if mujoco.mj_geomDistance(m, d, int(mine[i]), int(obstacles[j]), self.influence, self._fromto) < within:
+                near.add(int(self._geom_root[obstacles[j]]))
+        return frozenset(near)
+
     def pair_distance(self, g1: int, g2: int) -> float:
         """Distance between two geoms at the scratch state (FAR beyond `influence`)."""
         return float(mujoco.mj_geomDistance(self.kin.model, self.kin.data, g1, g2, self.influence, self._fromto))
@@ -183,7 +211,7 @@ class CollisionWorld:
         """Mover g1 to obstacle g2 at the scratch state, plus the slacks: `held_slack` when g1 belongs to the
         held body `held`, and any touch slack (`allow_touch`, `touch_only`)."""
         dd = mujoco.mj_geomDistance(self.kin.model, self.kin.data, g1, g2, self.influence, self._fromto)
-        if self._geom_body[g1] == held:
+        if self._geom_body[g1] == held and (self.held_touch is None or self._geom_root[g2] in self.held_touch):
             dd += self.held_slack
         if self.touch:
             dd += self._slack(g1, g2)

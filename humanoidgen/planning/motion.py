@@ -111,6 +111,16 @@ def plan_arm_motion(kin: Kinematics, cw: CollisionWorld, side: Side, q_start: np
             waypoints, reason = np.vstack([waypoints.reshape(-1, 7), landing]), ""
     if not reason and q_goal is None:
         q_goal = waypoints[-1]  # the tracked end is a valid goal for the sampling planner too
+    ends = [q for q in (q_start, q_goal, waypoints[-1] if len(waypoints) else None) if q is not None]
+    with cw.held_touch_only(held_touches(kin, cw, side, ends)):
+        return _checked_path(kin, cw, side, q_start, q_goal, waypoints, reason, path_constraints, allow_sampling,
+                             seed, time_limit)
+
+
+def _checked_path(kin: Kinematics, cw: CollisionWorld, side: Side, q_start: np.ndarray, q_goal: np.ndarray | None,
+                  waypoints: np.ndarray, reason: str, path_constraints, allow_sampling: bool, seed: int,
+                  time_limit: float) -> JointPath:
+    """The tracked screw motion if it is collision-free, else a sampled path (plan_arm_motion's second half)."""
     if not reason:
         if q_goal is not None and np.max(np.abs(waypoints[-1] - q_goal)) < 0.3:
             waypoints = np.vstack([waypoints, q_goal])  # land exactly on the solver's configuration
@@ -142,6 +152,25 @@ def plan_arm_motion(kin: Kinematics, cw: CollisionWorld, side: Side, q_start: np
     if not result.ok:
         raise MotionError(f"{reason}; the sampling planner found no path either: {result.reason}")
     return JointPath(result.path, "rrt_connect", reason)
+
+
+def held_touches(kin: Kinematics, cw: CollisionWorld, side: Side, qs) -> frozenset[int] | None:
+    """What the object `side` holds may touch on its way (its slack, `CollisionWorld.held_slack`): the obstacles
+    it is near at any of `qs` (the path's start and goal: what it is lifted from, what it is set down on); None
+    (everything, as before) when the hand holds nothing."""
+    if side not in kin.attached:
+        return None
+    base = kin.data.qpos.copy()
+    near: set[int] = set()
+    try:
+        for q in qs:
+            kin.set_arm(side, q)
+            kin.forward()
+            near |= cw.held_near(side, MOTION_CLEARANCE + cw.held_slack)
+    finally:
+        kin.data.qpos[:] = base
+        kin.forward()
+    return frozenset(near)
 
 
 # A carried object's orientation on a sampled path stays this near the shortest turn from its start to its goal

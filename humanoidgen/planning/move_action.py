@@ -72,6 +72,11 @@ def _held_move(env, obj_name: str, obj_id: int, side: Side, rel, point: np.ndarr
     centre = get_point_in_env(env, "center", obj_name, obj_id)
     R_now = env.data.xmat[env.model.body(obj.body).id].reshape(3, 3).copy()
     ups = placing.stand_up_directions(env, side, obj, rel)
+    if ups and rel is obj and placing.height_above(env, obj, point, R_now) >= placing.SET_DOWN_M:
+        # Moved from where it is to a point in mid-air (a lift, a waypoint), it is not set down there: it keeps
+        # its orientation in the hand. Stood up on the way, a block pinched by one end after a hand-over turned a
+        # quarter in the fingers and fell out (handover_and_storage, lifted 6 cm before its carry).
+        ups = None
     symmetric = not ups and placing.quarter_turn_symmetric(obj)
     ways: list[Generated] = []
     notes: list[str] = []

@@ -10,7 +10,11 @@ So before the giver lets go, that is tried in the simulation from a snapshot, wi
 loosens, backs out and opens as `open_hand` does, and the object must stay in the taker's fingers. Where it would
 fall, the taker loosens, goes deeper along the way it came in (REGRIP_DEPTHS) and closes again, and the release is
 tried once more (all of it a trial); the first deeper grip that holds alone is then taken for real, with an event.
-Where none does, the plan goes on as asked (its next move says what fell).
+Where none does and in the trial the object fell out of the taker's fingers, the giver keeps it: open_hand fails
+with what the trial showed and what to do instead (measured, bottle_handover: the left hand's pinch of a 0.2 kg
+bottle's neck, where its whole-hand grasp did not fit beside the right hand's, let the bottle fall 10 cm the moment
+the right hand opened; the plan went on and failed at the next move with "slipped 236 mm"). Where the object only
+shifted in the fingers, the plan goes on as asked, with an event.
 """
 
 from __future__ import annotations
@@ -21,6 +25,7 @@ from humanoidgen.objects.hands import HAND_POSTURES
 from humanoidgen.planning.hand_ops import finger_contacts, is_held, is_part
 from humanoidgen.planning.motion import MotionError, plan_arm_motion, time_dense_path
 from humanoidgen.planning.context import PlanningContext
+from humanoidgen.planning.errors import PlanningError
 from humanoidgen.planning.recovery import Recovery, ReleaseRequest
 from humanoidgen.planning.snapshot import trial
 from humanoidgen.sim.layout import OTHER_SIDE, Side
@@ -53,6 +58,13 @@ class HandOverTrial(Recovery):
 
 def holds_alone(ctx: PlanningContext, giver: Side, taker: Side, obj: SceneObject) -> bool:
     """Whether `taker` keeps `obj` once `giver` loosens its grip (tried from a snapshot; the state is restored)."""
+    moved, held = release_trial(ctx, giver, taker, obj)
+    return moved <= DROP_M and held
+
+
+def release_trial(ctx: PlanningContext, giver: Side, taker: Side, obj: SceneObject) -> tuple[float, bool]:
+    """How far `obj` moves in `taker`'s hand once `giver` lets go, and whether `taker` still holds it then (tried
+    from a snapshot; the state is restored)."""
     env = ctx.env
     before = _in_hand(ctx, taker, obj)
     with trial(ctx):
@@ -65,7 +77,7 @@ def holds_alone(ctx: PlanningContext, giver: Side, taker: Side, obj: SceneObject
         ctx.move_fingers((giver,), "open")
         ctx.settle(TRIAL_S)
         moved = float(np.linalg.norm(_in_hand(ctx, taker, obj) - before))
-        return moved <= DROP_M and is_held(finger_contacts(env.model, env.data, taker, obj.body))
+        return moved, is_held(finger_contacts(env.model, env.data, taker, obj.body))
 
 
 def secure_taker(ctx: PlanningContext, giver: Side, obj: SceneObject) -> None:
@@ -88,8 +100,26 @@ def secure_taker(ctx: PlanningContext, giver: Side, obj: SceneObject) -> None:
             ctx.events.append(f"the {taker} hand's {posture} would not hold {obj.type_name} {obj.obj_id} alone: "
                                   f"it took it again {depth * 1000:.0f} mm deeper before the {giver} hand let go")
             return
+    moved, held = release_trial(ctx, giver, taker, obj)
+    if not held:
+        raise PlanningError("open_hand", would_fall(ctx, giver, taker, obj, moved))
     ctx.events.append(f"the {taker} hand's {posture} may not hold {obj.type_name} {obj.obj_id} alone when the "
                           f"{giver} hand lets go (taking it deeper did not help)")
+
+
+def would_fall(ctx: PlanningContext, giver: Side, taker: Side, obj: SceneObject, moved: float) -> str:
+    """Why the giver keeps the object, for the plan's author: what the trial showed and one thing to do instead."""
+    label = f"{obj.type_name} {obj.obj_id}"
+    hand = ctx.hands[taker]
+    grip = hand.grip or "pinch"
+    if hand.closing == "pinch" and grip != "pinch":  # a grasp that closed as a pinch (the whole hand did not fit)
+        grip = f"{grip} (closed as a pinch)"
+    mass = float(ctx.env.model.body_subtreemass[ctx.env.model.body(obj.body).id])
+    return (f"the {taker} hand's {grip} would not hold {label} alone ({mass:.2f} kg): in a trial with the {giver} "
+            f"hand let go, the {taker} hand's thumb and fingers no longer held it (it had moved {moved * 1000:.0f} mm "
+            f"after {TRIAL_S:g} s), so the {giver} hand keeps holding it. Where the {giver} hand's grip leaves no "
+            f"room for the {taker} hand's grasp, hand it over through the table: the {giver} hand sets {label} down "
+            f"(action='move' or a target on the table), lets go, and the {taker} hand grasps it there")
 
 
 def _in_hand(ctx: PlanningContext, side: Side, obj: SceneObject) -> np.ndarray:
