@@ -1,0 +1,116 @@
+"""What explicit constraints mean to press: plans build a press from the API's own constraints.
+
+    Constraint(point2point, hand_key_point=press_point_base_right_hand, object_key_point=<the lever's top, + 2 cm>)
+    Constraint(parallel, hand_axis=right_press_axis, object_axis=<the toaster's down>)
+
+is a press of the toaster's lever as much as `generate_constraints("toaster", 0, action="press")` is. Two things follow
+that the constraints alone do not say, and that the generated press already gets:
+- the part is meant to be touched: the fingertip goes onto it (or onto where it will be pressed to, with the part's
+  point taken `openness=`), so the goal and the move may bring the finger against the object (its `approach_object`),
+  and the hand comes in along the press direction the plan set (from above for a `down` axis);
+- the press direction is a way to push, not an orientation the arm must hold exactly: a fingertip drives a part as
+  well up to PUSH_CONE_DEG off it (the generated press allows that cone). Where the plan's exact `parallel` of the
+  hand's press axis cannot be reached, the same constraints with that axis within the cone of the plan's direction
+  are tried next (and an event says so).
+
+A point2point of the hand's press point counts as a press where its target lies within NEAR_M of an annotated push,
+flip or press point of an articulated object, anywhere along that point's travel (the part at any openness).
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+
+from humanoidgen.objects.describe import openness
+from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env
+from humanoidgen.planning.constraint_gen import PUSH_CONE_DEG, Generated
+from humanoidgen.planning.constraints import Const, Constraint
+from humanoidgen.sim.layout import Side
+
+SAME_POINT_M = 1e-3  # a constraint's hand point this near the press point now is the press point
+NEAR_M = 0.03  # a target this near a push/flip/press point's travel is a press on it (a plan aims 1-2 cm above)
+TRAVEL_SAMPLES = 21  # openness values sampled along a point's travel
+PUSH_OPERATIONS = ("push", "flip", "press")
+MOVES_PART = 0.1  # a target where the point will be this much further along its travel presses the part there
+
+
+def part_openness(env, obj, point: str) -> float:
+    """The openness now of the part that `point` is on."""
+    return float(np.clip(openness(env.model, env.data, obj, obj.annotations.point(point).part), 0.0, 1.0))
+
+
+def _pressed_point(env, target: np.ndarray, holding: dict):
+    """(object, operation) whose push/flip/press point passes within NEAR_M of `target` at some openness, nearest
+    first; None if none. Held objects are left out (a hand holding a part grips it, it does not press it)."""
+    held = {id(o) for o in holding.values() if o is not None}
+    best, best_d = None, NEAR_M
+    for obj in env.scene.objects:
+        ann = obj.annotations
+        if ann is None or ann.articulation is None or id(obj) in held:
+            continue
+        for op in (o for o in ann.operations if o.operation in PUSH_OPERATIONS):
+            for o in np.linspace(0.0, 1.0, TRAVEL_SAMPLES):
+                d = float(np.linalg.norm(get_point_in_env(env, op.point, obj.type_name, obj.obj_id, openness=o) - target))
+                if d < best_d:
+                    best, best_d = (obj, op, float(o)), d
+    return best
+
+
+def infer(env, side: Side, constraints: list, holding: dict) -> Generated | None:
+    """The press that plan-written constraints describe, as the ways to solve it (the plan's own constraints,
+    then with its press direction within the cone), or None (generated constraints, a hand that holds something,
+    or no press point of the hand on a push/flip/press point)."""
+    if not constraints or getattr(constraints[0], "meta", None) is not None or holding.get(side) is not None:
+        return None
+    tip = get_point_in_env(env, f"press_point_base_{side}_hand")
+    pinned = next((c for c in constraints if not c.soft and c.type == "point2point" and c.side == side
+                   and c.upper <= SAME_POINT_M and np.linalg.norm(c.hand_key_point - tip) <= SAME_POINT_M), None)
+    if pinned is None:
+        return None
+    found = _pressed_point(env, np.asarray(pinned.object_key_point, float), holding)
+    if found is None:
+        return None
+    obj, op, openness = found
+    axis_now = get_axis_in_env(env, f"{side}_press_axis")
+    exact = [c for c in constraints if not c.soft and c.type == "parallel" and c.side == side
+             and np.allclose(c.hand_axis, axis_now, atol=1e-6)]
+    approach = (np.asarray(exact[0].object_axis, float) / np.linalg.norm(exact[0].object_axis) if exact else
+                get_axis_in_env(env, op.approach_axis, obj_type=obj.type_name, obj_id=obj.obj_id))
+    presses = abs(openness - part_openness(env, obj, op.point)) > MOVES_PART
+    if presses:
+        approach = None  # the press itself: the fingertip goes straight on from where it is, taking the part along
+    part = obj.annotations.point(op.point).part
+    # The finger may touch the pressed part, not the rest of the object: the curled fingers keep clear of its body.
+    body = f"{obj.body}_{part}" if part else obj.body
+    first = Generated(list(constraints), approach_axis=approach, approach_object=body, presses=presses)
+    if exact:
+        first.alternatives.append(Generated(_within_cone(env, constraints, exact), approach_axis=approach,
+                                            approach_object=body, presses=presses,
+                                            notes=[_cone_note(side, obj, op)]))
+    return first
+
+
+def _within_cone(env, constraints: list, exact: list) -> list:
+    """The constraints with each exact `parallel` of the press axis let within PUSH_CONE_DEG of its direction
+    (a hard `angle`), along it preferred (a cost), as the generated press has them."""
+    out = []
+    for c in constraints:
+        if not any(c is e for e in exact):
+            out.append(c)
+            continue
+        loose = replace(c, type="angle", lower=0.0, upper=float(np.radians(PUSH_CONE_DEG)),
+                        name=f"{c.name} (within {PUSH_CONE_DEG} deg)")
+        loose.meta = None
+        out.append(loose)
+        out.append(Const(env, "parallel", c.end_effector_frame, hand_axis=c.hand_axis, object_axis=c.object_axis,
+                         weight=0.5, name=f"{c.name} (preferred)"))
+    return out
+
+
+def _cone_note(side: Side, obj, op) -> str:
+    return (f"the {side} fingertip's press on {obj.type_name} {obj.obj_id} {op.point}: exactly along the direction "
+            f"asked ('parallel' of {side}_press_axis) the {side} arm does not reach it, so the finger was let within "
+            f"{PUSH_CONE_DEG} deg of that direction (an 'angle' constraint with upper=math.radians({PUSH_CONE_DEG}) "
+            "says so in a plan)")
