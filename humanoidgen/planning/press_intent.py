@@ -21,11 +21,12 @@ from __future__ import annotations
 
 from dataclasses import replace
 
+import mujoco
 import numpy as np
 
 from humanoidgen.objects.describe import openness
 from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env
-from humanoidgen.planning.constraint_gen import PUSH_CONE_DEG, Generated
+from humanoidgen.planning.constraint_gen import PUSH_CONE_DEG, Generated, ride_with_part
 from humanoidgen.planning.constraints import Const, Constraint
 from humanoidgen.sim.layout import Side
 
@@ -33,6 +34,7 @@ SAME_POINT_M = 1e-3  # a constraint's hand point this near the press point now i
 NEAR_M = 0.03  # a target this near a push/flip/press point's travel is a press on it (a plan aims 1-2 cm above)
 TRAVEL_SAMPLES = 21  # openness values sampled along a point's travel
 PUSH_OPERATIONS = ("push", "flip", "press")
+RIDE_PAST_STOP = 1.5  # the openness (extrapolated past the stop) up to which a press's ride may aim
 MOVES_PART = 0.1  # a target where the point will be this much further along its travel presses the part there
 
 
@@ -89,7 +91,38 @@ def infer(env, side: Side, constraints: list, holding: dict) -> Generated | None
         first.alternatives.append(Generated(_within_cone(env, constraints, exact), approach_axis=approach,
                                             approach_object=body, presses=presses,
                                             notes=[_cone_note(side, obj, op)]))
+    if presses:
+        for gen in (first, *first.alternatives):
+            _ride(env, side, gen, obj, op.point, np.asarray(pinned.object_key_point, float))
     return first
+
+
+def _ride(env, side: Side, gen: Generated, obj, point: str, target: np.ndarray) -> None:
+    """The move of a press rides with the part as the generated press's does (the hand follows the part's joint,
+    the fingertip keeping its place on it), to the joint value that brings the fingertip where the plan asked:
+    a fingertip that starts 2 cm above a lever goes 2 cm further than the lever's point, past the stop if need
+    be (the stop holds the part). The solved goal stays the fallback."""
+    ride_with_part(env, gen, obj.type_name, obj.obj_id, point, 1.0)
+    f = gen.follow
+    if f is None:
+        return
+    m = env.model
+    jid = m.joint(f.joint).id
+    adr, body = m.jnt_qposadr[jid], m.jnt_bodyid[jid]
+    d = mujoco.MjData(m)
+    d.qpos[:] = env.data.qpos
+    mujoco.mj_kinematics(m, d)
+    tip = get_point_in_env(env, f"press_point_base_{side}_hand")
+    rel = d.xmat[body].reshape(3, 3).T @ (tip - d.xpos[body])
+    q_now = float(d.qpos[adr])
+    best, best_d = q_now, np.inf
+    for o in np.linspace(0.0, RIDE_PAST_STOP, int(RIDE_PAST_STOP * 50) + 1):
+        d.qpos[adr] = f.articulation.joint_position(o)
+        mujoco.mj_kinematics(m, d)
+        at = d.xpos[body] + d.xmat[body].reshape(3, 3) @ rel
+        if (dist := float(np.linalg.norm(at - target))) < best_d:
+            best, best_d = float(d.qpos[adr]), dist
+    gen.follow = replace(f, q_target=best)
 
 
 def _within_cone(env, constraints: list, exact: list) -> list:
