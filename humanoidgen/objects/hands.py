@@ -91,7 +91,8 @@ HAND_AXIS_DESCRIPTIONS: dict[str, str] = {
     "{side}_ring_2_index": "across the hand from the ring finger toward the index finger (the same as the pinch axis)",
     "{side}_grasp_wrist_2_palm_axis": "from the wrist toward the fingertips, along the straight fingers",
     "{side}_pinch_wrist_2_palm_axis": "from the wrist toward the fingertips (the same as the grasp one)",
-    "{side}_press_axis": "along the extended index finger toward its tip: the way a press pushes",
+    "{side}_press_axis": "along the extended index finger, from its knuckle toward its tip: the way a press pushes "
+                         "(to press down, point it along the pressed object's `down` axis, [0, 0, -1])",
 }
 
 

@@ -80,7 +80,10 @@ def infer(env, side: Side, constraints: list, holding: dict) -> Generated | None
              and np.allclose(c.hand_axis, axis_now, atol=1e-6)]
     approach = (np.asarray(exact[0].object_axis, float) / np.linalg.norm(exact[0].object_axis) if exact else
                 get_axis_in_env(env, op.approach_axis, obj_type=obj.type_name, obj_id=obj.obj_id))
-    presses = abs(openness - part_openness(env, obj, op.point)) > MOVES_PART
+    now = part_openness(env, obj, op.point)
+    presses = abs(openness - now) > MOVES_PART
+    if presses and _gives_way(env, obj, op.point, now, openness) @ approach <= 0.0:
+        return None  # the point would have to come back against the finger: not a press (a finger lifted off)
     if presses:
         approach = None  # the press itself: the fingertip goes straight on from where it is, taking the part along
     part = obj.annotations.point(op.point).part
@@ -123,6 +126,12 @@ def _ride(env, side: Side, gen: Generated, obj, point: str, target: np.ndarray) 
         if (dist := float(np.linalg.norm(at - target))) < best_d:
             best, best_d = float(d.qpos[adr]), dist
     gen.follow = replace(f, q_target=best)
+
+
+def _gives_way(env, obj, point: str, now: float, to: float) -> np.ndarray:
+    """Which way the point moves from openness `now` toward `to`."""
+    return (get_point_in_env(env, point, obj.type_name, obj.obj_id, openness=to)
+            - get_point_in_env(env, point, obj.type_name, obj.obj_id, openness=now))
 
 
 def _within_cone(env, constraints: list, exact: list) -> list:
