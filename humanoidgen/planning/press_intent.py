@@ -13,8 +13,9 @@ that the constraints alone do not say, and that the generated press already gets
   hand's press axis cannot be reached, the same constraints with that axis within the cone of the plan's direction
   are tried next (and an event says so).
 
-A point2point of the hand's press point counts as a press where its target lies within NEAR_M of an annotated push,
-flip or press point of an articulated object, anywhere along that point's travel (the part at any openness).
+A point2point of the hand's press point counts as a press where its target lies within NEAR_M of an annotated press
+point of an articulated object, anywhere along that point's travel (the part at any openness); not where the point
+would have to come back against the finger (a finger lifted off the pressed part).
 """
 
 from __future__ import annotations
@@ -33,8 +34,11 @@ from humanoidgen.sim.layout import Side
 SAME_POINT_M = 1e-3  # a constraint's hand point this near the press point now is the press point
 NEAR_M = 0.03  # a target this near a push/flip/press point's travel is a press on it (a plan aims 1-2 cm above)
 TRAVEL_SAMPLES = 21  # openness values sampled along a point's travel
-PUSH_OPERATIONS = ("push", "flip", "press")
+# Presses only: the pushes and flips of lids, screens and drawers that plans write as constraints are staged
+# pushes with their own offsets (the reference plans of the box and laptop tasks), which keep their meaning.
+PRESS_OPERATIONS = ("press",)
 RIDE_PAST_STOP = 1.5  # the openness (extrapolated past the stop) up to which a press's ride may aim
+CLEAR_WEIGHT = 0.2
 MOVES_PART = 0.1  # a target where the point will be this much further along its travel presses the part there
 
 
@@ -44,7 +48,7 @@ def part_openness(env, obj, point: str) -> float:
 
 
 def _pressed_point(env, target: np.ndarray, holding: dict):
-    """(object, operation) whose push/flip/press point passes within NEAR_M of `target` at some openness, nearest
+    """(object, operation, openness) whose press point passes within NEAR_M of `target` at some openness, nearest
     first; None if none. Held objects are left out (a hand holding a part grips it, it does not press it)."""
     held = {id(o) for o in holding.values() if o is not None}
     best, best_d = None, NEAR_M
@@ -52,7 +56,7 @@ def _pressed_point(env, target: np.ndarray, holding: dict):
         ann = obj.annotations
         if ann is None or ann.articulation is None or id(obj) in held:
             continue
-        for op in (o for o in ann.operations if o.operation in PUSH_OPERATIONS):
+        for op in (o for o in ann.operations if o.operation in PRESS_OPERATIONS):
             for o in np.linspace(0.0, 1.0, TRAVEL_SAMPLES):
                 d = float(np.linalg.norm(get_point_in_env(env, op.point, obj.type_name, obj.obj_id, openness=o) - target))
                 if d < best_d:
@@ -63,7 +67,7 @@ def _pressed_point(env, target: np.ndarray, holding: dict):
 def infer(env, side: Side, constraints: list, holding: dict) -> Generated | None:
     """The press that plan-written constraints describe, as the ways to solve it (the plan's own constraints,
     then with its press direction within the cone), or None (generated constraints, a hand that holds something,
-    or no press point of the hand on a push/flip/press point)."""
+    or no press point of the hand on an object's press point)."""
     if not constraints or getattr(constraints[0], "meta", None) is not None or holding.get(side) is not None:
         return None
     tip = get_point_in_env(env, f"press_point_base_{side}_hand")
@@ -89,9 +93,10 @@ def infer(env, side: Side, constraints: list, holding: dict) -> Generated | None
     part = obj.annotations.point(op.point).part
     # The finger may touch the pressed part, not the rest of the object: the curled fingers keep clear of its body.
     body = f"{obj.body}_{part}" if part else obj.body
-    first = Generated(list(constraints), approach_axis=approach, approach_object=body, presses=presses)
+    keep_clear = _fingers_off_body(env, side, obj, op, constraints[0].end_effector_frame)
+    first = Generated(list(constraints) + keep_clear, approach_axis=approach, approach_object=body, presses=presses)
     if exact:
-        first.alternatives.append(Generated(_within_cone(env, constraints, exact), approach_axis=approach,
+        first.alternatives.append(Generated(_within_cone(env, constraints, exact) + keep_clear, approach_axis=approach,
                                             approach_object=body, presses=presses,
                                             notes=[_cone_note(side, obj, op)]))
     if presses:
@@ -126,6 +131,20 @@ def _ride(env, side: Side, gen: Generated, obj, point: str, target: np.ndarray) 
         if (dist := float(np.linalg.norm(at - target))) < best_d:
             best, best_d = float(d.qpos[adr]), dist
     gen.follow = replace(f, q_target=best)
+
+
+def _fingers_off_body(env, side: Side, obj, op, frame: str) -> list:
+    """A preference (a cost, weight CLEAR_WEIGHT) for the palm, and so the curled fingers, facing away from the
+    object's middle, level: the press leaves the hand's turn about the finger free, and with the palm toward the
+    object the curled fingers meet its body on the way down (a toaster's top, past a lever 3 cm out)."""
+    away = (get_point_in_env(env, op.point, obj.type_name, obj.obj_id)
+            - get_point_in_env(env, "center", obj.type_name, obj.obj_id))
+    away[2] = 0.0
+    if np.linalg.norm(away) < 1e-3:
+        return []
+    return [Const(env, "parallel", frame, hand_axis=get_axis_in_env(env, f"{side}_grasp_axis"),
+                  object_axis=away / np.linalg.norm(away), weight=CLEAR_WEIGHT,
+                  name="palm away from the pressed object's body (preferred)")]
 
 
 def _gives_way(env, obj, point: str, now: float, to: float) -> np.ndarray:
