@@ -74,6 +74,10 @@ def test_constraints_on_a_press_point_are_read_as_that_press() -> None:
     assert gen is not None and gen.approach_object == "toaster_0_lever"  # the lever, not the toaster's body
     assert not gen.presses and gen.follow is None
     assert np.allclose(gen.approach_axis, [0.0, 0.0, -1.0], atol=1e-6)  # comes in along the plan's direction
+    (clear,) = [c for c in gen.constraints if c.soft and np.allclose(
+        c.hand_axis, get_axis_in_env(env, "right_grasp_axis"), atol=1e-6)]  # the palm away from the body
+    centre, lever = get_point_in_env(env, "center", "toaster", 0), get_point_in_env(env, "lever_top", "toaster", 0)
+    assert clear.object_axis[2] == 0.0 and float(clear.object_axis @ (lever - centre)) > 0
     (loose,) = gen.alternatives  # the exact press direction let within the push cone
     kinds = [(c.type, c.soft) for c in loose.constraints]
     assert ("angle", False) in kinds and ("parallel", True) in kinds and ("parallel", False) not in kinds

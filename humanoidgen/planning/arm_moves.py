@@ -116,7 +116,9 @@ def coordinate_arms(ctx: PlanningContext, samples: dict[Side, np.ndarray]) -> di
         if clear(left_first["left"], left_first["right"]):
             ctx.log[-1].message = "moved the arms one after the other to keep them apart"
             return left_first
-        raise PlanningError("move_to_pose_with_screw", "the two arms' motions would collide with each other")
+        raise PlanningError("move_to_pose_with_screw", "the two arms' motions would collide with each other, "
+                            "at once and one after the other: move one hand first on its own (hand_name='left' or "
+                            "'right'), to a pose clear of the other arm, then the other")
     finally:
         ctx.kin.sync(ctx.env.data.qpos)
 
