@@ -39,7 +39,9 @@ TRAVEL_SAMPLES = 21  # openness values sampled along a point's travel
 PRESS_OPERATIONS = ("press",)
 RIDE_PAST_STOP = 1.5  # the openness (extrapolated past the stop) up to which a press's ride may aim
 CLEAR_WEIGHT = 0.2
-MOVES_PART = 0.1  # a target where the point will be this much further along its travel presses the part there
+MOVES_PART = 0.1  # a target where the point will be this much further back along its travel is a finger lifted off
+CONTACT_M = 0.005  # a target this little short of the point (along the press) or past it presses the part
+AT_M = 0.03  # a fingertip this near its target is there: no approach from further out along the press direction
 
 
 def part_openness(env, obj, point: str) -> float:
@@ -85,11 +87,14 @@ def infer(env, side: Side, constraints: list, holding: dict) -> Generated | None
     approach = (np.asarray(exact[0].object_axis, float) / np.linalg.norm(exact[0].object_axis) if exact else
                 get_axis_in_env(env, op.approach_axis, obj_type=obj.type_name, obj_id=obj.obj_id))
     now = part_openness(env, obj, op.point)
-    presses = abs(openness - now) > MOVES_PART
-    if presses and _gives_way(env, obj, op.point, now, openness) @ approach <= 0.0:
+    if abs(openness - now) > MOVES_PART and _gives_way(env, obj, op.point, now, openness) @ approach <= 0.0:
         return None  # the point would have to come back against the finger: not a press (a finger lifted off)
-    if presses:
-        approach = None  # the press itself: the fingertip goes straight on from where it is, taking the part along
+    point_now = get_point_in_env(env, op.point, obj.type_name, obj.obj_id)
+    presses = float((np.asarray(pinned.object_key_point, float) - point_now) @ approach) > -CONTACT_M
+    if presses or np.linalg.norm(tip - np.asarray(pinned.object_key_point, float)) < AT_M:
+        # the press itself, or a fingertip already there: it goes straight on from where it is (taking the part
+        # along), not back out to come in again
+        approach = None
     part = obj.annotations.point(op.point).part
     # The finger may touch the pressed part, not the rest of the object: the curled fingers keep clear of its body.
     body = f"{obj.body}_{part}" if part else obj.body
