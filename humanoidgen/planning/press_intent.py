@@ -3,15 +3,20 @@
     Constraint(point2point, hand_key_point=press_point_base_right_hand, object_key_point=<the lever's top, + 2 cm>)
     Constraint(parallel, hand_axis=right_press_axis, object_axis=<the toaster's down>)
 
-is a press of the toaster's lever as much as `generate_constraints("toaster", 0, action="press")` is. Two things follow
+is a press of the toaster's lever as much as `generate_constraints("toaster", 0, action="press")` is. What follows
 that the constraints alone do not say, and that the generated press already gets:
-- the part is meant to be touched: the fingertip goes onto it (or onto where it will be pressed to, with the part's
-  point taken `openness=`), so the goal and the move may bring the finger against the object (its `approach_object`),
-  and the hand comes in along the press direction the plan set (from above for a `down` axis);
+- the part is meant to be touched: the goal and the move may bring the finger against the pressed part (its body,
+  the `approach_object`; not the rest of the object), and the hand comes in along the press direction the plan set
+  (from above for a `down` axis), unless the fingertip is already there;
 - the press direction is a way to push, not an orientation the arm must hold exactly: a fingertip drives a part as
   well up to PUSH_CONE_DEG off it (the generated press allows that cone). Where the plan's exact `parallel` of the
   hand's press axis cannot be reached, the same constraints with that axis within the cone of the plan's direction
-  are tried next (and an event says so).
+  are tried next (and an event says so);
+- the turn of the hand about the finger is free: the palm, and so the curled fingers, is preferred away from the
+  object's body (a cost), which they would otherwise meet on the way down;
+- a target at or past the point along the press (the point taken at a further openness, or a few mm into it) is the
+  press itself: the move rides with the part, as a generated press with `openness=` does, until the fingertip is
+  where the plan put it.
 
 A point2point of the hand's press point counts as a press where its target lies within NEAR_M of an annotated press
 point of an articulated object, anywhere along that point's travel (the part at any openness); not where the point
@@ -32,13 +37,13 @@ from humanoidgen.planning.constraints import Const, Constraint
 from humanoidgen.sim.layout import Side
 
 SAME_POINT_M = 1e-3  # a constraint's hand point this near the press point now is the press point
-NEAR_M = 0.03  # a target this near a push/flip/press point's travel is a press on it (a plan aims 1-2 cm above)
+NEAR_M = 0.03  # a target this near a press point's travel is a press on it (a plan aims 1-2 cm above)
 TRAVEL_SAMPLES = 21  # openness values sampled along a point's travel
 # Presses only: the pushes and flips of lids, screens and drawers that plans write as constraints are staged
 # pushes with their own offsets (the reference plans of the box and laptop tasks), which keep their meaning.
 PRESS_OPERATIONS = ("press",)
 RIDE_PAST_STOP = 1.5  # the openness (extrapolated past the stop) up to which a press's ride may aim
-CLEAR_WEIGHT = 0.2
+CLEAR_WEIGHT = 0.2  # the palm's preference, below the plan's own costs (weight 1 by default)
 MOVES_PART = 0.1  # a target where the point will be this much further back along its travel is a finger lifted off
 CONTACT_M = 0.005  # a target this little short of the point (along the press) or past it presses the part
 AT_M = 0.03  # a fingertip this near its target is there: no approach from further out along the press direction
@@ -80,14 +85,14 @@ def infer(env, side: Side, constraints: list, holding: dict) -> Generated | None
     found = _pressed_point(env, np.asarray(pinned.object_key_point, float), holding)
     if found is None:
         return None
-    obj, op, openness = found
+    obj, op, at = found
     axis_now = get_axis_in_env(env, f"{side}_press_axis")
     exact = [c for c in constraints if not c.soft and c.type == "parallel" and c.side == side
              and np.allclose(c.hand_axis, axis_now, atol=1e-6)]
     approach = (np.asarray(exact[0].object_axis, float) / np.linalg.norm(exact[0].object_axis) if exact else
                 get_axis_in_env(env, op.approach_axis, obj_type=obj.type_name, obj_id=obj.obj_id))
     now = part_openness(env, obj, op.point)
-    if abs(openness - now) > MOVES_PART and _gives_way(env, obj, op.point, now, openness) @ approach <= 0.0:
+    if abs(at - now) > MOVES_PART and _gives_way(env, obj, op.point, now, at) @ approach <= 0.0:
         return None  # the point would have to come back against the finger: not a press (a finger lifted off)
     point_now = get_point_in_env(env, op.point, obj.type_name, obj.obj_id)
     presses = float((np.asarray(pinned.object_key_point, float) - point_now) @ approach) > -CONTACT_M
