@@ -90,3 +90,22 @@ def test_names_carry_over_between_steps_as_the_script_prompt_says() -> None:
     # precheck, which runs before any step of a generated plan, agrees: the second step's names are known.
     assert precheck([("a", "x = 2"), ("b", "y = x + 1")], NAMES) == []
     assert precheck([("a", "y = x + 1")], NAMES), "an unassigned name is refused"
+
+
+WITH_ALLOWED = next(c for c in language.ALLOWED if c.nodes and ast.With in c.nodes)
+WITH_REFUSED = next(c for c in language.REFUSED if c.message == language.WITH_MESSAGE)
+
+
+def test_with_runs_in_the_worker_on_the_contexts_the_prompt_names() -> None:
+    """The prompt's `with` rule, fed to both sides: each allowed example passes the checker and runs in the
+    locked-down worker; each refused one is refused with the message that names what `with` may open."""
+    text = language.rules_text("script")
+    assert WITH_ALLOWED.name in text and WITH_REFUSED.name in text
+    assert all(f"`{c}(...)`" in WITH_ALLOWED.name for c in language.WITH_CONTEXTS)
+    with SandboxWorker(dict) as w:
+        for example in WITH_ALLOWED.examples:
+            out = w.run_step(example)
+            assert out.ok, (example, out.message)
+    for example in WITH_REFUSED.examples:
+        out = rejected(example)
+        assert out and language.WITH_MESSAGE in out[0].message, example

@@ -162,6 +162,8 @@ def plan_side_timed(ctx: PlanningContext, side: Side, target: Pose, path_constra
     if is_part(held):
         ctx.collisions.ignored_bodies.add(ctx.env.model.body(held.body).id)  # the hand is on the part
     ctx.ignore_contents(side)
+    if target.presses and target.approach_object is not None:  # the fingertip is meant to press into it
+        ctx.collisions.ignored_bodies.add(ctx.env.model.body(target.approach_object).id)
     # Contact can push a joint a hair past its limit (e.g. the wrist after a pinch); plan from inside them.
     arm = ctx.kin.arms[side]
     q0 = np.clip(ctx.kin.arm_q(side), arm.lo, arm.hi)

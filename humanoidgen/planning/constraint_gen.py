@@ -89,6 +89,7 @@ class Generated:
     grip_part: PartFollow | None = None
     request: tuple | None = None  # the generate_constraints arguments that made it (set by the planner)
     fallback: Generated | None = None  # the grip to take where this one cannot be solved (a pinch for a grasp)
+    presses: bool = False  # the goal presses the fingertip into approach_object (Pose.presses)
 
 
 def _frame_from_two(l1: np.ndarray, w1: np.ndarray, l2: np.ndarray, w2: np.ndarray) -> np.ndarray | None:

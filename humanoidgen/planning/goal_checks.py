@@ -101,6 +101,24 @@ def check_push_direction(ctx: PlanningContext, side: Side, gen) -> None:
                         why + "; " + push_advice(f"{obj.type_name} {obj.obj_id}", wanted, usable, side))
 
 # -- failure message ---------------------------------------------------------------------------------
+def exact_axis_advice(constraints: list) -> str:
+    """Said where the plan holds a hand axis exactly (a hard 'parallel'): an 'angle' within some degrees gives the
+    arm room (the hand axis named as the plan took it from get_axis_in_env, where it is one of the hand's)."""
+    exact = [c for c in constraints if getattr(c, "type", "") == "parallel" and not c.soft]
+    if not exact:
+        return ""
+    from humanoidgen.objects.queries import get_axis_in_env
+    from humanoidgen.objects.hands import HAND_AXIS_NAMES
+
+    c = exact[0]
+    env = getattr(c, "env", None)
+    names = [n for n in HAND_AXIS_NAMES if env is not None and f"_{c.side}_" in f"_{n}_"
+             and np.allclose(get_axis_in_env(env, n), c.hand_axis, atol=1e-6)]  # several hand axes coincide
+    name = " / ".join(names) or "the hand axis"
+    return (f"; or hold {name} within some degrees of its target axis instead of exactly along it: "
+            "Constraint(..., \"angle\", ..., lower=0.0, upper=math.radians(20)) in place of \"parallel\"")
+
+
 def goal_failure(ctx: PlanningContext, side: Side, constraints: list, gen, result: GoalResult) -> str:
     msg = result.message()
     advice = ""
@@ -119,5 +137,5 @@ def goal_failure(ctx: PlanningContext, side: Side, constraints: list, gen, resul
             advice = range_advice(side, point) or (
                 f"the point is just out of the {side} arm's reach in this hand orientation: "
                 + (f"try the {other} hand, " if in_other else "")
-                + "another grip (point=...), or move the object nearer the robot first")
+                + "another grip (point=...), or move the object nearer the robot first") + exact_axis_advice(constraints)
     return msg + (f". Suggestion: {advice}" if advice else "")

@@ -4,7 +4,7 @@ none, the pipeline's goal recoveries answer (`ctx.recover("goal", ...)`)."""
 
 from __future__ import annotations
 
-from humanoidgen.planning import constraint_gen, goal_search, grip_intent, skills
+from humanoidgen.planning import constraint_gen, goal_search, grip_intent, press_intent, skills
 from humanoidgen.planning.context import PlanningContext
 from humanoidgen.planning.errors import PlanningError
 from humanoidgen.planning.goal_solver import GoalResult
@@ -29,7 +29,8 @@ def solve_grip_or_goal(ctx: PlanningContext, constraints: list, side: Side) -> t
     (the object may be touched, the hand comes in along the grip's axis; see grip_intent)."""
     intent = grip_intent.infer(ctx.env, side, constraints, ctx.holding)
     if intent is None:
-        return goal_search.solve_goal(ctx, constraints, side)
+        press = press_intent.infer(ctx.env, side, constraints, ctx.holding)
+        return goal_search.solve_goal(ctx, constraints, side) if press is None else _solve_as(ctx, side, press)
     ways = [intent.first, *intent.first.alternatives]
     mine = {id(c): c for g in ways for c in g.constraints}
     try:
@@ -44,6 +45,19 @@ def solve_grip_or_goal(ctx: PlanningContext, constraints: list, side: Side) -> t
                           f"{dz * 1000:.0f} mm higher than asked, at its annotated {intent.operation} height: at "
                           "the height asked the fingers would go into the table")
     return result, pose
+
+
+def _solve_as(ctx: PlanningContext, side: Side, gen: constraint_gen.Generated) -> tuple[GoalResult, Pose]:
+    """Plan-written constraints solved as what they describe (`gen`, with its alternatives); the plan's Constraint
+    objects are left as the plan made them."""
+    mine = [c for g in (gen, *gen.alternatives) for c in g.constraints]
+    try:
+        for c in gen.constraints:  # the goal search reads what they are from the first constraint
+            c.meta = gen
+        return goal_search.solve_goal(ctx, list(gen.constraints), side)
+    finally:
+        for c in mine:
+            c.meta = None
 
 
 def goal(ctx: PlanningContext, side: Side, constraints: list) -> tuple[GoalResult, Pose, list]:

@@ -115,6 +115,7 @@ def solve_goal(ctx: PlanningContext, constraints: list, side: Side) -> tuple[Goa
         pose.approach_part = grip_joint(gen)
         pose.follow = gen.follow
         pose.posture = gen.posture
+        pose.presses = getattr(gen, "presses", False)
     if partial is not None:
         q_reached, pose.regrip = partial
         pose.follow = replace(gen.follow, q_target=q_reached)

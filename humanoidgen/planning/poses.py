@@ -34,6 +34,9 @@ class Pose:
     # The fingers may come this much closer to the table than the general clearance on the way to this pose
     # (a goal that needs a fingertip at a low edge; goal_search.FINGER_TABLE_CLEARANCE).
     finger_table_slack: float = 0.0
+    # A press's goal presses the fingertip into approach_object (a lever pushed down): the move goes straight on
+    # and may touch it (press_intent).
+    presses: bool = False
     # A held part moved only partway by this pose (the arm's reach ends): what the move does next, gripping it
     # again to move it on (recoveries/grip_again.py).
     regrip: RegripRequest | None = field(default=None, repr=False)

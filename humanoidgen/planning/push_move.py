@@ -123,4 +123,6 @@ def execute(ctx, side: Side, pose) -> None:
         raise PlanningError("move_to_pose_with_screw",
                             f"{_label(obj)} is at openness {got:.2f} after the push, not the {move.to:g} asked (from "
                             f"{start:.2f}): the fingertip did not carry it"
-                            + (f"; unreachable stages: {'; '.join(skipped)}" if skipped else ""))
+                            + (f"; unreachable stages: {'; '.join(skipped)}" if skipped else "")
+                            + ": ask for target1, then target2 again from where the part is now, or take the part "
+                            "with action='grasp' (or 'pinch') and move it with openness=")

@@ -64,7 +64,9 @@ def generate(env, holding: dict, obj_name: str, obj_id: int, action: str, side: 
         if (gen := ta.task_push(env, holding, targets, obj, action, side, openness)) is not None:
             return gen
         k, note = ta.push_index(obj, action)
+        k, openness, end_note = ta.press_end(obj, action, k, openness)
         gen = _push(env, side, obj_name, obj_id, k, openness)
+        gen.notes += [end_note] if end_note else []
         gen.notes += [note] if note else []
         if action in ("target1", "target2"):
             gen.notes.append(ta.annotated_push_note(obj, action, k))
@@ -85,8 +87,11 @@ def _push(env, side: Side, obj_name: str, obj_id: int, k: int, openness: float |
     obj = env.scene.object(obj_name, obj_id)
     ops = [o for o in obj.annotations.operations if o.operation in target_actions.PUSH_OPERATIONS]
     if len(ops) <= k:
-        raise ConstraintGenerationError(f"{obj_name} has {len(ops)} push/flip/press annotation(s), so no target{k + 1}; "
-                                        f"actions for it: {', '.join(target_actions.actions_of(obj))}")
+        only = f" ({ops[0].operation} at {ops[0].point})" if len(ops) == 1 else ""
+        raise ConstraintGenerationError(
+            f"{obj_name} has {len(ops)} push/flip/press point(s){only}, so no target{k + 1}: use action='target1' "
+            "(the fingertip on its point), then action='target1' with openness=... (0 to 1) to push the part to that "
+            f"openness; actions for it: {', '.join(target_actions.actions_of(obj))}")
     frame = HAND_BASE_FRAME[side]
     op = ops[k]
     target = get_point_in_env(env, op.point, obj_name, obj_id, openness=openness)

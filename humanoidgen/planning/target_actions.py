@@ -26,6 +26,7 @@ from humanoidgen.sim.layout import HAND_BASE_FRAME, OTHER_SIDE, Side
 from humanoidgen.sim.scene import SceneObject
 
 TARGET_ACTIONS = ("target", "target1", "target2")
+PRESS_END = 1.0  # target2 on a one-point press without openness=: pressed all the way
 PUSH_OPERATIONS = ("push", "flip", "press")  # what target1/target2 mean on articulated objects, in annotation order
 # Pouring: the cup's centre this far beside the receptacle's centre (on the cup's side) and this far above its rim;
 # tipped this much (the first that can be reached). At 130 deg cubes still stick to a cup wall (wood on ceramic
@@ -202,7 +203,22 @@ def actions_of(obj: SceneObject) -> list[str]:
     out = [a for a in ("grasp", "pinch") if a in ops]
     pushes = [o for o in (ann.operations if ann is not None else []) if o.operation in PUSH_OPERATIONS]
     out += [f"target{k + 1} ({o.operation} at {o.point})" for k, o in enumerate(pushes[:2])]
+    if len(pushes) == 1 and pushes[0].operation == "press":
+        out.append(f"target2 (the press at {pushes[0].point} to its end)")
     return out + ["target (once held)", "move"]
+
+
+def press_end(obj: SceneObject, action: str, k: int, openness: float | None) -> tuple[int, float | None, str | None]:
+    """target2 on an object whose one push-like operation is a press (a toaster's lever): the press's end, the
+    fingertip on the press point pressing the part to `openness` (default 1, all the way). Returns (index,
+    openness, note); other actions and objects unchanged."""
+    ops = [o for o in obj.annotations.operations if o.operation in PUSH_OPERATIONS] if obj.annotations else []
+    if action != "target2" or k != 1 or len(ops) != 1 or ops[0].operation != "press":
+        return k, openness, None
+    to = PRESS_END if openness is None else openness
+    return 0, to, (f"{_label(obj)} has one press point ({ops[0].point}): target2 is the press's end, the fingertip "
+                   f"pressing it to openness {to:g}" + (" (all the way; give openness= for less)" if openness is None
+                                                       else ""))
 
 
 def push_index(obj: SceneObject, action: str) -> tuple[int, str | None]:

@@ -210,6 +210,8 @@ class _Checker:
                 self.bad(node, "`nonlocal` is only allowed inside a function (at top level, no declaration is needed)")
             for n in node.names:
                 self.binding(node, n)
+        elif isinstance(node, ast.withitem) and not language.with_context_allowed(node.context_expr):
+            self.bad(node.context_expr, language.WITH_MESSAGE)
         elif isinstance(node, ast.comprehension) and node.is_async:
             self.bad(node.target, _REFUSED[ast.Await])
 

@@ -38,6 +38,12 @@ class Construct:
     group: Literal["core", "syntax", "import", "name"] = "syntax"  # which sentence of the prompt states it
 
 
+# The context managers `with` may open: numpy's print and floating-point settings, which change nothing outside
+# the block. Anything else (a file, the planner, a lock) is refused with WITH_MESSAGE.
+WITH_CONTEXTS = ("np.printoptions", "np.errstate")
+WITH_MESSAGE = (f"`with` is available only on {' and '.join(f'`{c}(...)`' for c in WITH_CONTEXTS)} in plan code "
+                "(plans cannot open files or hold the planner); write the statements without it")
+
 _ASYNC = "`async`/`await` is not available in plan code; planner calls are ordinary calls, call them directly"
 
 # Statements and expressions plan code may use. The first entry is the plain core every program needs.
@@ -69,6 +75,11 @@ ALLOWED: tuple[Construct, ...] = (
                "    return k"),
               (ast.FunctionDef, ast.arguments, ast.arg, ast.Return, ast.Global, ast.Nonlocal)),
     Construct("`lambda`", True, ("by_height = sorted([3, 1, 2], key=lambda v: -v)",), (ast.Lambda,)),
+    Construct(f"`with` on {' or '.join(f'`{c}(...)`' for c in WITH_CONTEXTS)}", True,
+              ("import numpy as np\nwith np.printoptions(precision=3, suppress=True):\n    print(np.array([0.12345]))",
+               "import numpy as np\nwith np.errstate(divide='ignore'):\n    r = np.array([1.0]) / np.array([0.0])",
+               "import numpy\nwith numpy.printoptions(precision=2) as opts:\n    print(opts)"),
+              (ast.With, ast.withitem)),
     Construct("comprehensions", True, ("a = [x * 2 for x in range(3) if x]\nb = {x: x for x in a}\nc = {x for x in a}\n"
                                        "d = sum(x for x in a)",),
               (ast.ListComp, ast.SetComp, ast.DictComp, ast.GeneratorExp, ast.comprehension)),
@@ -88,8 +99,10 @@ ALLOWED: tuple[Construct, ...] = (
 REFUSED: tuple[Construct, ...] = (
     Construct("`class`", False, ("class Grip:\n    pass",), (ast.ClassDef,),
               "`class` definitions are not available in plan code; use functions, dicts and tuples"),
-    Construct("`with`", False, ("with planner as p:\n    pass",), (ast.With,),
-              "`with` is not available in plan code (plans cannot open files); write the statements without it"),
+    Construct("`with` on anything else", False,
+              ("with planner as p:\n    pass", "with open('x.txt') as f:\n    pass",
+               "with np.printoptions(precision=3), planner:\n    pass", "ctx = np.printoptions()\nwith ctx:\n    pass"),
+              message=WITH_MESSAGE),
     Construct("`yield`", False, ("def gen():\n    yield 1",), (ast.Yield,),
               "`yield` is not available in plan code (no generator functions); build and return a list"),
     Construct("`yield from`", False, ("def gen():\n    yield from [1]",), (ast.YieldFrom,),
@@ -124,6 +137,15 @@ CARRY_OVER: dict[PromptKind, str] = {
              "assigned may be missing or hold values from another attempt. Compute everything a step uses in that "
              "step."),
 }
+
+
+def with_context_allowed(expr: ast.expr) -> bool:
+    """Whether a `with` item opens one of WITH_CONTEXTS: a call of `np.<name>(...)` or `numpy.<name>(...)`."""
+    if not (isinstance(expr, ast.Call) and isinstance(expr.func, ast.Attribute)
+            and isinstance(expr.func.value, ast.Name)):
+        return False
+    module = "np" if expr.func.value.id in ("np", "numpy") else expr.func.value.id
+    return f"{module}.{expr.func.attr}" in WITH_CONTEXTS
 
 
 def allowed_nodes() -> tuple[type[ast.AST], ...]:

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import builtins
 import re
+import sys
 from collections.abc import Mapping
 from types import ModuleType
 from typing import Any
@@ -81,6 +82,8 @@ BLOCKED_ATTRIBUTES: frozenset[str] = _INTERNAL_ATTRIBUTES | _MODULE_ATTRIBUTES |
 # A string spelling a dunder name (`'__globals__'`, `'{0.__dict__}'`): only a by-name helper has a use for it.
 _DUNDER = re.compile(r"__\w+__")
 
+_NUMPY_OWN = "numpy._"  # numpy's private modules, e.g. numpy._core.arrayprint
+
 # What `import` may bind (the runner's `safe_builtins(modules)` provides the modules themselves).
 ALLOWED_IMPORTS: frozenset[str] = frozenset({"numpy", "math", "numpy.linalg", "numpy.random"})
 
@@ -96,6 +99,11 @@ def safe_builtins(modules: Mapping[str, ModuleType]) -> dict[str, Any]:
 
     def restricted_import(name: str, globals: Any = None, locals: Any = None, fromlist: Any = (),
                           level: int = 0) -> ModuleType:
+        if level == 0 and isinstance(name, str) and name.startswith(_NUMPY_OWN) and name in sys.modules:
+            # numpy's own lazy imports of its loaded modules, made from its C code through the caller's
+            # `__import__` (printing an array imports numpy._core.arrayprint). Plan code cannot ask for these
+            # itself: it cannot name `__import__`, and the checker refuses `_` names in its own imports.
+            return sys.modules[name]
         module = _resolve_module(provided, name) if level == 0 and isinstance(name, str) else None
         refused = [str(n) for n in fromlist or ()
                    if not isinstance(n, str) or n == "*" or n.startswith("_") or n in BLOCKED_ATTRIBUTES]
