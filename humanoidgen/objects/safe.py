@@ -71,7 +71,7 @@ class SafeFamily(_DataFamily):
             "door_edge": (-td, W - p["door_edge_in"], 0),
             "door_inner": (0, W - p["door_inner_in"], 0),
             "knob": (fx - fin[0], 0, 0),
-            "knob_fin_right": (fx, -fin[1], 0),
+            "knob_fin_right": (fx - fin[0] + 0.006, -fin[1], 0),
             "knob_fin_left": (fx, fin[1], 0),
             "storage": (0, 0, -H / 2 + p["wall"] + 0.005),
         }
