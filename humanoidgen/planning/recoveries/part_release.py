@@ -207,6 +207,12 @@ def _ways_out(ctx, side: Side, part: SceneObject, follow: PartFollow | None) -> 
         slide = [(f"loosening to {pre}, then sliding off along the part's hinge", slid_off_along_hinge(pre))] \
             if pre in HAND_POSTURES else []
         slide.append(("sliding off along the part's hinge, the fingers still closed", slid_off_along_hinge(None)))
+        if pre in HAND_POSTURES:
+            # Where the arm has no room to slide off (a knob close to the body): only the squeeze let go, the
+            # curled fingers kept curled (half opening them all first, as the ways below do, spun a knob 29 deg on)
+            # and the hand left there; the plan's next move takes it away.
+            slide.append((f"loosening to {pre} only and staying there",
+                          lambda: (ctx.move_fingers((side,), pre), setattr(ctx.hands[side], "last_approach", None))))
     ways = [("as usual", usual), *slide]
     # The grip's own "pre" posture first (a pinch: only thumb and index open; the curled fingers, straightening,
     # would push the part): it leaves the part without sweeping it; the hand opens fully once off it.
