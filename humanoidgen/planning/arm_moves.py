@@ -361,12 +361,8 @@ def settle_turn(ctx: PlanningContext, side: Side, target: Pose, wanted: float, s
     def off() -> float:
         return part_openness(ctx, target) - goal
 
-    before = None
     for _ in range(TURN_CORRECTIONS):
         err = -off()
-        if before is not None and sign * (before - err) < 0:
-            break  # the last correction lost ground (the fingers slipping on the part): no more of them
-        before = err
         # Only on the way it was turned: turned back, the fingers slid on the fin and left it where it was (and one
         # such try dragged a knob back to 0), so an angle a little past the band is left as it is.
         if sign * err <= half or ctx.hands[side].held is None or not ctx.holds(side, ctx.hands[side].held):

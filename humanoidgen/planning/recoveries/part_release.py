@@ -38,7 +38,7 @@ from humanoidgen.planning.hand_ops import finger_contacts
 from humanoidgen.planning.motion import MotionError, plan_arm_motion, time_dense_path
 from humanoidgen.planning.paths import time_parametrize
 from humanoidgen.planning.part_joint import (PartFollow, follow_articulation, follow_openness, hinge_line,
-                                             hinge_through, part_stays, point_motion)
+                                             hinge_through, point_motion)
 from humanoidgen.planning.snapshot import take_snapshot, trial
 from humanoidgen.objects.hands import HAND_POSTURES
 from humanoidgen.sim.layout import Side
@@ -86,10 +86,10 @@ def let_go(ctx: PlanningContext, side: Side, part: SceneObject, follow: PartFoll
         ways[0][1]()
         return
     # Only a part going back counts: one going on the way the hand moved it (a lid let go low falls shut, as a
-    # plan may mean it to) is not undone. A part that stays where it is left (a knob: its joint's friction holds
-    # it) goes on only where the fingers push it: that is an overshoot past the angle asked (a knob turned to 60
-    # deg and let go the usual way, the straightening index spun it on to 97-105), so it counts both ways.
-    onward = 0.0 if follow is None or _stays(ctx, follow) else 1.0 if _opens(ctx, follow) else -1.0
+    # plan may mean it to) is not undone. A part turned about an axis through the hold (a knob, by its fin) goes
+    # on only where the fingers push it: that is an overshoot past the angle asked (a knob turned to 60 deg and
+    # let go the usual way, the straightening index spun it on to 97-105), so there it counts both ways.
+    onward = 0.0 if follow is None or _on_the_hinge(ctx, side, follow) else 1.0 if _opens(ctx, follow) else -1.0
     start = take_snapshot(ctx)
     tried: list[tuple[bool, float, int]] = []
     first_drift = None
@@ -129,12 +129,6 @@ def let_go(ctx: PlanningContext, side: Side, part: SceneObject, follow: PartFoll
         usual = "" if first_drift is None else f" (backing out as usual: by {first_drift:.2f})"
         ctx.events.append(f"the {side} hand let go of {part.type_name} {part.obj_id} {ways[k][0]}, which let "
                               f"it go back by {drift:.2f} in openness{usual}")
-
-
-def _stays(ctx, follow: PartFollow) -> bool:
-    """Whether the followed part, left alone where it is now, stays there (its joint friction holds it)."""
-    m = ctx.env.model
-    return part_stays(ctx.env, follow.joint, float(ctx.env.data.qpos[m.jnt_qposadr[m.joint(follow.joint).id]]))
 
 
 def _leave(ctx, side: Side) -> None:
