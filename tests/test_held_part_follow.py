@@ -107,3 +107,14 @@ def test_a_failure_on_a_knob_names_the_knob_in_degrees():
     # The advice fits the grip: a pinched fin is pinched again, not grasped.
     assert "pinch it again" in grip_again_advice("pinch") and "grasp" not in grip_again_advice("pinch")
     assert grip_again_advice("grasp").startswith("grasp it again")
+
+
+def test_a_correction_never_turns_the_knob_back():
+    """The paper authors' plan asks the knob's stop (openness 1, 120 deg) in one move; the move left it at 92 deg
+    and the corrections, the arm near its joint limits turning the hand back, dragged it to 76, then 0. A
+    correction is now tried in the simulation first and made only where it turns the knob on."""
+    from humanoidgen.episodes.task_episode import EpisodeRequest, run_task_episode
+
+    plan = os.path.join(ROOT, "bench", "foreign_plans", "rotate_safe_knob", "paper.py")
+    result, _ = run_task_episode(EpisodeRequest("rotate_safe_knob", 0, plan_path=plan))
+    assert result.success, [c["detail"] for c in result.checks]

@@ -22,6 +22,7 @@ from humanoidgen.planning.part_joint import follow_articulation, follow_openness
 from humanoidgen.planning.paths import time_parametrize
 from humanoidgen.planning.poses import Pose
 from humanoidgen.planning.recovery import LegRequest
+from humanoidgen.planning.turn_trials import best_correction
 from humanoidgen.planning.hand_ops import is_part
 from humanoidgen.sim.action import ARM_SLICE, HAND_SLICE
 from humanoidgen.sim.geometry import rotation_angle
@@ -371,8 +372,17 @@ def settle_turn(ctx: PlanningContext, side: Side, target: Pose, wanted: float, s
         # move (by all of it, a knob asked 60 deg came to 65; by none, to 48 against its friction).
         step = Pose(target.p, target.q, side=side)
         step.follow = replace(f, q_target=art.joint_position(float(np.clip(goal + AIM_PAST * err, 0.0, 1.0))))
+        # Each correction is tried in the simulation first, from where the hand is on the part now and back to
+        # how it closed on it (`grip_anchor`), and the one that turns the part on the most is made; none: the
+        # corrections stop. The hand is ahead of the part by the fingers' give, and a short move taking that back
+        # turned a knob back (81 deg of 108 asked, to 57); the arm's way near its joint limits turned the hand
+        # back as well (a knob at 92 deg of 120 asked dragged to 76, then 0); neither way alone did for all.
+        best = best_correction(ctx, side, lambda: plan_side(ctx, side, step), lambda: part_openness(ctx, target),
+                               goal, sign)
+        if best is None:
+            break
         try:
-            ctx.run_arm_samples({side: plan_side(ctx, side, step)})
+            ctx.run_arm_samples({side: best})
             ctx.settle(0.2)
         except (MotionError, PlanningError):
             break
