@@ -26,6 +26,7 @@ def best_correction(ctx: PlanningContext, side: Side, plan: Callable[[], np.ndar
     back (92 deg of 120 asked, to 76, then 0) or gained a degree where taking the grip back gained 25."""
     hand = ctx.hands[side]
     before = measure()
+    attached = dict(ctx.kin.attached)  # undoing a trial detaches what the planner's model carries: kept here
     best, miss = None, np.inf
     for anchor in (None, hand.grip_anchor) if hand.grip_anchor is not None else (None,):
         kept, hand.grip_anchor = hand.grip_anchor, anchor
@@ -39,6 +40,7 @@ def best_correction(ctx: PlanningContext, side: Side, plan: Callable[[], np.ndar
             continue
         finally:
             hand.grip_anchor = kept
+            ctx.kin.attached.update(attached)
         if sign * (got - before) > 0.0 and abs(got - goal) < miss:
             best, miss = samples, abs(got - goal)
     return best
