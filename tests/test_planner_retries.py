@@ -179,7 +179,7 @@ def test_a_push_that_does_not_carry_the_part_is_an_error_not_a_silent_finish(tmp
     result = run_plan(tmp_path, without_push(tmp_path, "open_laptop_easy"), 0, LAPTOP_FLIP_OPEN)
     failed = result.failed_step
     assert failed is not None and failed.index == 1
-    assert "laptop 0 is at openness 0.1" in failed.error and "not the 0.9 asked" in failed.error
+    assert "laptop 0 is at openness 0.1" in failed.error and "not the 0.9 (99 deg) asked" in failed.error
     assert "fingertip did not carry it" in failed.error
 
 

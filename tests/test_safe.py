@@ -80,7 +80,11 @@ def test_safe_design_and_annotations_agree(type_id):
     # The pinch point is the fin's right end; the pads (the planner's inset further in) stay on the fin, 1.5+ cm
     # off the knob's axis, so that turning the hand presses on the fin with a lever.
     pinch = ann.point("knob_fin_right").position
-    assert pinch == pytest.approx((fin.pos[0], -fin.half[1], 0.0))
+    from humanoidgen.objects.safe import FIN_PINCH_IN
+
+    # ... near the fin's outer face (the fingers point into the door and reach past the pinch point)
+    assert pinch == pytest.approx((fin.pos[0] - fin.half[0] + FIN_PINCH_IN, -fin.half[1], 0.0))
+    assert fin.pos[0] - fin.half[0] < pinch[0] < fin.pos[0] - fin.half[0] / 2
     assert 0.015 <= -(pinch[1] + PART_PINCH_INSET_M) <= fin.half[1] - 0.005
     assert ann.point("knob_fin_left").position == pytest.approx((fin.pos[0], fin.half[1], 0.0))
     assert knob.pos[2] - bar.pos[2] >= 0.1

@@ -20,6 +20,11 @@ from humanoidgen.objects.schema import Articulation, ObjectAnnotations
 __all__ = ["SafeFamily", "SAFE_FAMILIES"]
 
 Vec3 = tuple[float, float, float]
+# The fin's pinch point sits this far in from the fin's outer face (toward the robot), not at the middle of its
+# depth: a pinch's fingers point along the knob's axis, into the door, and reach ~4 cm past the pinch point; at the
+# middle the index curled onto the door (its tip stopped there) and only the thumb held the fin, which then did
+# not turn with the hand (issue 35: 0-9% of the way).
+FIN_PINCH_IN = 0.006
 
 
 class SafeFamily(_DataFamily):
@@ -71,7 +76,7 @@ class SafeFamily(_DataFamily):
             "door_edge": (-td, W - p["door_edge_in"], 0),
             "door_inner": (0, W - p["door_inner_in"], 0),
             "knob": (fx - fin[0], 0, 0),
-            "knob_fin_right": (fx, -fin[1], 0),
+            "knob_fin_right": (fx - fin[0] + FIN_PINCH_IN, -fin[1], 0),
             "knob_fin_left": (fx, fin[1], 0),
             "storage": (0, 0, -H / 2 + p["wall"] + 0.005),
         }

@@ -6,7 +6,9 @@ from __future__ import annotations
 
 import time
 from contextlib import nullcontext
+from dataclasses import replace
 
+import mujoco
 import numpy as np
 
 from humanoidgen.objects.hands import HAND_POSTURES
@@ -20,6 +22,7 @@ from humanoidgen.planning.part_joint import follow_articulation, follow_openness
 from humanoidgen.planning.paths import time_parametrize
 from humanoidgen.planning.poses import Pose
 from humanoidgen.planning.recovery import LegRequest
+from humanoidgen.planning.turn_trials import best_correction
 from humanoidgen.planning.hand_ops import is_part
 from humanoidgen.sim.action import ARM_SLICE, HAND_SLICE
 from humanoidgen.sim.geometry import rotation_angle
@@ -28,6 +31,9 @@ from humanoidgen.sim.layout import SIDES, Side
 RETREAT_DISTANCE = 0.10  # after letting go, the hand backs out along its approach axis this far
 FOLLOW_TOL = 0.05  # openness: a part this near the asked openness after a move got there
 FOLLOW_RETRY = 0.3  # a part that moved at least this share of the way but stopped short is pushed again, once
+TURN_TOL_DEG = 5.0  # a part turned in the fingers (a knob) is taken to the angle asked, past it by at most this ...
+TURN_CORRECTIONS = 3  # ... in at most this many corrective moves
+AIM_PAST = 0.5  # ... each aimed past the band by this share of the error left
 CARRY_LIMITS = {"v_max": 0.6, "a_max": 1.5}  # joint speed (rad/s) and acceleration with an object in the hand
 # A carried object that stands on something (or is within this of it) and is to be turned more than this is first
 # lifted straight up this far: turned where it stands, its lower edge drags on the support and twists it out of a
@@ -256,11 +262,14 @@ def check_part_followed(ctx: PlanningContext, side: Side, target: Pose, start: f
     f = target.follow
     obj = ctx.env.scene.object(*f.obj)
     wanted = follow_articulation(ctx.env, f).openness_of(f.q_target)
+    turned = turned_in_the_fingers(ctx, side, f)
+    if turned:
+        settle_turn(ctx, side, target, wanted, start)
     got = part_openness(ctx, target)
     way = wanted - start
     if abs(got - wanted) <= FOLLOW_TOL or abs(way) < 1e-6:
         return
-    if (got - start) / way >= FOLLOW_RETRY:
+    if (got - start) / way >= FOLLOW_RETRY and not turned:  # a turned part had its corrections
         try:
             ctx.run_arm_samples({side: plan_side(ctx, side, target)})
             ctx.settle(0.2)
@@ -268,10 +277,10 @@ def check_part_followed(ctx: PlanningContext, side: Side, target: Pose, start: f
             pass  # no way on from where the part stopped: it stays there, judged below as it is
         got = part_openness(ctx, target)
         if abs(got - wanted) <= FOLLOW_TOL:
-            ctx.events.append(f"pushed {obj.type_name} {obj.obj_id} a second time to reach openness {round(wanted, 2):g}")
+            ctx.events.append(f"pushed {part_label(ctx, f)} a second time to reach openness {round(wanted, 2):g}")
             return
     share = (got - start) / way
-    label = f"{obj.type_name} {obj.obj_id}"
+    label = part_label(ctx, f)
     to_shut = wanted <= regrip.SHUT < got and ctx.hands[side].held is not None and target.regrip is None \
         and ctx.regrips_left > 0
     if share >= 0.5:
@@ -294,12 +303,98 @@ def check_part_followed(ctx: PlanningContext, side: Side, target: Pose, start: f
         return
     if ctx.hands[side].held is not None:
         why = (f"the {side} hand's grip on it {'came off' if not ctx.holds(side, obj) else 'held, but the part did not follow'}: "
-               f"grasp it again and move it in smaller steps of openness")
+               f"{grip_again_advice(ctx.hands[side].grip)}")
     else:
         why = ("the fingertip did not carry it (it slid off or lost contact): put the fingertip where the part "
                "has to give way (for a flip: under the edge, e.g. offset along the part's inner axis), push in "
                "smaller steps with explicit Constraints, or grasp it and move it with openness=")
     raise PlanningError("move_to_pose_with_screw",
-                        f"{label} is at openness {got:.2f} after the move, not the {round(wanted, 2):g} asked (it moved "
-                        f"{max(share, 0.0) * 100:.0f}% of the way from {start:.2f}): {why}")
+                        f"{label} is at openness {got:.2f}{in_degrees(ctx, f, got)} after the move, not the "
+                        f"{round(wanted, 2):g}{in_degrees(ctx, f, wanted)} asked (it moved {max(share, 0.0) * 100:.0f}% "
+                        f"of the way from {start:.2f}): {why}")
 
+
+def grip_again_advice(grip: str | None) -> str:
+    """What to change after a held part did not follow, in the grip's own terms: a pinch is taken again with thumb
+    and index on the part's two opposite faces (a knob's fin: across its thickness), a grasp around the part."""
+    if grip == "pinch":
+        return ("pinch it again (action='pinch': thumb and index on its two opposite faces) and turn it in smaller "
+                "steps of openness")
+    return "grasp it again and move it in smaller steps of openness"
+
+
+def part_label(ctx: PlanningContext, f) -> str:
+    """The moved part as an author names it: "box 0", or "safe 0's knob" for a part with a joint of its own
+    (its openness is not the object's: `openness=` with a knob point is the knob's)."""
+    obj = ctx.env.scene.object(*f.obj)
+    part = follow_articulation(ctx.env, f).part
+    return f"{obj.type_name} {obj.obj_id}" + (f"'s {part}" if part else "")
+
+
+def in_degrees(ctx: PlanningContext, f, openness: float) -> str:
+    """" (77 deg)": an openness of a part on a hinge in degrees of its turn; "" for a slide."""
+    m = ctx.env.model
+    if m.jnt_type[m.joint(f.joint).id] != mujoco.mjtJoint.mjJNT_HINGE:
+        return ""
+    art = follow_articulation(ctx.env, f)
+    return f" ({np.degrees(abs(art.open - art.closed)) * openness:.0f} deg)"
+
+
+
+def turned_in_the_fingers(ctx: PlanningContext, side: Side, f) -> bool:
+    """A held part turned about a hinge through the hold (a knob by its fin) that stays where it is left: the
+    fingers' give lags it behind the hand by some degrees, which a second look can correct."""
+    from humanoidgen.objects.hands import hand_points
+    from humanoidgen.objects.queries import wrist_point_in_env
+    from humanoidgen.planning.part_joint import hinge_through, part_stays
+
+    hand = ctx.hands[side]
+    if hand.held is None:
+        return False
+    kind = "pinch" if hand.grip == "pinch" else "grasp"
+    grip = wrist_point_in_env(ctx.env, side, hand_points(side)[f"{kind}_point_base_{side}_hand"])
+    return hinge_through(ctx.env.model, ctx.env.data, f.joint, grip) and part_stays(ctx.env, f.joint, f.q_target)
+
+
+def settle_turn(ctx: PlanningContext, side: Side, target: Pose, wanted: float, start: float) -> None:
+    """Closed loop on a part turned in the fingers: measure where it is, and follow on (or back) toward the angle
+    asked by that error, aimed past by it, up to TURN_CORRECTIONS times, until it is at the angle asked or past it
+    by at most TURN_TOL_DEG (the way it was turned), not short of it: a knob asked 60 deg, held by a pinch,
+    stopped at 55; asked 90 in one move, at 77 (and a task asking 90 deg means 90 at least)."""
+    f = target.follow
+    art = follow_articulation(ctx.env, f)
+    deg = np.degrees(abs(art.open - art.closed))  # openness 1 in degrees
+    half = TURN_TOL_DEG / 2 / deg
+    sign = 1.0 if wanted >= start else -1.0  # the way it is turned
+    goal = float(np.clip(wanted + sign * half, 0.0, 1.0))  # the middle of the band
+
+    def off() -> float:
+        return part_openness(ctx, target) - goal
+
+    for _ in range(TURN_CORRECTIONS):
+        err = -off()
+        # Only on the way it was turned: turned back, the fingers slid on the fin and left it where it was (and one
+        # such try dragged a knob back to 0), so an angle a little past the band is left as it is.
+        if sign * err <= half or ctx.hands[side].held is None or not ctx.holds(side, ctx.hands[side].held):
+            break
+        # Aimed past the band by part of the error left: the fingers' give lags the correction as it lagged the
+        # move (by all of it, a knob asked 60 deg came to 65; by none, to 48 against its friction).
+        step = Pose(target.p, target.q, side=side)
+        step.follow = replace(f, q_target=art.joint_position(float(np.clip(goal + AIM_PAST * err, 0.0, 1.0))))
+        # Each correction is tried in the simulation first, from where the hand is on the part now and back to
+        # how it closed on it (`grip_anchor`), and the one that turns the part on the most is made; none: the
+        # corrections stop. The hand is ahead of the part by the fingers' give, and a short move taking that back
+        # turned a knob back (81 deg of 108 asked, to 57); the arm's way near its joint limits turned the hand
+        # back as well (a knob at 92 deg of 120 asked dragged to 76, then 0); neither way alone did for all.
+        best = best_correction(ctx, side, lambda: plan_side(ctx, side, step), lambda: part_openness(ctx, target),
+                               goal, sign)
+        if best is None:
+            break
+        try:
+            ctx.run_arm_samples({side: best})
+            ctx.settle(0.2)
+        except (MotionError, PlanningError):
+            break
+    if abs(off()) > half:
+        ctx.events.append(f"{part_label(ctx, f)} is at {part_openness(ctx, target) * deg:.0f} deg, not the "
+                          f"{wanted * deg:.0f} deg asked: the {side} hand's corrections stopped there")

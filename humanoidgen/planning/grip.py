@@ -5,7 +5,9 @@ from __future__ import annotations
 
 from humanoidgen.planning.context import PlanningContext
 from humanoidgen.planning.errors import PlanningError
-from humanoidgen.planning.hand_ops import finger_contacts, is_held
+import numpy as np
+
+from humanoidgen.planning.hand_ops import finger_contacts, is_held, is_part
 from humanoidgen.sim.layout import Side
 
 
@@ -31,4 +33,19 @@ def close_on(ctx: PlanningContext, side: Side, obj_type: str, obj_id: int, postu
         )
     ctx.hands[side].held = obj
     ctx.hands[side].grip = verb
+    ctx.hands[side].grip_anchor = grip_anchor(ctx, side, obj) if is_part(obj) else None
     ctx.events.append(f"{'grasped' if verb == 'grasp' else 'pinched'} {obj_type} {obj_id} with the {side} hand")
+
+
+def grip_anchor(ctx: PlanningContext, side: Side, obj) -> tuple[str, dict[int, tuple[np.ndarray, np.ndarray]]]:
+    """The hand's end-effector pose (point, rotation), as it closed on an articulated part, in the frame of each
+    of the object's bodies (its moving parts among them): where a hand that slid along the part since is taken back to as it
+    moves the part on (`part_grip.part_path_poses`)."""
+    m = ctx.env.model
+    root = m.body(obj.body).id
+    ctx.kin.sync(ctx.env.data.qpos)
+    p, R = ctx.kin.ee_pose(side)
+    d = ctx.kin.data
+    rel = {b: (d.xmat[b].reshape(3, 3).T @ (p - d.xpos[b]), d.xmat[b].reshape(3, 3).T @ R)
+           for b in range(m.nbody) if int(m.body_rootid[b]) == root}
+    return obj.body, rel

@@ -22,6 +22,10 @@ class HandState:
     part_moved: dict | None = None  # the follow dict of the part the hand last moved: how to let go of it
     approach_used: np.ndarray | None = None  # another way in than the operation's axis, taken by the last move
     goal_moved: Any = None  # the Pose a move went to instead of the one asked (a drop into a container)
+    # Where the hand closed on an articulated part: (the object's body, {body id: the hand's end-effector pose
+    # (point, rotation) in that body's frame}) for each body of the object; a hand that slid along or turned on
+    # the part since goes back there as it moves the part on (part_grip.slid_since_grip).
+    grip_anchor: tuple[str, dict[int, tuple[np.ndarray, np.ndarray]]] | None = None
 
     def take(self, name: str, default: Any = None) -> Any:
         """The field's value, and clear it (a one-shot message from one stage to the next)."""

@@ -33,6 +33,9 @@ FOLLOW_ENOUGH = 0.9  # a part followed this much of the way, where the arm's rea
 # ... and a part the hand holds: from a grip the rest is left to the next step (a push, or gravity for a lid let
 # go low), while a fingertip push short of the end may still be done from a freshly solved goal (the fallbacks).
 FOLLOW_ENOUGH_HELD = 0.85
+# A held part's grip that slid or turned this far on it is taken back to how it closed.
+ANCHOR_MIN_M, ANCHOR_MAX_M = 0.003, 0.04
+ANCHOR_MIN_DEG, ANCHOR_MAX_DEG = 2.0, 35.0
 ROLL_COST = 0.3  # the roll column is scaled by this: a step turns the roll ~1/ROLL_COST^2 less than a joint
 
 
@@ -123,17 +126,44 @@ def part_path_poses(ctx: PlanningContext, side: Side, f: PartFollow, held: bool 
     wp, wR = d.xpos[wrist].copy(), d.xmat[wrist].reshape(3, 3).copy()
     tip = wp + wR @ tip_local
     rel_tip = part_R.T @ (tip - part_p)
-    for qj in q_steps:
+    back = None if pushing else slid_since_grip(ctx, side, part_body, rel_p, rel_R)
+    for k, qj in enumerate(q_steps):
         d.qpos[adr] = qj
         mujoco.mj_kinematics(m, d)
         pp, pR = d.xpos[part_body], d.xmat[part_body].reshape(3, 3)
         if pushing:
             poses.append((p_hand + (pp + pR @ rel_tip - tip), R_hand))
-        else:
+        elif back is None:
             poses.append((pp + pR @ rel_p, pR @ rel_R))
+        else:
+            # A hand that slid along the part or turned on it since it closed goes back to how it closed, over
+            # the path's first half: a lid's tab lowered in stages slid 15 mm a stage out of the fingers until they
+            # lost it; a knob's fin turned 90 deg in one move slid 15 mm toward the axis, the hand 20 deg ahead.
+            t = min(1.0, (k + 1) / max(1, len(q_steps) // 2))
+            R_t = axis_angle_mat(back[1], t * np.linalg.norm(back[1])) @ rel_R if np.linalg.norm(back[1]) > 1e-9 \
+                else rel_R
+            poses.append((pp + pR @ (rel_p + t * back[0]), pR @ R_t))
     d.qpos[:] = base
     ctx.kin.forward()
     return poses, q_steps, q_now
+
+def slid_since_grip(ctx: PlanningContext, side: Side, part_body: int, rel_p: np.ndarray,
+                    rel_R: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
+    """How far the hand is from where it closed on the part it holds, in the part body's frame: (the point's offset
+    back there, the axis-angle vector that turns the hand's rotation back there), where it slid or turned at least
+    ANCHOR_MIN_M / ANCHOR_MIN_DEG and at most ANCHOR_MAX_M / ANCHOR_MAX_DEG (more: it holds it another way now);
+    else None."""
+    hand = ctx.hands[side]
+    anchor = hand.grip_anchor
+    if hand.held is None or anchor is None or anchor[0] != hand.held.body or part_body not in anchor[1]:
+        return None
+    p0, R0 = anchor[1][part_body]
+    back, turn = p0 - rel_p, rotation_error(rel_R, R0)  # turn: in the part's frame, from now to then
+    off, deg = float(np.linalg.norm(back)), float(np.degrees(np.linalg.norm(turn)))
+    if off > ANCHOR_MAX_M or deg > ANCHOR_MAX_DEG or (off < ANCHOR_MIN_M and deg < ANCHOR_MIN_DEG):
+        return None
+    return back, turn
+
 
 def grip_roll_frames(ctx: PlanningContext, side: Side, f: PartFollow, q_steps: np.ndarray, held: bool | None = None,
                       kind: str | None = None) -> tuple[list, list] | None:

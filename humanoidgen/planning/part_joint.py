@@ -103,6 +103,18 @@ def rolls_about_joint(model: mujoco.MjModel, data: mujoco.MjData, joint: str, ax
     return float(np.linalg.norm(off - (off @ hinge) * hinge)) < tol_m
 
 
+def hinge_through(model: mujoco.MjModel, data: mujoco.MjData, joint: str, point: np.ndarray,
+                  within_m: float = 0.05) -> bool:
+    """Whether the hinge of `joint` passes within `within_m` of `point` (a hand's grip point): a knob turned by
+    the fingers on its fin, not a lid or a door held far from its hinge. False for a slide."""
+    line = hinge_line(model, data, joint)
+    if line is None:
+        return False
+    hinge, anchor = line
+    off = np.asarray(point, float) - anchor
+    return float(np.linalg.norm(off - (off @ hinge) * hinge)) < within_m
+
+
 def moving_bodies(model: mujoco.MjModel, joint: str) -> set[int]:
     """The bodies that `joint` moves: its own and all below it (a knob on a door moves only the knob)."""
     top = int(model.jnt_bodyid[model.joint(joint).id])

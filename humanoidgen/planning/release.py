@@ -23,7 +23,10 @@ def open_hands(ctx: PlanningContext, sides: tuple[Side, ...]) -> None:
     for s in sides:
         held = ctx.hands[s].held
         if is_part(held):
+            falls = falls_when_let_go(ctx, s, held)
             ctx.before("release", ReleaseRequest(s, held, sides))
+            if falls:
+                ctx.events.append(falls)
             continue
         ctx.move_fingers((s,), f"pre_{ctx.hands[s].grip}" if held is not None else "open")
         ctx.hands[s].held = None
@@ -48,3 +51,24 @@ def open_hands(ctx: PlanningContext, sides: tuple[Side, ...]) -> None:
             where = " and ".join(below) if below else "nothing"
             state = "is still moving" if moving else f"stayed on {where}"
             ctx.events.append(f"released {obj.type_name} {obj.obj_id} and it {state}")
+
+
+def falls_when_let_go(ctx: PlanningContext, side: Side, part) -> str | None:
+    """Why a part let go here will not stay (its joint's friction does not hold its weight: a light lid let go
+    low falls shut), in the family's terms, or None where it stays."""
+    from humanoidgen.objects import library
+    from humanoidgen.planning.part_joint import follow_openness, part_stays
+
+    f = ctx.hands[side].part_moved
+    if f is None or ctx.env.scene.object(*f.obj).body != part.body:
+        return None
+    m = ctx.env.model
+    if part_stays(ctx.env, f.joint, float(ctx.env.data.qpos[m.jnt_qposadr[m.joint(f.joint).id]])):
+        return None
+    try:
+        holds = library.model(part.type_name, part.type_id).params.get("holds_from")
+    except (KeyError, ValueError, AttributeError):
+        holds = None
+    where = f" (it stays where it is left only from openness {holds:g} up)" if holds is not None else ""
+    return (f"{part.type_name} {part.obj_id} was let go at openness {follow_openness(ctx.env, f):.2f}, where it does "
+            f"not stay{where}: it falls by its own weight")

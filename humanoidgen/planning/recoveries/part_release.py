@@ -28,7 +28,8 @@ from collections.abc import Callable
 import numpy as np
 
 from humanoidgen.objects.describe import openness
-from humanoidgen.objects.queries import get_point_in_env
+from humanoidgen.objects.hands import hand_points
+from humanoidgen.objects.queries import get_point_in_env, wrist_point_in_env
 from humanoidgen.planning.arm_moves import RETREAT_DISTANCE
 from humanoidgen.planning.context import PlanningContext
 from humanoidgen.planning.recovery import Recovery, ReleaseRequest
@@ -36,7 +37,8 @@ from humanoidgen.planning.errors import PlanningError
 from humanoidgen.planning.hand_ops import finger_contacts
 from humanoidgen.planning.motion import MotionError, plan_arm_motion, time_dense_path
 from humanoidgen.planning.paths import time_parametrize
-from humanoidgen.planning.part_joint import PartFollow, follow_articulation, follow_openness, hinge_line, point_motion
+from humanoidgen.planning.part_joint import (PartFollow, follow_articulation, follow_openness, hinge_line,
+                                             hinge_through, point_motion)
 from humanoidgen.planning.snapshot import take_snapshot, trial
 from humanoidgen.objects.hands import HAND_POSTURES
 from humanoidgen.sim.layout import Side
@@ -50,6 +52,9 @@ log = logging.getLogger(__name__)
 RELEASE_DRIFT = 0.02  # openness a part may go back while the hand lets go of it
 TRIAL_SETTLE_S = 0.3  # after a way out is tried, the part is watched this long (a dragged lid swings on)
 BACK_OUT_SPEED = 0.3  # rad/s, as the retreat after a release
+# A grip slid off its part along the part's hinge goes this far, else the shorter (a pinch 6 mm in from a fin's
+# outer face is clear of it after 3 cm; an arm reaching to a knob near its body has little room toward it).
+SLIDE_OFF_M = (0.06, 0.04, 0.03)
 
 
 class PartRelease(Recovery):
@@ -81,8 +86,10 @@ def let_go(ctx: PlanningContext, side: Side, part: SceneObject, follow: PartFoll
         ways[0][1]()
         return
     # Only a part going back counts: one going on the way the hand moved it (a lid let go low falls shut, as a
-    # plan may mean it to) is not undone.
-    onward = 0.0 if follow is None else 1.0 if _opens(ctx, follow) else -1.0
+    # plan may mean it to) is not undone. A part turned about an axis through the hold (a knob, by its fin) goes
+    # on only where the fingers push it: that is an overshoot past the angle asked (a knob turned to 60 deg and
+    # let go the usual way, the straightening index spun it on to 97-105), so there it counts both ways.
+    onward = 0.0 if follow is None or _on_the_hinge(ctx, side, follow) else 1.0 if _opens(ctx, follow) else -1.0
     start = take_snapshot(ctx)
     tried: list[tuple[bool, float, int]] = []
     first_drift = None
@@ -166,10 +173,43 @@ def _ways_out(ctx, side: Side, part: SceneObject, follow: PartFollow | None) -> 
         "sliding off the part's edge, away from its hinge": lambda: _off_the_edge(ctx, side, follow),
         "backing out along the part's hinge": lambda: _hinge_away(ctx, side, part, follow),
     }
-    ways = [("as usual", usual)]
+    def slid_off_along_hinge(loosen: str | None) -> Callable[[], None]:
+        # Off the part's end along its own hinge: friction along the axis has no moment about it, so a knob's fin
+        # slides out of the fingers unturned; opening on it instead (the thumb swinging, the curled fingers
+        # straightening) spun a knob turned to 60 deg on to 97-105. The squeeze is first eased to the grip's
+        # "pre" posture (a pinch: thumb and index only open, off the fin's faces).
+        def go() -> None:
+            u = _hinge_away(ctx, side, part, follow)
+            if u is None:
+                raise MotionError("the part has no hinge to slide off along")
+            if loosen is not None:
+                ctx.move_fingers((side,), loosen)
+            m = ctx.env.model
+            ignored = set(ctx.collisions.ignored_bodies)
+            ctx.collisions.ignored_bodies.add(m.body(part.body).id)  # the fingers leave it: they touch it at first
+            try:
+                _back_out(ctx, side, u, distances=SLIDE_OFF_M)
+            finally:
+                ctx.collisions.ignored_bodies = ignored
+            ctx.move_fingers((side,), "open")
+            ctx.hands[side].last_approach = None
+        return go
+
+    pre = f"pre_{ctx.hands[side].grip or 'grasp'}"
+    slide = []
+    if _on_the_hinge(ctx, side, follow):  # a knob, turned about an axis through the fingers' hold
+        slide = [(f"loosening to {pre}, then sliding off along the part's hinge", slid_off_along_hinge(pre))] \
+            if pre in HAND_POSTURES else []
+        slide.append(("sliding off along the part's hinge, the fingers still closed", slid_off_along_hinge(None)))
+        if pre in HAND_POSTURES:
+            # Where the arm has no room to slide off (a knob close to the body): only the squeeze let go, the
+            # curled fingers kept curled (half opening them all first, as the ways below do, spun a knob 29 deg on)
+            # and the hand left there; the plan's next move takes it away.
+            slide.append((f"loosening to {pre} only and staying there",
+                          lambda: (ctx.move_fingers((side,), pre), setattr(ctx.hands[side], "last_approach", None))))
+    ways = [("as usual", usual), *slide]
     # The grip's own "pre" posture first (a pinch: only thumb and index open; the curled fingers, straightening,
     # would push the part): it leaves the part without sweeping it; the hand opens fully once off it.
-    pre = f"pre_{ctx.hands[side].grip or 'grasp'}"
     if pre in HAND_POSTURES:
         ways += [(f"loosening to {pre} first, then {how}", loosened_then(pre, way)) for how, way in ways_back.items()]
     ways += [(f"opening in place first, then {how}", loosened_then("open", way)) for how, way in ways_back.items()]
@@ -215,6 +255,16 @@ def _back_out(ctx, side: Side, u: np.ndarray, sampled: bool = False,
     else:
         samples = time_dense_path(path.waypoints, dt, v_max=BACK_OUT_SPEED)
     ctx.run_arm_samples({side: samples})
+
+
+def _on_the_hinge(ctx, side: Side, follow: PartFollow | None) -> bool:
+    """Whether the part's hinge passes near the hand's grip point (a knob's axis through the pinched fin; a lid's
+    or a door's hinge is far from the hand on it)."""
+    if follow is None:
+        return False
+    kind = "pinch" if ctx.hands[side].grip == "pinch" else "grasp"
+    grip = wrist_point_in_env(ctx.env, side, hand_points(side)[f"{kind}_point_base_{side}_hand"])
+    return hinge_through(ctx.env.model, ctx.env.data, follow.joint, grip)
 
 
 def _hinge_away(ctx, side: Side, part: SceneObject, follow: PartFollow | None) -> np.ndarray | None:
