@@ -99,6 +99,9 @@ PINCH_CLOSE = Path(__file__).resolve().parents[1] / "bench" / "foreign_plans" / 
 
 
 @pytest.mark.slow
+@pytest.mark.xfail(strict=True, reason="since the grip anchor (part_grip.slid_since_grip) the hand carries this seed's "
+                   "screen over 46% of its arc, not to 0.17: it is let go higher, gripped again and taken shut (the "
+                   "plan succeeds), so the fall-shut case no longer arises here; it needs a new case")
 def test_a_screen_that_falls_shut_when_let_go_is_not_gripped_again(tmp_path):
     """Seed 5: the arm's reach ends at 0.17 holding the screen; let go there it falls shut. Gripped again (lifted to
     0.25 with a fingertip to make room for the fingers) it was left at 0.20."""
