@@ -221,8 +221,9 @@ def worker():
 
 def test_plans_can_print_numpy_arrays_and_scalars(worker: SandboxWorker) -> None:
     """numpy imports its printing functions on first use through the caller's `__import__`, which plan code
-    lacks: without the worker's warm-up a plan's `print(np.zeros(3))` failed ("Unable to configure default
-    ndarray.__str__"; found by tests/cheats_unseen/093, an honest plan)."""
+    restricts: unless that `__import__` lets numpy's own loaded modules through (`vocabulary`), a plan's
+    `print(np.zeros(3))` failed ("Unable to configure default ndarray.__str__"; found by tests/cheats_unseen/093,
+    an honest plan)."""
     out = worker.run_step("print(np.zeros(3), np.float64(1.5), np.int64(2))\nprint(f'{np.ones(2)}', str(np.ones(1)))")
     assert out.ok, out
     assert out.stdout == "[0. 0. 0.] 1.5 2\n[1. 1.] [1.]\n", out.stdout

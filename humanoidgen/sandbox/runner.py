@@ -295,16 +295,6 @@ def _isolate_fds(keep: tuple[int, ...]) -> None:
                 os.close(fd)
 
 
-def _warm_numpy_printing(numpy: Any) -> None:
-    """Print arrays and scalars once here: numpy imports its printing functions on first use through the
-    calling frame's `__import__`, which plan code does not have, so a plan's first `print(np.zeros(3))` failed
-    with "Unable to configure default ndarray.__str__". Done once by trusted code, numpy keeps them."""
-    for x in (numpy.zeros(2), numpy.float64(1.5), numpy.float32(1.5), numpy.int64(1), numpy.bool_(True),
-              numpy.complex128(1j), numpy.ma.masked_array([1.0], mask=[True])):
-        with contextlib.suppress(Exception):
-            str(x), repr(x), format(x), f"{x!s:>4}"
-
-
 def _worker_main(down: Any, up: Any, setup: Callable[[], dict[str, Any]], limits: Limits,
                  twin: tuple[Any, Any] | None = None) -> None:
     global _channel
@@ -334,7 +324,6 @@ def _worker_main(down: Any, up: Any, setup: Callable[[], dict[str, Any]], limits
 
     import numpy
 
-    _warm_numpy_printing(numpy)
     builtins_ = safe_builtins({"numpy": numpy, "math": math})
     namespace: dict[str, Any] = {**provided, "__builtins__": builtins_, "__name__": "__sandbox__"}
     _send({"kind": "ready", "names": sorted(provided), "lockdown": report.to_dict()})
