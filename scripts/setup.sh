@@ -34,4 +34,9 @@ elif [ -n "${HGEN_TORCH_INDEX:-}" ]; then
   "$PYTHON" -m pip install --disable-pip-version-check -q torch torchvision --index-url "$HGEN_TORCH_INDEX"
 fi
 "$PYTHON" -m pip install --disable-pip-version-check -q -e ".[$EXTRAS]"
+# LeRobot (training LeRobot's policies on our exports, evaluating them in our tasks) in its own environment,
+# .venv-lerobot: it pins an older torch. HGEN_NO_LEROBOT=1 (or HGEN_NO_POLICY=1) skips it and its test.
+if [ "${HGEN_NO_POLICY:-0}" != "1" ] && [ "${HGEN_NO_LEROBOT:-0}" != "1" ]; then
+  PYTHON="$PYTHON" bash scripts/setup_lerobot.sh
+fi
 echo "humanoidgen is installed. Try: hgen render --out scene.png"

@@ -179,3 +179,25 @@ def test_cli_export_needs_a_target_and_writes_lerobot(store, tmp_path):
     assert res.exit_code == 0, res.output
     info = json.loads((tmp_path / "lr" / "meta" / "info.json").read_text())
     assert "observation.images.left_wrist" in info["features"] and "observation.images.head" not in info["features"]
+
+
+def test_a_dimension_that_never_moved_gets_a_normalisation_span(tmp_path):
+    """lerobot-doctor's zero-variance finding: LeRobot divides by max - min (1e-8 when 0), so stats.json gives a
+    never-moving joint MIN_SPAN around its value; the episode's own stats keep what was measured."""
+    from humanoidgen.episodes.lerobot_stats import MIN_SPAN
+
+    s = EpisodeStore(tmp_path / "store")
+    s.create({"task": "synthetic_stack", "task_description": TASK, "control_hz": 50.0, "action_names": NAMES,
+              "state_names": NAMES, "cameras": [], "recorder": {"every": 10}})
+    action = np.random.default_rng(1).normal(size=(9, 26)).astype(np.float32)
+    action[:, 3] = 0.47  # an idle joint
+    s.add({"seed": 0, "success": True}, {"action": action, "joint_pos": action, "ee_pose": np.zeros((9, 14), np.float32),
+                                         "qpos": np.zeros((9, 52)), "time": 0.2 * np.arange(9)})
+    out = tmp_path / "lr"
+    export_lerobot(s, out)
+    stats = json.loads((out / "meta" / "stats.json").read_text())["action"]
+    assert np.isclose(stats["max"][3] - stats["min"][3], MIN_SPAN) and np.isclose(stats["mean"][3], 0.47)
+    assert np.isclose(stats["std"][3], MIN_SPAN / 2)
+    np.testing.assert_allclose(stats["min"][4], action[:, 4].min(), atol=1e-6)  # a moving joint keeps its range
+    episodes = pq.read_table(next((out / "meta" / "episodes").rglob("*.parquet"))).to_pylist()
+    assert episodes[0]["stats/action/max"][3] == episodes[0]["stats/action/min"][3]

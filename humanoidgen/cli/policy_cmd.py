@@ -135,8 +135,9 @@ def _with_recipe(policy: str, recipe: str | None, over: dict, device: str, resum
 
 @app.command()
 def eval(  # noqa: A001 - the command is called eval
-    run: Path = typer.Argument(..., help="A run folder (all its kept checkpoints) or one checkpoint file; with "
-                                          "--policy random|noop, the task."),
+    run: Path = typer.Argument(..., help="A run folder (all its kept checkpoints), one checkpoint file, or a "
+                                          "LeRobot checkpoint (its pretrained_model folder); with --policy "
+                                          "random|noop, the task."),
     policy: str | None = typer.Option(None, "--policy", help="A baseline instead of a trained run: random "
                                                              "(uniform joint targets, each held 4 actions) or noop "
                                                              "(hold the start posture)."),
@@ -159,7 +160,8 @@ def eval(  # noqa: A001 - the command is called eval
                                                                             "baselines on the same scenes."),
     data: Path | None = typer.Option(None, "--data", help="With --policy random: draw targets within this zarr's "
                                                          "action range and at its action rate (default: the joint "
-                                                         "limits, 10 Hz)."),
+                                                         "limits, 10 Hz). With a LeRobot checkpoint: the export it "
+                                                         "was trained on (default: its train_config.json's)."),
     randomize: bool = typer.Option(False, "--randomize", help="Also evaluate on the same scenes randomized from "
                                    "their seeds (a room and its table height, textures, lights, camera jitter, "
                                    "distractors) and report clean and randomized side by side."),
@@ -170,6 +172,9 @@ def eval(  # noqa: A001 - the command is called eval
     Example: hgen policy eval runs/cd_dp3 --task close_drawer --episodes 20 --seeds 0,1,2
 
     Example (a baseline alone): hgen policy eval --policy random close_drawer --episodes 20
+
+    Example (LeRobot, in its environment): .venv-lerobot/bin/hgen policy eval
+    outputs/train/cd_diffusion/checkpoints/last/pretrained_model --episodes 20
     """
     os.environ.setdefault("MUJOCO_GL", "egl")
     import torch
@@ -195,7 +200,8 @@ def eval(  # noqa: A001 - the command is called eval
             else:
                 report = evaluate(run, task, episodes, seed_list, checkpoints=checkpoint or None, device=device,
                                   video_dir=video, max_steps=max_steps, ray_address=ray_address, ray_gpus=ray_gpus,
-                                  action_steps=action_steps, baselines=baselines, randomize=randomized)
+                                  action_steps=action_steps, baselines=baselines, randomize=randomized,
+                                  dataset=data)
             reports.append(report)
             for (ckpt, seed), rate in report.rates().items():
                 typer.echo(f"{Path(ckpt).name} seed {seed} ({report.scenes}): {100 * rate:.0f}% of {episodes}")

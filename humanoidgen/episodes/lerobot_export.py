@@ -28,6 +28,7 @@ from pathlib import Path
 import numpy as np
 
 from humanoidgen.episodes.dataset import DatasetError, EpisodeStore
+from humanoidgen.episodes.lerobot_stats import aggregate, dataset_stats_json, image_stats, vector_stats
 from humanoidgen.robots import default_robot
 
 CODEBASE_VERSION = "v3.0"
@@ -38,7 +39,8 @@ CHUNK_FILE_PATTERN = "chunk-{chunk_index:03d}/file-{file_index:03d}"
 DATA_PATH = "data/" + CHUNK_FILE_PATTERN + ".parquet"
 VIDEO_PATH = "videos/{video_key}/" + CHUNK_FILE_PATTERN + ".mp4"
 EPISODES_PATH = "meta/episodes/" + CHUNK_FILE_PATTERN + ".parquet"
-QUANTILES = (0.01, 0.10, 0.50, 0.90, 0.99)
+SOURCE_META = "meta/humanoidgen.json"  # beside LeRobot's files: the task and how it was recorded
+SOURCE_KEYS = ("task", "task_source", "control_hz", "recorder", "action_names")
 ROBOT_TYPE = default_robot().data.robot_type
 
 # Columns every LeRobot frame carries, after the dataset's own features.
@@ -79,79 +81,6 @@ def _next_file(chunk: int, file: int) -> tuple[int, int]:
     return (chunk + 1, 0) if file == CHUNKS_SIZE - 1 else (chunk, file + 1)
 
 
-# -- statistics, computed the way lerobot.datasets.compute_stats does ----------------------------------------------
-def _quantiles(x: np.ndarray, bins: int = 5000) -> dict[str, np.ndarray]:
-    """Histogram quantiles per column of x (N, D), as lerobot's RunningQuantileStats computes them for one batch."""
-    out = {f"q{int(q * 100):02d}": np.empty(x.shape[1]) for q in QUANTILES}
-    n = x.shape[0]
-    for d in range(x.shape[1]):
-        col = x[:, d]
-        edges = np.linspace(col.min() - 1e-10, col.max() + 1e-10, bins + 1)
-        cum = np.cumsum(np.histogram(col, bins=edges)[0])
-        for q in QUANTILES:
-            target = q * n
-            i = int(np.searchsorted(cum, target))
-            if i == 0:
-                v = edges[0]
-            elif i >= len(cum):
-                v = edges[-1]
-            else:
-                before, inside = cum[i - 1], cum[i] - cum[i - 1]
-                v = edges[i] if inside == 0 else edges[i] + (target - before) / inside * (edges[i + 1] - edges[i])
-            out[f"q{int(q * 100):02d}"][d] = v
-    return out
-
-
-def _vector_stats(x: np.ndarray) -> dict[str, np.ndarray]:
-    """Per-dimension stats of (T,) or (T, D); a (T,) column gets shape (1,) stats, like lerobot's keepdims."""
-    x2 = np.asarray(x, np.float64).reshape(len(x), -1)
-    stats = {"min": x2.min(0), "max": x2.max(0), "mean": x2.mean(0), "std": x2.std(0),
-             "count": np.array([len(x)], np.int64)}
-    if len(x2) < 2:
-        stats.update({f"q{int(q * 100):02d}": stats["mean"].copy() for q in QUANTILES})
-    else:
-        stats.update(_quantiles(x2))
-    return stats
-
-
-def _sample_indices(n: int) -> list[int]:
-    num = n if n < 100 else max(100, min(int(n ** 0.75), 10_000))
-    return np.round(np.linspace(0, n - 1, num)).astype(int).tolist()
-
-
-def _image_stats(frames: np.ndarray) -> dict[str, np.ndarray]:
-    """Per-channel stats in [0, 1], shape (3, 1, 1), over up to ~100 sampled frames of (T, H, W, 3) uint8."""
-    imgs = frames[_sample_indices(len(frames))]
-    h, w = imgs.shape[1:3]
-    if max(h, w) >= 300:  # lerobot's auto_downsample_height_width
-        f = int(w / 150) if w > h else int(h / 150)
-        imgs = imgs[:, ::f, ::f]
-    stats = _vector_stats(imgs.reshape(-1, 3).astype(np.float64))
-    stats["count"] = np.array([len(imgs)], np.int64)
-    return {k: v if k == "count" else (v / 255.0).reshape(3, 1, 1) for k, v in stats.items()}
-
-
-def _aggregate(per_episode: list[dict[str, np.ndarray]]) -> dict[str, np.ndarray]:
-    """lerobot's aggregate_feature_stats: count-weighted mean, pooled variance, weighted quantiles."""
-    counts = np.stack([s["count"] for s in per_episode]).astype(np.float64)
-    total = counts.sum(0)
-    means = np.stack([s["mean"] for s in per_episode])
-    w = counts.reshape(counts.shape + (1,) * (means.ndim - counts.ndim))
-    mean = (means * w).sum(0) / total
-    var = ((np.stack([s["std"] for s in per_episode]) ** 2 + (means - mean) ** 2) * w).sum(0) / total
-    out = {"min": np.min([s["min"] for s in per_episode], axis=0), "max": np.max([s["max"] for s in per_episode], axis=0),
-           "mean": mean, "std": np.sqrt(var), "count": total.astype(np.int64)}
-    for q in QUANTILES:
-        k = f"q{int(q * 100):02d}"
-        out[k] = (np.stack([s[k] for s in per_episode]) * w).sum(0) / total
-    return out
-
-
-def _jsonable(stats: dict[str, dict[str, np.ndarray]]) -> dict:
-    return {key: {k: np.asarray(v).tolist() for k, v in s.items()} for key, s in stats.items()}
-
-
-# -- writing --------------------------------------------------------------------------------------------------------
 class _VideoFiles:
     """One camera's mp4 files: the episodes' frames appended as one H.264 stream per file."""
 
@@ -340,7 +269,7 @@ def export_lerobot(store: EpisodeStore, out: Path, cameras: list[str] | None = N
                     writer = pq.ParquetWriter(data_path, schema, compression="snappy")
                 writer.write_table(table)
 
-                stats = {k: _vector_stats(v) for k, v in cols.items()}
+                stats = {k: vector_stats(v) for k, v in cols.items()}
                 row = {"episode_index": ep_index, "tasks": [task], "length": n,
                        "data/chunk_index": data_chunk, "data/file_index": data_file,
                        "dataset_from_index": total, "dataset_to_index": total + n}
@@ -349,7 +278,7 @@ def export_lerobot(store: EpisodeStore, out: Path, cameras: list[str] | None = N
                     if len(frames) != n:
                         raise DatasetError(f"episode {rec['episode']}: {len(frames)} {key} frames for {n} actions")
                     row.update(vid.add_episode(frames))
-                    stats[key] = _image_stats(frames)
+                    stats[key] = image_stats(frames)
                 for key, s in stats.items():
                     for k, v in s.items():
                         row[f"stats/{key}/{k}"] = np.asarray(v).tolist()
@@ -369,8 +298,8 @@ def export_lerobot(store: EpisodeStore, out: Path, cameras: list[str] | None = N
         pq.write_table(pa.Table.from_pylist(episode_rows), ep_path, compression="snappy")
         pq.write_table(_tasks_table([task]), out / "meta" / "tasks.parquet")
 
-        stats = {key: _aggregate([s[key] for s in episode_stats]) for key in episode_stats[0]}
-        (out / "meta" / "stats.json").write_text(json.dumps(_jsonable(stats), indent=4))
+        stats = {key: aggregate([s[key] for s in episode_stats]) for key in episode_stats[0]}
+        (out / "meta" / "stats.json").write_text(json.dumps(dataset_stats_json(stats, columns), indent=4))
         info = {
             "codebase_version": CODEBASE_VERSION,
             "robot_type": robot_type,
@@ -387,6 +316,8 @@ def export_lerobot(store: EpisodeStore, out: Path, cameras: list[str] | None = N
             "features": features,
         }
         (out / "meta" / "info.json").write_text(json.dumps(info, indent=4))
+        # What an evaluation of a policy trained on this export must observe (`policies.lerobot_policy`).
+        (out / SOURCE_META).write_text(json.dumps({k: meta.get(k) for k in SOURCE_KEYS}, indent=2))
     except BaseException:
         _discard(out, keep_folder=existed)
         raise

@@ -33,14 +33,26 @@ def evaluate(run: Path, task: str | None = None, episodes: int = 20, seeds: tupl
              checkpoints: list[Path] | None = None, device: str = "auto", video_dir: Path | None = None,
              progress: bool = True, max_steps: int | None = None, ray_address: str | None = None,
              ray_gpus: float = 0.0, action_steps: int | None = None, baselines: bool = True,
-             randomize: bool = False) -> EvalReport:
+             randomize: bool = False, dataset: Path | None = None) -> EvalReport:
     """Evaluate a run's checkpoints (all kept ones, or `checkpoints`) on its task; `max_steps` shortens
     episodes below the task's time limit (for quick checks); `action_steps`: actions executed per prediction
     (default: each checkpoint's n_action_steps); `ray_address`: each episode a Ray task (`ray_eval`), with the
     same outcomes; `baselines`: the random and no-op baselines on the same scenes too (`report.baselines`;
     random targets within the demonstrations' action range, as the first checkpoint's normalizer has it);
-    `randomize`: the same scene seeds dressed from their seeds (`TaskEnvConfig.randomize`), baselines too."""
+    `randomize`: the same scene seeds dressed from their seeds (`TaskEnvConfig.randomize`), baselines too.
+    A LeRobot checkpoint (`run` a `pretrained_model` folder, `lerobot_eval`) is evaluated on the task of the
+    export it was trained on (`dataset`, default: the one its train_config.json names)."""
     from tqdm import tqdm
+
+    from humanoidgen.policies.lerobot_policy import is_lerobot_checkpoint
+
+    if is_lerobot_checkpoint(run):
+        if ray_address is not None or action_steps is not None:
+            raise EvalError("--ray and --action-steps are for this project's own policies, not LeRobot checkpoints")
+        from humanoidgen.policies.lerobot_eval import evaluate_lerobot
+
+        return evaluate_lerobot(run, task, episodes, seeds, resolve_device(device), dataset, video_dir, progress,
+                                max_steps, baselines, randomize)
 
     from humanoidgen.envs.task_env import HumanoidTaskEnv
 

@@ -68,7 +68,10 @@ def env_config_for(policy: str, cfg, meta: dict, max_steps: int | None = None,
 
 
 def policy_obs(model, history: deque, device: str) -> dict[str, torch.Tensor]:
-    """The last n_obs_steps environment observations as a batch of one, with the zarr's names."""
+    """The last n_obs_steps environment observations as a batch of one, with the zarr's names (a policy with
+    its own naming, a LeRobot checkpoint's, builds its batch itself: `observation_batch`)."""
+    if hasattr(model, "observation_batch"):
+        return model.observation_batch(history, device)
     cfg = model.cfg
     out = {"state": torch.as_tensor(np.stack([h["joint_pos"] for h in history]))[None]}
     if "point_cloud" in model.obs_keys:
