@@ -99,16 +99,22 @@ class PlanningContext:
         if self.on_step is not None:
             self.on_step(self.action.copy())
 
-    def run_arm_samples(self, samples: dict[Side, np.ndarray]) -> None:
-        """Per control step, each side's row: 7 arm targets, or 7 arm and 6 finger targets."""
+    def run_arm_samples(self, samples: dict[Side, np.ndarray], stop=None) -> None:
+        """Per control step, each side's row: 7 arm targets, or 7 arm and 6 finger targets. `stop(ctx, side)`,
+        asked after every step, ends a side's rows early: its targets stay as they were (a press to a force)."""
         n = max(len(s) for s in samples.values())
+        stopped: set[Side] = set()
         for k in range(n):
             for side, s in samples.items():
+                if side in stopped:
+                    continue
                 row = s[min(k, len(s) - 1)]
                 self.action[ARM_SLICE[side]] = row[:7]
                 if len(row) > 7:
                     self.action[HAND_SLICE[side]] = row[7:]
             self.step()
+            if stop is not None:
+                stopped |= {side for side in samples if side not in stopped and stop(self, side)}
 
     def settle(self, seconds: float = SETTLE_TIME) -> None:
         for _ in range(int(round(seconds * self.env.control_hz))):

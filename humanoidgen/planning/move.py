@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from humanoidgen.planning import arm_moves, execute, push_move
+from humanoidgen.planning import arm_moves, execute, press_force, push_move
 from humanoidgen.planning.context import PlanningContext
 from humanoidgen.planning.errors import PlanningError
 from humanoidgen.planning.execute import SLIP_LIMIT
@@ -42,9 +42,16 @@ def move_hands(ctx: PlanningContext, sides: tuple[Side, ...], poses: list, path_
     if len(sides) == 2:
         samples = arm_moves.coordinate_arms(ctx, samples)
     carried = {s: ctx.relative_to_hand(s, ctx.hands[s].held) for s in sides if ctx.carries(s)}
-    part_start = {s: arm_moves.part_openness(ctx, t) for s, t in targets.items() if t.follow is not None}
-    ctx.run_arm_samples(samples)
+    watch = press_force.Watch.of(ctx, targets)  # presses to a force stop where the finger pushes that hard
+    part_start = {s: arm_moves.part_openness(ctx, t) for s, t in targets.items()
+                  if t.follow is not None and t.follow.force is None}
+    if watch is None:
+        ctx.run_arm_samples(samples)
+    else:
+        watch.run(ctx, samples)
     ctx.settle(0.2)
+    if watch is not None:
+        watch.report(ctx)
     for side, start in part_start.items():
         arm_moves.check_part_followed(ctx, side, targets[side], start)
     for side, target in targets.items():

@@ -23,7 +23,8 @@ class PartFollow:
     """How a hand is on an articulated part: the part's body and the joint that moves it, the object, that
     joint's articulation, and for a move the joint value to take it to (`q_target`) and the annotated point the
     hand is on (`part_point`); the axis a holding grip may roll about on the way, how far (`roll_deg`), and the
-    axis the hand came onto a hooked handle along (`unhook_axis`). A grip not yet moving the part
+    axis the hand came onto a hooked handle along (`unhook_axis`); for a press to a force,
+    that force (`force`, N; `q_target` is then the deepest the press may go). A grip not yet moving the part
     (`Generated.grip_part`) has no `q_target`."""
 
     body: str
@@ -35,6 +36,7 @@ class PartFollow:
     grip_axis: str | None = None
     roll_deg: float = 0.0
     unhook_axis: str | None = None
+    force: float | None = None  # a press to a force (N): the move stops when the finger pushes the part this hard
 
 
 def point_articulation(obj: SceneObject, point: str) -> Articulation | None:

@@ -168,7 +168,8 @@ class HumanoidMotionPlanner:
     def generate_constraints(self, obj_name: str, obj_id: int = 0, action: str = "", hand_name: str = "right",
                              openness: float | None = None, relative_obj_name: str | None = None,
                              relative_obj_id: int | None = None, relative_p: np.ndarray | None = None,
-                             point: str | None = None, finger_offset: float = 0.0) -> list:
+                             point: str | None = None, finger_offset: float = 0.0,
+                             force: float | None = None) -> list:
         """Constraints for an action on an object, from its annotations and the task's targets (see the actions
         below). `hand_name` is "right" unless given (the paper's default); `obj_name` may be a type ("cube"
         with obj_id), a numbered name ("cube1") or an alias the scene lists.
@@ -178,14 +179,16 @@ class HumanoidMotionPlanner:
         `point` picks one annotated point of a grasp/pinch (e.g. "rim"); by default the hand takes the most
         natural of the object's annotations and falls back to the others when that one cannot be reached.
         `finger_offset` (m) holds a grasp/pinch that much further out along the fingers (negative: deeper in the
-        hand), e.g. 0.02 to pinch a 3 cm block with the index pad rather than around its corner."""
+        hand), e.g. 0.02 to pinch a 3 cm block with the index pad rather than around its corner.
+        `force` (N, action="press" only): press until the fingertip pushes the part that hard (past the part's
+        end stop if need be; with openness, no deeper than that)."""
         if not action:
             raise PlanningError("generate_constraints", f"give action=, one of {', '.join(constraint_gen.ACTIONS)}")
         (side,) = _sides(hand_name) if hand_name != "all" else (None,)
         if side is None:
             raise PlanningError("generate_constraints", "hand_name must be 'left' or 'right' (one hand at a time)")
         request = (obj_name, obj_id, action, side, openness, relative_obj_name, relative_obj_id, relative_p, point,
-                   finger_offset)
+                   finger_offset, force)
         gen = goal_entry.generate(self.ctx, request)
         if gen.notes:
             self.ctx.log[-1].message = "; ".join(gen.notes)

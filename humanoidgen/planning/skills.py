@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 
 from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env
-from humanoidgen.planning import move_action, target_actions
+from humanoidgen.planning import move_action, press_force, target_actions
 from humanoidgen.planning.constraint_gen import (
     ACTIONS,
     PUSH_ACTIONS,
@@ -28,8 +28,9 @@ from humanoidgen.sim.layout import HAND_BASE_FRAME, Side
 def generate(env, holding: dict, obj_name: str, obj_id: int, action: str, side: Side, openness: float | None = None,
              relative_obj_name: str | None = None, relative_obj_id: int | None = None,
              relative_p: np.ndarray | None = None, point: str | None = None, finger_offset: float = 0.0,
-             targets: TaskTargets | None = None) -> Generated:
-    """`targets`: the task's target poses and pushes (None: the task defines none)."""
+             force: float | None = None, targets: TaskTargets | None = None) -> Generated:
+    """`targets`: the task's target poses and pushes (None: the task defines none); `force`: a press to that
+    force (`press_force`)."""
     ta = target_actions
     if action not in ACTIONS + PUSH_ACTIONS:
         raise ConstraintGenerationError(f"unknown action {action!r}; use one of {', '.join(ACTIONS)}")
@@ -39,6 +40,8 @@ def generate(env, holding: dict, obj_name: str, obj_id: int, action: str, side: 
     if relative_obj_name is not None:
         rel = env.scene.object(relative_obj_name, relative_obj_id or 0)
         relative_obj_name, relative_obj_id = rel.type_name, rel.obj_id
+    if force is not None:
+        return press_force.generate(env, side, obj, action, openness, force, _push)
     if action in ("grasp", "pinch"):
         operation, note = ta.operation_for(obj, action)
         gen = grasp_or_pinch(env, side, obj_name, obj_id, operation, openness, point, finger_offset, holding)
