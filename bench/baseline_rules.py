@@ -9,7 +9,11 @@ whether any robot body touches that object. Then it counts the scenes each candi
 - `to the end`: openness within 0.01 of the goal end (0 or 1) at an action, no contact (the paper's "to an
   openness of 0");
 - `held 1 s` / `held 5 s`: `released` true for 10 / 50 actions in a row;
-- `at the end`: `released` true at the episode's last action (judged at the time limit).
+- `at the end`: `released` true at the episode's last action (judged at the time limit);
+- `by the hand`: the predicates at an action before which no arm link (a robot body that is not a hand's: the
+  forearm, the elbow, the shoulder) has touched the object: the paper's "the hand pushes the drawer", not the
+  arm swept into it;
+- `by the hand, released`: both.
 
     python bench/baseline_rules.py --tasks close_drawer,close_box_easy --episodes 20
 """
@@ -46,6 +50,28 @@ def touches(sim, body: str) -> bool:
     return False
 
 
+def arm_touches(sim, body: str) -> bool:
+    """A robot body that is not part of a hand (fingers, palm) in contact with the object."""
+    from humanoidgen.sim.layout import HAND_PREFIX, WRIST_BODY
+
+    m, d = sim.model, sim.data
+    root = m.body(body).id
+    hand = tuple(p + "_" for p in HAND_PREFIX.values())
+    palms = set(WRIST_BODY.values())
+    others = {m.body(o.body).id for o in sim.scene.objects}
+    for c in d.contact[: d.ncon]:
+        for a, b in ((c.geom1, c.geom2), (c.geom2, c.geom1)):
+            if m.body_rootid[m.geom_bodyid[b]] != root:
+                continue
+            mine = m.geom_bodyid[a]
+            name = m.body(mine).name
+            if m.body_rootid[mine] in others or mine == 0 or name == "table":
+                continue
+            if not (name.startswith(hand) or name in palms):
+                return True
+    return False
+
+
 def judged_part(spec):
     """(object reference, part, goal end) of the task's first openness predicate: what its success moves."""
     for s in spec.success:
@@ -54,8 +80,9 @@ def judged_part(spec):
     raise ValueError(f"{spec.name} has no openness predicate")
 
 
-def trace(task: str, episodes: int, action_range) -> list[list[tuple[float, bool, bool]]]:
-    """Per scene, per action: (openness of what the success judges, touched, the task's verdict)."""
+def trace(task: str, episodes: int, action_range) -> list[list[tuple[float, bool, bool, bool]]]:
+    """Per scene, per action: (openness of what the success judges, touched, the task's verdict, an arm link
+    touched it)."""
     import torch
 
     from humanoidgen.envs.config import TaskEnvConfig
@@ -79,7 +106,8 @@ def trace(task: str, episodes: int, action_range) -> list[list[tuple[float, bool
                 for a in model.predict_action(policy_obs(model, [obs], "cpu"), generator=gen)["action"][0].numpy():
                     obs, _, _, _, info = env.step(a)
                     o = openness(env.sim.model, env.sim.data, obj, part)
-                    rows.append((float(o if o is not None else -1.0), touches(env.sim, obj.body), bool(info["success"])))
+                    rows.append((float(o if o is not None else -1.0), touches(env.sim, obj.body), bool(info["success"]),
+                                 arm_touches(env.sim, obj.body)))
                     if len(rows) >= env.max_steps:
                         break
             out.append(rows)
@@ -88,8 +116,12 @@ def trace(task: str, episodes: int, action_range) -> list[list[tuple[float, bool
     return out
 
 
-def rules(rows: list[tuple[float, bool, bool]], goal: float) -> dict[str, bool]:
-    released = [ok and not touched for _, touched, ok in rows]
+def rules(rows: list[tuple[float, bool, bool, bool]], goal: float) -> dict[str, bool]:
+    released = [ok and not touched for _, touched, ok, _ in rows]
+    armed, by_hand = False, []
+    for _, _, ok, arm in rows:
+        armed = armed or arm
+        by_hand.append(ok and not armed)
 
     def run_of(k: int) -> bool:
         n = 0
@@ -99,9 +131,10 @@ def rules(rows: list[tuple[float, bool, bool]], goal: float) -> dict[str, bool]:
                 return True
         return False
 
-    return {"as is": any(ok for *_, ok in rows), "released": any(released),
-            "to the end": any(r and abs(o - goal) <= 0.01 for r, (o, _, _) in zip(released, rows)),
-            "held 1 s": run_of(10), "held 5 s": run_of(50), "at the end": released[-1]}
+    return {"as is": any(ok for _, _, ok, _ in rows), "released": any(released),
+            "to the end": any(r and abs(o - goal) <= 0.01 for r, (o, *_) in zip(released, rows)),
+            "held 1 s": run_of(10), "held 5 s": run_of(50), "at the end": released[-1],
+            "by the hand": any(by_hand), "by the hand, released": any(h and r for h, r in zip(by_hand, released))}
 
 
 def main() -> int:
