@@ -239,17 +239,35 @@ def fetch(
     base_url: str | None = None,
     progress: bool = True,
     timeout: float = 30,
+    robot=None,
 ) -> Path:
-    """Download every file listed in the sums into `dest_root/h1_2/` and return `dest_root`.
+    """Download every file listed in the sums into `dest_root/<model folder>/` and return `dest_root`: the
+    default robot's, or `robot`'s and the model files it takes its hands from (`hands.source`).
 
     Files already present with the right hash are skipped, so an interrupted fetch resumes.
     Each download is verified before it is moved into place; a bad one raises ChecksumError.
+    `base_url` replaces the robot's own source address (a folder, or for an archive source the archive: a
+    URL, file:// address or local path); the hands' source robot is fetched from its own.
     """
     dest_root = cache_dir() if dest_root is None else Path(dest_root).expanduser()
-    robot_dir = dest_root / _dir_name()
-    base_url = __getattr__("DEFAULT_BASE_URL") if base_url is None else base_url
-    sums = expected_sums()
+    robot = _robot() if robot is None else robot
+    for needed in robot.robots_needed():
+        _fetch_one(needed, dest_root, base_url if needed is robot else None, progress, timeout)
+    return dest_root
+
+
+def _fetch_one(robot, dest_root: Path, base_url: str | None, progress: bool, timeout: float) -> None:
+    model = robot.data.model
+    robot_dir = dest_root / model.folder
+    sums = parse_sums(robot.sums_path.read_text("utf-8"))
     _sweep_parts(robot_dir)
+    if model.source.archive_folder is not None:
+        from humanoidgen.assets.archive_fetch import fetch_archive
+
+        fetch_archive(base_url or model.source.url, model.source.sha256, model.source.archive_folder, sums,
+                      robot_dir, timeout=max(timeout, 120))
+        return
+    base_url = model.source.url.format(commit=model.source.commit) if base_url is None else base_url
     from tqdm import tqdm  # lazy: importing this module should stay cheap
 
     with tqdm(sorted(sums), desc="robot files", unit="file", disable=not progress) as bar:
@@ -258,4 +276,3 @@ def fetch(
             if dest.is_file() and sha256_file(dest) == sums[name]:
                 continue  # already verified: this is what makes a re-run resume
             _download(_file_url(base_url, name), dest, sums[name], name, base_url, timeout)
-    return dest_root
