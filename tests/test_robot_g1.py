@@ -22,8 +22,7 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
-from humanoidgen.assets.archive_fetch import fetch_archive
-from humanoidgen.assets.robot_files import ChecksumError, FetchError, fetch, resolve_assets_root
+from humanoidgen.assets.robot_files import ChecksumError, FetchError, fetch, fetch_archive, resolve_assets_root
 from humanoidgen.cli.main import app
 from humanoidgen.robots import load_robot
 from humanoidgen.robots.check import check
@@ -180,3 +179,10 @@ def test_an_unknown_robot_is_one_line_and_exit_1():
     res = CliRunner().invoke(app, ["render", "--robot", "no_such_robot"])
     assert res.exit_code == 1
     assert "no_such_robot" in res.output and "robot.yaml" in res.output
+
+
+def test_the_plan_worker_keeps_the_process_robot():
+    """Scenes of a plan's episode are built in the sandbox's processes: they must build the same robot."""
+    from humanoidgen.sandbox.lockdown import scrubbed_environ
+
+    assert scrubbed_environ({"HGEN_ROBOT": "g1_inspire", "SECRET_TOKEN": "x"}).get("HGEN_ROBOT") == "g1_inspire"
