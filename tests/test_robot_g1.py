@@ -186,3 +186,23 @@ def test_the_plan_worker_keeps_the_process_robot():
     from humanoidgen.sandbox.lockdown import scrubbed_environ
 
     assert scrubbed_environ({"HGEN_ROBOT": "g1_inspire", "SECRET_TOKEN": "x"}).get("HGEN_ROBOT") == "g1_inspire"
+
+
+def test_the_gym_env_takes_the_process_robot_and_refuses_another():
+    from humanoidgen.envs import HumanoidTaskEnv
+
+    with pytest.raises(ValueError, match="HGEN_ROBOT=g1_inspire"):
+        HumanoidTaskEnv("close_drawer", robot="g1_inspire")
+
+
+def test_the_gym_env_runs_the_g1_in_a_process_of_its_own(g1_root: Path):
+    code = ("from humanoidgen.envs import HumanoidTaskEnv\n"
+            "env = HumanoidTaskEnv('close_drawer', robot='g1_inspire')\n"
+            "obs, info = env.reset(seed=100000)\n"
+            "obs, r, term, trunc, info = env.step(obs['joint_pos'])\n"
+            "from humanoidgen.sim.layout import ROBOT\n"
+            "print(ROBOT.name, env.action_space.shape[0], obs['joint_pos'].shape[0])\n")
+    env = {**os.environ, "HGEN_ASSETS": str(g1_root), "HGEN_ROBOT": "g1_inspire", "PYTHONPATH": str(REPO)}
+    out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=300)
+    assert out.returncode == 0, out.stderr[-2000:]
+    assert out.stdout.split()[-3:] == ["g1_inspire", "26", "26"]
