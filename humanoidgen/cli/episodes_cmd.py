@@ -12,6 +12,7 @@ from rich.markup import escape
 from rich.table import Table
 
 from humanoidgen.cli import fast_exit
+from humanoidgen.cli.robot_option import robot_option, select_robot
 
 console = Console()
 
@@ -73,6 +74,7 @@ def run(
     randomize_models: bool = typer.Option(False, "--randomize-models", help="Each episode draws its objects' models "
                                           "from their families' imported models (seeded: the same seed, the same "
                                           "models)."),
+    robot: str = robot_option(),
 ) -> None:
     """Run one episode of a task and report success, the step log and timings.
 
@@ -80,8 +82,10 @@ def run(
     limits); a failing step is reported with its call and reason.
 
     Example: hgen run blocks_stack_easy --seed 3 --video stack.mp4 --json stack.json
+    Example: hgen run block_stack_single --robot g1_inspire --seed 3
     """
     os.environ.setdefault("MUJOCO_GL", "egl")
+    select_robot(robot)
     if model or randomize_models:  # before the server builds the episode's scene: the task on those models
         import tempfile
 
@@ -306,12 +310,15 @@ def bench(
     randomize_models: bool = typer.Option(False, "--randomize-models", help="Each episode draws its objects' models "
                                           "from their families' imported models (seeded); each record of the "
                                           "--json report names them."),
+    robot: str = robot_option(),
 ) -> None:
     """Run each task's reference plan on randomized seeds and report success rate and time per episode.
 
     Example: hgen bench --tasks block_stack_single,open_drawer --episodes 20 --plot bench.png
+    Example: hgen bench --robot g1_inspire --tasks block_stack_single --episodes 5
     """
     os.environ.setdefault("MUJOCO_GL", "egl")
+    select_robot(robot)
     from humanoidgen.episodes.bench import plot, run_bench
     from humanoidgen.tasks.registry import list_tasks, load_task
 

@@ -17,6 +17,7 @@ from humanoidgen.cli import (
     robots_cmd,
     sandbox_cmd,
 )
+from humanoidgen.cli.robot_option import robot_option, select_robot
 
 
 class _Program(typer.Typer):
@@ -63,6 +64,7 @@ def render(
     settle: float = typer.Option(0.5, min=0.0, help="Seconds to simulate before rendering, so objects come to rest."),
     room: int = typer.Option(None, help="Put the table in room SEED (scenes.room), the robot at its work surface."),
     visuals: int = typer.Option(None, help="Randomize the look with this seed (scenes.visuals)."),
+    robot: str = robot_option(),
 ) -> None:
     """Render the default scene (the robot at its table with one cube) from all six cameras as one mosaic.
 
@@ -70,8 +72,10 @@ def render(
 
     Example: hgen render --out scene.png --width 640 --height 480 --modality depth
     Example: hgen render --room 7 --out room7.png
+    Example: hgen render --robot g1_inspire --out g1.png
     """
     os.environ.setdefault("MUJOCO_GL", "egl")
+    select_robot(robot)
     from humanoidgen.assets.robot_files import AssetsError
     from humanoidgen.sim.cameras import CAMERA_NAMES, CameraRig
     from humanoidgen.sim.env import HumanoidEnv

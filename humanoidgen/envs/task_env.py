@@ -29,8 +29,10 @@ class HumanoidTaskEnv(gym.Env):
 
     def __init__(self, task: str, config: TaskEnvConfig | None = None, render_mode: str | None = None,
                  models: list[str] | dict[str, str] | None = None, randomize_models: bool = False,
-                 **config_fields: Any) -> None:
-        """`models` (["cup=my_mug", "bottle[1]=ketchup"] or {"cup": "my_mug"}) puts the task's objects of a family
+                 robot: str | None = None, **config_fields: Any) -> None:
+        """`robot` (a robot's name, folder or robot.yaml) must be the process's robot: the simulation's modules
+        take theirs when first imported, so a process runs one robot (`HGEN_ROBOT=g1_inspire` before
+        importing humanoidgen, as `--robot` does); another one is refused. `models` (["cup=my_mug", "bottle[1]=ketchup"] or {"cup": "my_mug"}) puts the task's objects of a family
         (or one object) on that model; `randomize_models`: each reset draws the other objects' models from their
         families' imported ones, from the seed (as `hgen collect --randomize-models` does); `info["models"]`
         names them."""
@@ -41,6 +43,13 @@ class HumanoidTaskEnv(gym.Env):
 
         if config is not None and config_fields:
             raise TypeError("give either config or its fields, not both")
+        if robot is not None:
+            from humanoidgen.robots import load_robot
+            from humanoidgen.sim.layout import ROBOT
+
+            if load_robot(robot).path != ROBOT.path:
+                raise ValueError(f"robot {robot!r}: this process's robot is {ROBOT.name} (its simulation modules are "
+                                 f"imported); set HGEN_ROBOT={robot} before importing humanoidgen to use it")
         self.config = config if config is not None else TaskEnvConfig(**config_fields)
         if render_mode not in (None, *self.metadata["render_modes"]):
             raise ValueError(f"render_mode must be None or 'rgb_array', got {render_mode!r}")

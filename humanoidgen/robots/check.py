@@ -12,11 +12,10 @@ from humanoidgen.robots.loader import Robot, RobotFileError, load_robot
 from humanoidgen.robots.schema import SIDE_NAMES
 
 
-def _model_names(mjcf: Path) -> tuple[list[str], list[str]]:
-    import mujoco
+def _model_names(assets_root: Path, robot: Robot) -> tuple[list[str], list[str]]:
+    from humanoidgen.robots.assemble import model_names
 
-    spec = mujoco.MjSpec.from_file(str(mjcf))
-    return [j.name for j in spec.joints], [b.name for b in spec.bodies]
+    return model_names(assets_root, robot)
 
 
 def _field_names(robot: Robot) -> list[tuple[str, str, str]]:
@@ -41,8 +40,10 @@ def _field_names(robot: Robot) -> list[tuple[str, str, str]]:
 
 
 def check_model(robot: Robot, model_dir: Path, checksums: bool = True) -> list[str]:
-    """What does not fit between `robot`'s files and the model files in `model_dir`: one line each."""
+    """What does not fit between `robot`'s files and the model files in `model_dir` (and, for hands from another
+    robot's model, that model's folder beside it): one line each."""
     path, problems = robot.path, []
+    assets_root = model_dir.parent
     sums = parse_sums(robot.sums_path.read_text("utf-8"))
     for name in (robot.data.model.mjcf, robot.data.model.urdf):
         if name is not None and name not in sums:
@@ -57,7 +58,11 @@ def check_model(robot: Robot, model_dir: Path, checksums: bool = True) -> list[s
                 problems.append(f"{path}: model.checksums: {name} is missing from {model_dir}")
             elif sha256_file(f) != digest:
                 problems.append(f"{path}: model.checksums: {name} does not match its sha256 (a checksum mismatch)")
-    joints, bodies = _model_names(mjcf)
+    source = robot.hand_source
+    if source is not None and not (assets_root / source.data.model.folder / source.data.model.mjcf).is_file():
+        return [*problems, f"{path}: hands.source.robot: no model of {source.name} in {assets_root} "
+                           f"(`hgen assets fetch --robot {robot.name}` fetches both)"]
+    joints, bodies = _model_names(assets_root, robot)
     have = {"joint": set(joints), "body": set(bodies)}
     for fld, kind, name in _field_names(robot):
         if name not in have[kind]:
@@ -68,17 +73,19 @@ def check_model(robot: Robot, model_dir: Path, checksums: bool = True) -> list[s
             problems.append(f"{path}: weld: joint {j!r} of {mjcf.name} is neither an arm joint, a hand joint "
                             f"nor welded")
     if robot.hand.data.followers == "urdf_mimic":
-        problems += _check_mimics(robot, model_dir, set(joints))
+        problems += _check_mimics(robot, assets_root, set(joints))
     return problems
 
 
-def _check_mimics(robot: Robot, model_dir: Path, joints: set[str]) -> list[str]:
+def _check_mimics(robot: Robot, assets_root: Path, joints: set[str]) -> list[str]:
     """Every hand joint that no action entry drives follows an actuated one of its hand by a URDF <mimic>."""
-    path, urdf_name = robot.path, robot.data.model.urdf
+    from humanoidgen.robots.assemble import mimic_urdf
+
+    path, urdf = robot.path, mimic_urdf(assets_root, robot)
     hand = robot.hand.path.name
-    if urdf_name is None:
+    if urdf is None:
         return [f"{path}: model.urdf: {hand} couples its followers by the URDF's <mimic> tags: name the URDF"]
-    urdf = model_dir / urdf_name
+    urdf_name = urdf.name
     if not urdf.is_file():
         return [f"{path}: model.urdf: no file {urdf}"]
     mimics = {m.follower: m.driver for m in read_mimics(urdf)}

@@ -8,6 +8,7 @@ validation, once per process. Every error is one line that names the file and th
 
 from __future__ import annotations
 
+import os
 from dataclasses import dataclass, field
 from functools import cache, cached_property
 from pathlib import Path
@@ -22,6 +23,10 @@ ROBOTS_DIR = Path(__file__).parent
 HANDS_DIR_NAME = "hands"
 ROBOT_FILE = "robot.yaml"
 DEFAULT_ROBOT = "h1_2_inspire"
+# The process's robot when set (a name, folder or robot.yaml): `--robot` sets it before the simulation's modules
+# are imported, so that their derived names (`sim.layout`) and the plan worker (it inherits the environment)
+# are that robot's.
+ENV_ROBOT = "HGEN_ROBOT"
 _Loader = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
 
 
@@ -126,6 +131,17 @@ class Robot:
     def sums_path(self) -> Path:
         return self.folder / self.data.model.checksums
 
+    @property
+    def hand_source(self) -> "Robot | None":
+        """The robot whose model carries this robot's hands (`hands.source`), or None: its model's own."""
+        src = self.data.hands.source
+        return None if src is None else load_robot(src.robot)
+
+    def robots_needed(self) -> tuple["Robot", ...]:
+        """The robots whose model files building this one reads: the hands' source first, then itself."""
+        src = self.hand_source
+        return (self,) if src is None else (*src.robots_needed(), self)
+
     # ------------------------------------------------------------------ the hands' mounts
 
     def hand_mount(self, side: str) -> str:
@@ -182,7 +198,7 @@ def _cross_check(robot: RobotFile, hand: HandFile, path: Path, hand_path: Path) 
     if robot.home.hands not in hand.postures:
         raise RobotFileError(f"{path}: home.hands: {robot.home.hands!r} is not a posture of {hand_path.name} "
                              f"({', '.join(hand.postures)})")
-    if hand.followers == "urdf_mimic" and robot.model.urdf is None:
+    if hand.followers == "urdf_mimic" and robot.model.urdf is None and robot.hands.source is None:
         raise RobotFileError(f"{path}: model.urdf: {hand.name}'s followers are coupled by the URDF's <mimic> tags "
                              f"({hand_path.name}): name the URDF")
     if not (path.parent / robot.model.checksums).is_file():
@@ -211,7 +227,25 @@ def _load(path: Path) -> Robot:
     hand = _read(hand_path, HandFile)
     assert isinstance(hand, HandFile)
     _cross_check(data, hand, path, hand_path)
+    if data.hands.source is not None:
+        _check_hand_source(data, path)
     return Robot(data=data, hand=Hand(hand, hand_path), path=path)
+
+
+def _check_hand_source(data: RobotFile, path: Path) -> None:
+    """The robot the hands come from carries the same hand, with the same names, at the same pose on its mount."""
+    name = data.hands.source.robot  # type: ignore[union-attr]
+    try:
+        src = load_robot(name).data.hands
+    except RobotFileError as exc:
+        raise RobotFileError(f"{path}: hands.source.robot: {exc}") from None
+    if src.type != data.hands.type or src.hand_base != data.hands.hand_base:
+        raise RobotFileError(f"{path}: hands.source.robot: {name} carries {src.type!r} hands at "
+                             f"{src.hand_base.model_dump()}, not this file's")
+    for side in SIDE_NAMES:
+        if getattr(src, side).prefix != getattr(data.hands, side).prefix:
+            raise RobotFileError(f"{path}: hands.{side}.prefix: {name}'s {side} hand is "
+                                 f"{getattr(src, side).prefix!r}")
 
 
 def load_robot(name_or_path: str | Path = DEFAULT_ROBOT, cached: bool = True) -> Robot:
@@ -222,7 +256,8 @@ def load_robot(name_or_path: str | Path = DEFAULT_ROBOT, cached: bool = True) ->
 
 
 def default_robot() -> Robot:
-    return load_robot(DEFAULT_ROBOT)
+    """The process's robot: `$HGEN_ROBOT` when set, else the default one."""
+    return load_robot(os.environ.get(ENV_ROBOT) or DEFAULT_ROBOT)
 
 
 def robot_names() -> list[str]:

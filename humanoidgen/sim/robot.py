@@ -20,6 +20,7 @@ import mujoco
 import numpy as np
 
 from humanoidgen.robots import Robot
+from humanoidgen.robots.assemble import mesh_file, mimic_urdf, model_dir, model_spec
 from humanoidgen.robots.mimic import Mimic, read_mimics  # noqa: F401 - re-exported
 from humanoidgen.sim.layout import ROBOT, SIDES
 from humanoidgen.sim.meshes import DEFAULT_MAX_FACES, visual_mesh
@@ -69,7 +70,7 @@ def _add_actuators(spec: mujoco.MjSpec, mimics: list[Mimic], robot: Robot) -> No
             act.set_to_position(kp=kp, kv=arm.kv_ratio * kp)
             act.ctrlrange = joint.range
             act.ctrllimited = True
-            act.forcerange = joint.actfrcrange
+            act.forcerange = joint.actfrcrange if entry.force is None else (-entry.force, entry.force)
             act.forcelimited = True
         for name in robot.hand_joints[side]:
             act = spec.add_actuator(name=name, target=name, trntype=mujoco.mjtTrn.mjTRN_JOINT)
@@ -141,8 +142,9 @@ ROBOT_VISUAL_GROUP = 1  # the upstream MJCF's visual meshes
 
 
 def _split_visual_and_collision(spec: mujoco.MjSpec, robot_dir: Path, max_faces: int) -> None:
-    """Visual geoms get decimated copies of their meshes; collision geoms keep the originals, out of sight."""
-    files = {m.name: m.file for m in spec.meshes}
+    """Visual geoms get decimated copies of their meshes, in the robot's visual group; collision geoms keep the
+    originals, out of sight."""
+    files = {m.name: mesh_file(spec, robot_dir, m) for m in spec.meshes}
     made: set[str] = set()
     for geom in spec.geoms:
         if geom.type != mujoco.mjtGeom.mjGEOM_MESH:
@@ -150,10 +152,12 @@ def _split_visual_and_collision(spec: mujoco.MjSpec, robot_dir: Path, max_faces:
         if geom.contype == 0 and geom.conaffinity == 0:
             light = f"{geom.meshname}_visual"
             if light not in made:
-                verts, faces = visual_mesh(robot_dir / "meshes" / Path(files[geom.meshname]).name, max_faces)
+                verts, faces = visual_mesh(files[geom.meshname], max_faces)
                 spec.add_mesh(name=light, uservert=verts.ravel().tolist(), userface=faces.ravel().tolist())
                 made.add(light)
             geom.meshname = light
+            if geom.group not in (0, ROBOT_VISUAL_GROUP):  # an upstream visual group of its own (the G1's 2)
+                geom.group = ROBOT_VISUAL_GROUP  # what `hide_robot` hides
         else:
             geom.group = ROBOT_COLLISION_GROUP
     for geom in spec.geoms:  # the upstream primitive collision shapes (torso box, pelvis sphere, ...)
@@ -172,27 +176,24 @@ def _drop_unused_meshes(spec: mujoco.MjSpec) -> None:
             spec.delete(mesh)
 
 
-def _model_dir(assets_root: Path, robot: Robot) -> Path:
-    return Path(assets_root) / robot.data.model.folder
-
-
 def cache_visual_meshes(assets_root: Path, max_faces: int, robot: Robot = ROBOT) -> None:
     """Decimate (and cache on disk) the robot's visual meshes at `max_faces`, so that a process that cannot
     write, the locked plan worker, later finds them there instead of decimating them in memory each time."""
-    robot_dir = _model_dir(assets_root, robot)
-    spec = mujoco.MjSpec.from_file(str(robot_dir / robot.data.model.mjcf))
-    files = {m.name: m.file for m in spec.meshes}
+    robot_dir = model_dir(assets_root, robot)
+    spec = model_spec(assets_root, robot)
+    files = {m.name: mesh_file(spec, robot_dir, m) for m in spec.meshes}
     for name in sorted({g.meshname for g in spec.geoms if g.type == mujoco.mjtGeom.mjGEOM_MESH
                         and g.contype == 0 and g.conaffinity == 0}):
-        visual_mesh(robot_dir / "meshes" / Path(files[name]).name, max_faces)
+        visual_mesh(files[name], max_faces)
 
 
 def build_robot_spec(assets_root: Path, visual_max_faces: int = DEFAULT_MAX_FACES, robot: Robot = ROBOT
                      ) -> mujoco.MjSpec:
     """Load the robot's upstream MJCF and turn it into the table-top robot described in the module docstring."""
-    robot_dir = _model_dir(assets_root, robot)
-    spec = mujoco.MjSpec.from_file(str(robot_dir / robot.data.model.mjcf))
-    mimics = read_mimics(robot_dir / robot.data.model.urdf) if robot.hand.data.followers == "urdf_mimic" else []
+    robot_dir = model_dir(assets_root, robot)
+    spec = model_spec(assets_root, robot)
+    urdf = mimic_urdf(assets_root, robot)
+    mimics = read_mimics(urdf) if urdf is not None else []
     for sensor in list(spec.sensors):  # the IMU's noise would make runs depend on the RNG
         spec.delete(sensor)
     spec.body(robot.data.stand.root_body).pos = np.array(robot.data.stand.base_pos)
