@@ -4,8 +4,8 @@ the mount the same to the float), and its scene builds, reaches the table and re
 (`--robot`).
 
 The G1's files are made available from a local copy of the wheel ($HGEN_MJLAB_WHEEL, else pip's download folder
-used by the project's machines); without one the G1 tests are skipped saying so. The archive fetch itself is
-tested on a small wheel built here."""
+used by the project's machines), else one downloaded from PyPI; without either the G1 tests fail saying so. The
+archive fetch itself is tested on a small wheel built here."""
 
 from __future__ import annotations
 
@@ -72,15 +72,28 @@ def test_an_archive_or_a_file_with_another_sha256_is_refused_and_nothing_is_writ
 
 
 @pytest.fixture(scope="module")
-def g1_root(tmp_path_factory) -> Path:
-    """An assets root with the H1-2's files (the hands' source) and the G1's, fetched from a local wheel."""
+def mjlab_wheel(tmp_path_factory) -> Path:
+    """The mjlab 1.6.0 wheel the G1's files come from: a local copy, else downloaded from PyPI as `hgen assets
+    fetch --robot g1_inspire` would (no skip: without either the G1 is untested, which is a failure here)."""
     wheel = next((Path(p) for p in WHEEL_CANDIDATES if p and Path(p).is_file()), None)
-    if wheel is None:
-        pytest.skip("no local mjlab 1.6.0 wheel for the G1's files (set HGEN_MJLAB_WHEEL; "
-                    "`pip download --no-deps mjlab==1.6.0` gets one)")
+    if wheel is not None:
+        return wheel
+    dest = tmp_path_factory.mktemp("mjlab_wheel")
+    out = subprocess.run([sys.executable, "-m", "pip", "download", "--no-deps", "-q", "mjlab==1.6.0", "-d", str(dest)],
+                         capture_output=True, text=True, timeout=300)
+    wheels = sorted(dest.glob("mjlab-1.6.0-*.whl"))
+    if out.returncode != 0 or not wheels:
+        pytest.fail("no mjlab 1.6.0 wheel for the G1's files: none local (HGEN_MJLAB_WHEEL) and `pip download "
+                    f"--no-deps mjlab==1.6.0` failed: {out.stderr.strip()[-300:]}")
+    return wheels[0]
+
+
+@pytest.fixture(scope="module")
+def g1_root(tmp_path_factory, mjlab_wheel: Path) -> Path:
+    """An assets root with the H1-2's files (the hands' source) and the G1's, fetched from the wheel."""
     root = tmp_path_factory.mktemp("g1_assets")
     (root / "h1_2").symlink_to(resolve_assets_root() / "h1_2")
-    fetch(root, base_url=str(wheel), progress=False, robot=load_robot("g1_inspire"))
+    fetch(root, base_url=str(mjlab_wheel), progress=False, robot=load_robot("g1_inspire"))
     return root
 
 
@@ -88,9 +101,9 @@ def test_the_g1_fits_its_model_files(g1_root: Path):
     assert check(REPO / "humanoidgen/robots/g1_inspire", g1_root) == []
 
 
-def test_hgen_assets_fetch_robot_g1_from_a_local_wheel(g1_root: Path, tmp_path: Path):
+def test_hgen_assets_fetch_robot_g1_from_a_local_wheel(g1_root: Path, mjlab_wheel: Path, tmp_path: Path):
     (tmp_path / "h1_2").symlink_to(g1_root / "h1_2")
-    wheel = next(Path(p) for p in WHEEL_CANDIDATES if p and Path(p).is_file())
+    wheel = mjlab_wheel
     res = CliRunner().invoke(app, ["assets", "fetch", "--robot", "g1_inspire", "--dest", str(tmp_path),
                                    "--base-url", str(wheel), "--no-progress"])
     assert res.exit_code == 0, res.output
