@@ -199,6 +199,7 @@ def collect(
     randomize_models: bool = typer.Option(False, "--randomize-models", help="Each episode draws its objects' models "
                                           "from their families' imported models (seeded: the same seed, the same "
                                           "models)."),
+    robot: str = robot_option(),
 ) -> None:
     """Collect N successful randomized demonstrations of a task.
 
@@ -207,6 +208,7 @@ def collect(
     Example: hgen collect blocks_stack_easy -n 50 --out data/stack --workers 2
     """
     os.environ.setdefault("MUJOCO_GL", "egl")
+    select_robot(robot)  # before the workers' server starts: they inherit it
     if ray_address is None:
         from humanoidgen.sandbox.forkserver import prestart
 

@@ -15,6 +15,8 @@ from pathlib import Path
 
 import typer
 
+from humanoidgen.cli.robot_option import robot_option, select_robot
+
 app = typer.Typer(
     help=(
         "Generate task scenes and demonstration scripts with an LLM (OpenAI-compatible endpoint).\n\n"
@@ -96,11 +98,13 @@ def scene(
     replay: Path = _REPLAY, retries: int = _RETRIES, timeout: float = _TIMEOUT,
     images: bool = typer.Option(False, "--images", help="Repair prompts carry the head camera's view of the "
                                 "scene the last spec builds, annotated (the model must take images)."),
+    robot: str = robot_option(),
 ) -> None:
     """Generate a task spec (objects, layout, success predicates) from a description, validated in simulation.
 
     Example: hgen generate scene "put cube 1 on cube 0 with the right hand" --out stack.yaml
     """
+    select_robot(robot)
     os.environ.setdefault("MUJOCO_GL", "egl")
     from humanoidgen.generation.scene_gen import SceneGenerationError, generate_scene
 
@@ -142,12 +146,14 @@ def prompt(
     out: Path = typer.Option(None, "--out", "-o", help="Write the prompt here instead of printing it."),
     images: Path = typer.Option(None, "--images", help="Also write the picture that --images sends with this "
                                 "prompt (PNG) here."),
+    robot: str = robot_option(),
 ) -> None:
     """Print the exact prompt an LLM gets for a task, without an endpoint.
 
     Example: hgen generate prompt open_drawer --kind script --seed 3 > prompt.md
     Example: hgen generate prompt open_drawer --seed 3 --images view.png (the picture --images sends)
     """
+    select_robot(robot)
     os.environ.setdefault("MUJOCO_GL", "egl")
     if kind not in ("script", "scene", "mcts"):
         _fail(f"unknown --kind {kind!r}: choose script, scene or mcts")
@@ -210,6 +216,7 @@ def script(
     base_url: str = _BASE_URL, model: str = _MODEL, cache_dir: Path = _CACHE, record: Path = _RECORD,
     replay: Path = _REPLAY, retries: int = _RETRIES, mcts: int = _MCTS, workers: int = _WORKERS,
     timeout: float = _TIMEOUT, images: bool = _IMAGES,
+    robot: str = robot_option(),
 ) -> None:
     """Generate a demonstration script for a task, run it in a sandbox, retry with the failure explained.
 
@@ -218,6 +225,7 @@ def script(
 
     With --mcts N: tree search over LLM continuations, e.g. --mcts 20 --workers 4 (--log: the tree log).
     """
+    select_robot(robot)
     os.environ.setdefault("MUJOCO_GL", "egl")
     from humanoidgen.generation.script_gen import generate_script
 
@@ -265,11 +273,13 @@ def eval_(
     base_url: str = _BASE_URL, model: str = _MODEL, cache_dir: Path = _CACHE, record: Path = _RECORD,
     replay: Path = _REPLAY, retries: int = _RETRIES, mcts: int = _MCTS, workers: int = _WORKERS,
     timeout: float = _TIMEOUT, images: bool = _IMAGES,
+    robot: str = robot_option(),
 ) -> None:
     """Success rate and token cost of script generation per task.
 
     Example: hgen generate eval --tasks block_stack_single,open_drawer --trials 5 --json eval.json
     """
+    select_robot(robot)
     os.environ.setdefault("MUJOCO_GL", "egl")
     from rich.console import Console
     from rich.table import Table

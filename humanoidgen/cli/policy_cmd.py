@@ -8,6 +8,8 @@ from pathlib import Path
 
 import typer
 
+from humanoidgen.cli.robot_option import robot_option, select_robot
+
 app = typer.Typer(help="Train and evaluate visuomotor policies (DP, DP3) on collected demonstrations.\n\n"
                        "Example: hgen policy train --policy dp3 --data data/close_drawer.zarr --out runs/cd_dp3",
                   no_args_is_help=True)
@@ -165,6 +167,7 @@ def eval(  # noqa: A001 - the command is called eval
     randomize: bool = typer.Option(False, "--randomize", help="Also evaluate on the same scenes randomized from "
                                    "their seeds (a room and its table height, textures, lights, camera jitter, "
                                    "distractors) and report clean and randomized side by side."),
+    robot: str = robot_option(),
 ) -> None:
     """Run the policy in its task and report success mean and std over seeds and checkpoints, with the random
     and no-op baselines' on the same scenes beside it; with --randomize, clean and randomized side by side.
@@ -177,6 +180,7 @@ def eval(  # noqa: A001 - the command is called eval
     outputs/train/cd_diffusion/checkpoints/last/pretrained_model --episodes 20
     """
     os.environ.setdefault("MUJOCO_GL", "egl")
+    select_robot(robot)
     import torch
 
     from humanoidgen.policies.eval import evaluate
@@ -260,6 +264,7 @@ def bench(
                                                                             "each row's scenes too."),
     randomize: bool = typer.Option(False, "--randomize", help="Evaluate each run on clean and on randomized "
                                    "scenes (a row for each, `scenes` clean|randomized)."),
+    robot: str = robot_option(),
 ) -> None:
     """The study: tasks x demos x policies, trained and evaluated; writes a table, a JSON and a plot.
 
@@ -268,6 +273,7 @@ def bench(
     Example (CPU, the fast recipe): hgen policy bench --tasks close_drawer --policies dp3 --demos 50
     """
     os.environ.setdefault("MUJOCO_GL", "egl")
+    select_robot(robot)
     from humanoidgen.policies.bench import PAPER_TASKS, StudyConfig, format_row, run_study, write_results
     from humanoidgen.policies.recipes import default_recipe
     from humanoidgen.policies.train import resolve_device

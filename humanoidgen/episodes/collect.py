@@ -18,6 +18,7 @@ from humanoidgen.episodes.recorder import RecorderConfig
 from humanoidgen.episodes.task_episode import EpisodeRequest, models_record, run_task_episode, start_worker
 from humanoidgen.sim.action import ACTION_JOINTS
 from humanoidgen.sim.cameras import CAMERA_NAMES
+from humanoidgen.sim.layout import ROBOT
 
 
 @dataclass
@@ -101,7 +102,7 @@ def open_collection(task: str, n: int, out: Path, seed: int = 0, resume: bool = 
     spec = load_spec(task)  # fail early on a bad task name
     recorder = recorder or RecorderConfig()
     store = EpisodeStore(out)
-    store.create({"task": spec.name, "task_source": task, "seed": seed, "control_hz": 50.0,
+    store.create({"task": spec.name, "task_source": task, "robot": ROBOT.name, "seed": seed, "control_hz": 50.0,
                   "action_names": list(ACTION_JOINTS), "state_names": list(ACTION_JOINTS),
                   "objects": [f"{o.type}[{i}]" for i, o in enumerate(spec.objects)],
                   "cameras": list(recorder.cameras), "recorder": asdict(recorder),

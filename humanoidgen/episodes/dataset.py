@@ -94,6 +94,9 @@ class EpisodeStore:
                                    "use --resume to continue it or choose another --out")
             if old.get("task") != meta.get("task"):
                 raise DatasetError(f"{self.root} holds task {old.get('task')!r}, not {meta.get('task')!r}")
+            if old.get("robot", meta.get("robot")) != meta.get("robot"):  # stores from before robots: not checked
+                raise DatasetError(f"{self.root} was collected with robot {old.get('robot')!r}, not "
+                                   f"{meta.get('robot')!r} (--robot)")
             for line in self.repair():
                 log.warning("%s", line)
             return

@@ -40,7 +40,7 @@ DATA_PATH = "data/" + CHUNK_FILE_PATTERN + ".parquet"
 VIDEO_PATH = "videos/{video_key}/" + CHUNK_FILE_PATTERN + ".mp4"
 EPISODES_PATH = "meta/episodes/" + CHUNK_FILE_PATTERN + ".parquet"
 SOURCE_META = "meta/humanoidgen.json"  # beside LeRobot's files: the task and how it was recorded
-SOURCE_KEYS = ("task", "task_source", "control_hz", "recorder", "action_names")
+SOURCE_KEYS = ("task", "task_source", "robot", "control_hz", "recorder", "action_names")
 ROBOT_TYPE = default_robot().data.robot_type
 
 # Columns every LeRobot frame carries, after the dataset's own features.
