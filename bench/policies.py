@@ -14,6 +14,11 @@ Data missing under --data-root is collected first (about 10 s per close_drawer e
     python bench/policies.py --paper --device cuda        # the paper's recipe and study, on a GPU
     python bench/policies.py --recipe fast --tasks close_drawer --policies dp3 --epochs 40 --name cpu_fast
 
+Clean-trained against randomized-trained (issue 37), each evaluated on clean and on randomized scenes (the
+randomized data is collected as `hgen collect --room random --randomize-visuals` records it):
+    python bench/policies.py --recipe fast --tasks open_box_easy --policies dp3 --epochs 40 \
+        --train-scenes clean,randomized --eval-scenes clean,randomized --name cpu_fast_randomized
+
 --recipe fast: DP3 with 256 points, AdamW peak 1e-3, 4 executed actions of 8 (about 28 s an epoch here);
 --config '{"train": {"save_every": 2}}' merges more settings into the recipe (validated first).
 """
@@ -59,7 +64,14 @@ def main() -> int:
                    help="the recipe (reduced: the first CPU one; fast: 256 points, lr 1e-3; paper: the GPU one)")
     p.add_argument("--config", default=None,
                    help="JSON merged into the recipe of every policy run, e.g. '{\"train\": {\"epochs\": 40}}'")
+    p.add_argument("--train-scenes", default="clean", help="clean, randomized or both: the demonstrations each run "
+                                                          "is trained on (randomized: DATA/<task>_randomized)")
+    p.add_argument("--eval-scenes", default="clean", help="clean, randomized or both: each run evaluated on each")
+    p.add_argument("--combine", help="comma list of earlier --name runs: their rows into one JSON and plot "
+                                     "(--name), e.g. a clean-trained and a randomized-trained run made side by side")
     args = p.parse_args()
+    if args.combine:
+        return combine(_names(args.combine), args.name)
 
     import torch
 
@@ -87,7 +99,8 @@ def main() -> int:
     for task, policy in pairs:
         cfg = StudyConfig(tasks=(task,), demos=demos, policies=(policy,), data_root=args.data_root,
                           runs_root=args.runs_root, overrides=recipe, eval_episodes=args.episodes, eval_seeds=seeds,
-                          device=args.device)
+                          device=args.device, recipe="paper" if args.paper else args.recipe,
+                          train_scenes=_names(args.train_scenes), scenes=_names(args.eval_scenes))
         rows += run_study(cfg)
     print("\n".join(format_row(r) for r in rows))
     out = ROOT / "results" / f"policies_{args.name}.json"
@@ -97,6 +110,24 @@ def main() -> int:
     write_results(rows, cfg, out, out.with_suffix(".png"), settings)
     print(f"wrote {out} and {out.with_suffix('.png')}")
     return 0
+
+
+def combine(names: tuple[str, ...], name: str) -> int:
+    """The rows of bench/results/policies_<n>.json for each n, into policies_<name>.json and .png."""
+    from humanoidgen.policies.bench import plot
+
+    parts = {n: json.loads((ROOT / "results" / f"policies_{n}.json").read_text()) for n in names}
+    rows = [r for part in parts.values() for r in part["rows"]]
+    out = ROOT / "results" / f"policies_{name}.json"
+    out.write_text(json.dumps({"settings": {"combined": list(names), **{n: part["settings"] for n, part in
+                                                                        parts.items()}}, "rows": rows}, indent=2))
+    plot(rows, out.with_suffix(".png"))
+    print(f"wrote {out} and {out.with_suffix('.png')} ({len(rows)} rows)")
+    return 0
+
+
+def _names(text: str) -> tuple[str, ...]:
+    return tuple(s.strip() for s in text.split(",") if s.strip())
 
 
 if __name__ == "__main__":

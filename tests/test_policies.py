@@ -4,6 +4,7 @@ input gets one line and a non-zero exit."""
 
 import json
 import shutil
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -196,6 +197,18 @@ def test_study_collects_in_a_child_so_training_can_follow(tmp_path):
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
     assert r.returncode == 0, r.stderr[-2000:]
     assert "episodes 1" in r.stdout
+    # Randomized training data: its own folder, each episode dressed from its seed (and stored so).
+    code = ("from pathlib import Path; from humanoidgen.policies.bench import StudyConfig, ensure_data; "
+            f"print(ensure_data('close_drawer', 1, StudyConfig(data_root=Path({str(tmp_path)!r})), progress=False, "
+            "scenes='randomized'))")
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
+    assert r.returncode == 0, r.stderr[-2000:]
+    assert r.stdout.strip().endswith("close_drawer_randomized.zarr")
+    records = [json.loads(line) for line in (tmp_path / "close_drawer_randomized" / "index.jsonl").read_text().splitlines()
+               if line.strip()]
+    kept = [rec for rec in records if rec.get("success")]
+    assert kept and all(rec["dressing"]["room"] and rec["dressing"]["visuals"] for rec in kept)
+    assert "dressing" not in json.loads((tmp_path / "close_drawer" / "index.jsonl").read_text().splitlines()[0])
 
 
 def test_a_study_asked_for_more_epochs_resumes_a_finished_run(demos_zarr, tmp_path):
@@ -253,3 +266,69 @@ def test_randomized_evaluation_reports_its_scenes_and_the_study_rows_say_which(d
             (("clean", 0.5), ("randomized", 0.1))]
     assert "randomized" in format_row(rows[1]) and "clean" in format_row(rows[0])
     assert plot(rows, tmp_path / "study.png") and (tmp_path / "study.png").stat().st_size > 0
+
+
+def test_randomized_training_data_is_drawn_as_randomized_evaluation_draws_its_scenes():
+    """The study's randomized demonstrations are dressed from each episode's seed exactly as `randomize`d
+    evaluation dresses a scene of that seed: a room (background, clutter, the table's height) and a look
+    (textures, lighting, camera jitter, distractors); clean data is not dressed."""
+    from humanoidgen.envs.config import TaskEnvConfig
+    from humanoidgen.envs.task_env import HumanoidTaskEnv
+    from humanoidgen.policies.bench import collect_dressing
+    from humanoidgen.scenes.dressing import SceneDressing, episode_dressing
+
+    env = HumanoidTaskEnv("open_box_easy", config=TaskEnvConfig(randomize=True, cameras=(), point_cloud=False))
+    heights = set()
+    for seed in (0, 7, 100_000):
+        collected = episode_dressing(**collect_dressing("randomized"), seed=seed)
+        assert SceneDressing.from_dict(collected) == env._dressing(seed)
+        drawn = SceneDressing.from_dict(collected)
+        assert drawn.room is not None and drawn.visuals is not None and drawn.visuals.distractors
+        heights.add(round(drawn.surface_height, 4))
+    assert len(heights) > 1  # the table's height is drawn too
+    assert episode_dressing(**collect_dressing("clean"), seed=3) is None
+
+
+def test_the_study_trains_on_clean_and_randomized_data_and_rows_say_which(demos_zarr, tmp_path):
+    """`train_scenes` x `scenes`: each training (DATA/<task>.zarr, DATA/<task>_randomized.zarr) evaluated on
+    each kind of scene, a row each with the fields the committed study carries."""
+    from humanoidgen.policies.bench import StudyConfig, data_name, format_row, plot, run_study
+
+    data = tmp_path / "data"
+    for scenes in ("clean", "randomized"):
+        shutil.copytree(demos_zarr, data / f"{data_name('close_drawer', scenes)}.zarr")
+    cfg = StudyConfig(tasks=("close_drawer",), demos=(2,), policies=("dp3",), data_root=data,
+                      runs_root=tmp_path / "runs", overrides={"dp3": _with(TINY_DP3, epochs=1)}, eval_episodes=1,
+                      eval_seeds=(0,), device="cpu", scenes=("clean", "randomized"),
+                      train_scenes=("clean", "randomized"), recipe="tiny", eval_max_steps=2)
+    rows = run_study(cfg, progress=False)
+    assert [(r["train_scenes"], r["scenes"]) for r in rows] == [
+        ("clean", "clean"), ("clean", "randomized"), ("randomized", "clean"), ("randomized", "randomized")]
+    for r in rows:
+        assert {"task", "policy", "demos", "recipe", "scenes", "success_mean", "success_std", "baseline_random",
+                "baseline_noop"} <= r.keys()
+        assert (r["task"], r["policy"], r["demos"], r["recipe"]) == ("close_drawer", "dp3", 2, "tiny")
+        assert r["baselines"]["random"]["rates"] and [e["scene_seed"] for e in r["episodes"]] == [100_000]
+        trained_on = ck.load_policy(Path(r["checkpoint"]))[1]["data"]
+        assert Path(trained_on).name == f"{data_name('close_drawer', r['train_scenes'])}.zarr"
+        assert f"trained {r['train_scenes']}" in format_row(r)
+    assert sorted(p.name for p in (tmp_path / "runs").iterdir()) == ["close_drawer_dp3_2",
+                                                                      "close_drawer_dp3_2_randomized"]
+    assert plot(rows, tmp_path / "bars.png") and (tmp_path / "bars.png").stat().st_size > 0
+    with pytest.raises(ValueError, match="train_scenes"):
+        StudyConfig(train_scenes=("foggy",))
+
+
+def test_policy_bench_trains_on_randomized_data_when_asked(monkeypatch, tmp_path):
+    """`hgen policy bench --train-randomized --randomize` asks the study for both trainings on both scenes."""
+    import humanoidgen.policies.bench as study
+
+    seen = []
+    monkeypatch.setattr(study, "run_study", lambda cfg: seen.append(cfg) or [])
+    monkeypatch.setattr(study, "write_results", lambda *a, **k: None)
+    args = ["policy", "bench", "--tasks", "open_box_easy", "--policies", "dp3", "--demos", "50", "--recipe", "fast",
+            "--device", "cpu", "--out", str(tmp_path / "p.json")]
+    assert CliRunner().invoke(app, args + ["--train-randomized", "--randomize"]).exit_code == 0
+    assert CliRunner().invoke(app, args).exit_code == 0
+    assert [(c.train_scenes, c.scenes) for c in seen] == [(("clean", "randomized"), ("clean", "randomized")),
+                                                          (("clean",), ("clean",))]

@@ -264,6 +264,9 @@ def bench(
                                                                             "each row's scenes too."),
     randomize: bool = typer.Option(False, "--randomize", help="Evaluate each run on clean and on randomized "
                                    "scenes (a row for each, `scenes` clean|randomized)."),
+    train_randomized: bool = typer.Option(False, "--train-randomized", help="Also train each run on randomized "
+                                          "demonstrations (collected in the scenes --randomize evaluates on; rows "
+                                          "say `train_scenes` clean|randomized)."),
     robot: str = robot_option(),
 ) -> None:
     """The study: tasks x demos x policies, trained and evaluated; writes a table, a JSON and a plot.
@@ -295,6 +298,7 @@ def bench(
                       runs_root=runs_root, overrides=by_policy, eval_episodes=episodes,
                       eval_seeds=tuple(int(s) for s in seeds.split(",")), device=device, collect_workers=workers,
                       baselines=baselines, scenes=("clean", "randomized") if randomize else ("clean",),
+                      train_scenes=("clean", "randomized") if train_randomized else ("clean",),
                       recipe=recipe or default_recipe(resolve_device(device)))
     try:
         rows = run_study(cfg)

@@ -130,9 +130,9 @@ class HumanoidTaskEnv(gym.Env):
         """The randomized look and room of this scene (None: the clean tabletop), drawn from its seed."""
         if not self.config.randomize:
             return None
-        from humanoidgen.scenes.dressing import SceneDressing, episode_dressing
+        from humanoidgen.scenes.dressing import RANDOMIZED, SceneDressing, episode_dressing
 
-        return SceneDressing.from_dict(episode_dressing("random", True, scene_seed))
+        return SceneDressing.from_dict(episode_dressing(**RANDOMIZED, seed=scene_seed))
 
     def _verdict(self) -> dict:
         from humanoidgen.tasks.judge import judge

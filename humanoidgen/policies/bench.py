@@ -3,8 +3,10 @@ episodes of the task's zarr and evaluated closed-loop; a table, a JSON and a plo
 
 Missing data is collected first (as `hgen collect TASK --cameras head` records: 10 Hz, the head camera,
 the fused point cloud; `max(demos)` episodes), then exported (`hgen dataset export --zarr`), into
-DATA/<task> and DATA/<task>.zarr. A run whose last checkpoint exists is
-not trained again, so an interrupted study continues where it stopped."""
+DATA/<task> and DATA/<task>.zarr; randomized training data (`train_scenes`, as `hgen collect --room random
+--randomize-visuals` records it: the scenes evaluation's `randomize` draws) into DATA/<task>_randomized(.zarr),
+trained into RUNS/<task>_<policy>_<n>_randomized. A run whose last checkpoint exists is not trained again, so an
+interrupted study continues where it stopped."""
 
 from __future__ import annotations
 
@@ -36,25 +38,51 @@ class StudyConfig:
     collect_workers: int = 1
     baselines: bool = True  # the random and noop baselines on each row's scenes (`baseline_eval`)
     scenes: tuple[str, ...] = ("clean",)  # and/or "randomized": each run evaluated on each, one row per
+    train_scenes: tuple[str, ...] = ("clean",)  # and/or "randomized": the data each run is trained on
     recipe: str | None = None  # the recipe's name the runs were trained with (for the rows; `overrides` hold it)
+    eval_max_steps: int | None = None  # actions per evaluation episode; None: the task's time limit (tests shorten)
+
+    def __post_init__(self) -> None:
+        for name in ("scenes", "train_scenes"):
+            bad = [s for s in getattr(self, name) if s not in SCENES]
+            if bad or not getattr(self, name):
+                raise ValueError(f"{name} must be a non-empty list of {', '.join(SCENES)}; got {getattr(self, name)}")
 
 
-def _collect_child(task: str, n: int, folder: str, workers: int, resume: bool, progress: bool) -> None:
+SCENES = ("clean", "randomized")
+
+
+def collect_dressing(scenes: str) -> dict:
+    """`collect`'s dressing arguments for training data of `scenes`: randomized data is drawn as evaluation's
+    randomized scenes are (`scenes.dressing.RANDOMIZED`), each episode from its own seed."""
+    from humanoidgen.scenes.dressing import RANDOMIZED
+
+    return dict(RANDOMIZED) if scenes == "randomized" else {"room": None, "randomize_visuals": False}
+
+
+def data_name(task: str, scenes: str) -> str:
+    """The data's folder and zarr name under DATA (and the run's suffix): <task> or <task>_randomized."""
+    return task if scenes == "clean" else f"{task}_{scenes}"
+
+
+def _collect_child(task: str, n: int, folder: str, workers: int, resume: bool, progress: bool,
+                   scenes: str = "clean") -> None:
     from humanoidgen.episodes.collect import collect
     from humanoidgen.episodes.recorder import RecorderConfig
 
     rec = RecorderConfig(every=5, cameras=("head",), point_cloud=True)
     stats = collect(task, n, Path(folder), workers=workers, resume=resume, recorder=rec,
-                    progress=(lambda k, t: print(f"\rcollect {task}: kept {k}/{n}, tried {t}", end="",
-                                                 flush=True)) if progress else None)
+                    progress=(lambda k, t: print(f"\rcollect {task} ({scenes}): kept {k}/{n}, tried {t}", end="",
+                                                 flush=True)) if progress else None, **collect_dressing(scenes))
     if progress:
         print(flush=True)
     if stats.kept < n:
         raise SystemExit(f"collected only {stats.kept} of {n} episodes of {task} in {stats.tried} attempts")
 
 
-def ensure_data(task: str, n: int, cfg: StudyConfig, progress: bool = True) -> Path:
-    """DATA/<task>.zarr with at least n episodes, collecting and exporting what is missing.
+def ensure_data(task: str, n: int, cfg: StudyConfig, progress: bool = True, scenes: str = "clean") -> Path:
+    """DATA/<task>.zarr (randomized scenes: DATA/<task>_randomized.zarr) with at least n episodes, collecting
+    and exporting what is missing.
 
     The collection runs in a child process: its renderer loads Mesa's LLVM (llvmpipe), and torch's triton,
     which diffusers imports, brings another LLVM that crashes the process (a segfault in libc) when it is loaded
@@ -63,14 +91,14 @@ def ensure_data(task: str, n: int, cfg: StudyConfig, progress: bool = True) -> P
 
     from humanoidgen.episodes.dataset import EpisodeStore, export_zarr
 
-    out = Path(cfg.data_root) / f"{task}.zarr"
+    out = Path(cfg.data_root) / f"{data_name(task, scenes)}.zarr"
     if out.exists() and zarr.open_group(str(out), mode="r")["meta/episode_ends"].shape[0] >= n:
         return out
-    folder = Path(cfg.data_root) / task
+    folder = Path(cfg.data_root) / data_name(task, scenes)
     store = EpisodeStore(folder)
     have = len(store.kept()) if store.meta_path.exists() else 0
     if have < n:
-        args = json.dumps([task, n, str(folder), cfg.collect_workers, store.meta_path.exists(), progress])
+        args = json.dumps([task, n, str(folder), cfg.collect_workers, store.meta_path.exists(), progress, scenes])
         code = f"import json; from humanoidgen.policies.bench import _collect_child; _collect_child(*json.loads({args!r}))"
         child = subprocess.run([sys.executable, "-c", code], stderr=subprocess.PIPE, text=True)
         if child.returncode != 0:
@@ -85,23 +113,24 @@ def run_study(cfg: StudyConfig, progress: bool = True) -> list[dict]:
 
     rows = []
     for task in cfg.tasks:
-        data = ensure_data(task, max(cfg.demos), cfg, progress)
-        for policy in cfg.policies:
-            for n in cfg.demos:
-                over = _with(cfg.overrides.get(policy, {}), {"train": {"episodes": n}})
-                run = Path(cfg.runs_root) / f"{task}_{policy}_{n}"
-                result = None
-                if not _finished(run, over.get("train", {}).get("epochs")):
-                    result = train(policy, data, run, over, device=cfg.device, resume=(run / ck.LATEST).exists(),
-                                   progress=progress)
-                    if result.interrupted:
-                        raise KeyboardInterrupt
-                last = ck.run_checkpoints(run)[-1]
-                for scenes in cfg.scenes:
-                    row = _evaluated_row(cfg, task, policy, n, run, last, result, scenes, progress)
-                    rows.append(row)
-                    if progress:
-                        print(format_row(row), flush=True)
+        for trained_on in cfg.train_scenes:
+            data = ensure_data(task, max(cfg.demos), cfg, progress, trained_on)
+            for policy in cfg.policies:
+                for n in cfg.demos:
+                    over = _with(cfg.overrides.get(policy, {}), {"train": {"episodes": n}})
+                    run = Path(cfg.runs_root) / data_name(f"{task}_{policy}_{n}", trained_on)
+                    result = None
+                    if not _finished(run, over.get("train", {}).get("epochs")):
+                        result = train(policy, data, run, over, device=cfg.device,
+                                       resume=(run / ck.LATEST).exists(), progress=progress)
+                        if result.interrupted:
+                            raise KeyboardInterrupt
+                    last = ck.run_checkpoints(run)[-1]
+                    for scenes in cfg.scenes:
+                        row = _evaluated_row(cfg, task, policy, n, run, last, result, scenes, progress)
+                        rows.append({**row, "train_scenes": trained_on})
+                        if progress:
+                            print(format_row(rows[-1]), flush=True)
     return rows
 
 
@@ -112,7 +141,8 @@ def _evaluated_row(cfg: StudyConfig, task: str, policy: str, n: int, run: Path, 
 
     t0 = time.perf_counter()
     report = evaluate(run, task, cfg.eval_episodes, cfg.eval_seeds, checkpoints=[last], device=cfg.device,
-                      progress=progress, baselines=cfg.baselines, randomize=scenes == "randomized")
+                      progress=progress, baselines=cfg.baselines, randomize=scenes == "randomized",
+                      max_steps=cfg.eval_max_steps)
     state = ck.read(run / ck.LATEST)
     return {"task": task, "policy": policy, "demos": n, "scenes": scenes,
             "recipe": cfg.recipe,
@@ -143,6 +173,8 @@ def format_row(r: dict) -> str:
     base = "".join(f"  {k[len('baseline_'):]} {100 * v:.0f}%" for k, v in r.items()
                    if k.startswith("baseline_") and isinstance(v, float))
     scenes = f" {r['scenes']:<10}" if "scenes" in r else ""
+    if "train_scenes" in r:
+        scenes = f" trained {r['train_scenes']:<10} evaluated{scenes}"
     return (f"{r['task']:<24} {r['policy']:<4} {r['demos']:>4} demos{scenes}  success {100 * r['success_mean']:5.1f}% "
             f"+- {100 * r['success_std']:4.1f}  train {train}  loss {r['final_loss']:.4f}"
             + (f"  baselines:{base}" if base else ""))
@@ -158,6 +190,8 @@ def write_results(rows: list[dict], cfg: StudyConfig, json_path: Path, plot_path
 
 
 def plot(rows: list[dict], path: Path) -> bool:
+    """Success per task: against the number of demonstrations, or, where the rows have one number, bars of each
+    training (clean or randomized data) evaluated clean and randomized beside the baselines on those scenes."""
     try:
         import matplotlib
 
@@ -167,32 +201,67 @@ def plot(rows: list[dict], path: Path) -> bool:
         print("matplotlib is not installed: no plot written")
         return False
     tasks = sorted({r["task"] for r in rows})
-    fig, axes = plt.subplots(1, len(tasks), figsize=(4 * len(tasks), 3.4), squeeze=False)
+    bars = len({r["demos"] for r in rows}) == 1
+    fig, axes = plt.subplots(1, len(tasks), figsize=((5.2 if bars else 4) * len(tasks), 3.6), squeeze=False)
     for ax, task in zip(axes[0], tasks):
-        for policy in sorted({r["policy"] for r in rows if r["task"] == task}):
-            for scenes, style in (("clean", "-"), ("randomized", "--")):
-                pts = sorted((r["demos"], 100 * r["success_mean"], 100 * r["success_std"]) for r in rows
-                             if r["task"] == task and r["policy"] == policy and r.get("scenes", "clean") == scenes)
-                if not pts:
-                    continue
-                xs, ys, es = zip(*pts)
-                label = policy.upper() + (" randomized" if scenes == "randomized" else "")
-                ax.errorbar(xs, ys, yerr=es, marker="o", capsize=3, ls=style, label=label)
-        for name, style in (("random", "--"), ("noop", ":")):
-            vals = [100 * r[f"baseline_{name}"] for r in rows if r["task"] == task and f"baseline_{name}" in r]
-            if vals:  # the baselines on the same scenes, the most any row saw
-                ax.axhline(max(vals), color="grey", ls=style, lw=1, label=f"{name} baseline")
+        (_bars if bars else _lines)(ax, [r for r in rows if r["task"] == task])
         ax.set_title(task)
-        ax.set_xlabel("demonstrations")
         ax.set_ylim(-5, 105)
         ax.grid(alpha=0.3)
     axes[0][0].set_ylabel("success (%)")
-    axes[0][-1].legend()
+    axes[0][-1].legend(fontsize=8)
     fig.tight_layout()
     path.parent.mkdir(parents=True, exist_ok=True)
     fig.savefig(path, dpi=110)
     plt.close(fig)
     return True
+
+
+def _lines(ax, rows: list[dict]) -> None:
+    """Success vs demonstrations, one line per policy, training data and evaluation scenes."""
+    for policy, trained in sorted({(r["policy"], r.get("train_scenes", "clean")) for r in rows}):
+        for scenes, style in (("clean", "-"), ("randomized", "--")):
+            pts = sorted((r["demos"], 100 * r["success_mean"], 100 * r["success_std"]) for r in rows
+                         if r["policy"] == policy and r.get("train_scenes", "clean") == trained
+                         and r.get("scenes", "clean") == scenes)
+            if not pts:
+                continue
+            xs, ys, es = zip(*pts)
+            label = policy.upper() + ("" if trained == "clean" else " trained randomized") + (
+                " randomized" if scenes == "randomized" else "")
+            ax.errorbar(xs, ys, yerr=es, marker="o", capsize=3, ls=style, label=label)
+    for name, style in (("random", "--"), ("noop", ":")):
+        vals = [100 * r[f"baseline_{name}"] for r in rows if f"baseline_{name}" in r]
+        if vals:  # the baselines on the same scenes, the most any row saw
+            ax.axhline(max(vals), color="grey", ls=style, lw=1, label=f"{name} baseline")
+    ax.set_xlabel("demonstrations")
+
+
+def _bars(ax, rows: list[dict]) -> None:
+    """One group per (policy, training data) and per baseline; in each a bar per evaluation scenes."""
+    groups = sorted({(r["policy"], r.get("train_scenes", "clean")) for r in rows})
+    names = [n for n in ("random", "noop") if any(f"baseline_{n}" in r for r in rows)]
+    labels = [f"{p.upper()}\ntrained {t}" for p, t in groups] + [f"{n}\nbaseline" for n in names]
+    for k, (scenes, colour) in enumerate((("clean", "C0"), ("randomized", "C1"))):
+        on = [r for r in rows if r.get("scenes", "clean") == scenes]
+        if not on:
+            continue
+        ys, es = [], []
+        for p, t in groups:
+            hit = [r for r in on if r["policy"] == p and r.get("train_scenes", "clean") == t]
+            ys.append(100 * hit[0]["success_mean"] if hit else float("nan"))
+            es.append(100 * hit[0]["success_std"] if hit else 0.0)
+        for n in names:  # the most any row saw on these scenes (each row's random range is its own data's)
+            best = max((r for r in on if f"baseline_{n}" in r), key=lambda r: r[f"baseline_{n}"], default=None)
+            ys.append(100 * best[f"baseline_{n}"] if best else float("nan"))
+            es.append(100 * best.get("baselines", {}).get(n, {}).get("success_std", 0.0) if best else 0.0)
+        xs = [i + (k - 0.5) * 0.38 for i in range(len(labels))]
+        ax.bar(xs, ys, 0.38, yerr=es, capsize=3, color=colour, label=f"evaluated {scenes}")
+        for x, y in zip(xs, ys):
+            if y == y:  # not NaN
+                ax.text(x, y + 2, f"{y:.0f}", ha="center", fontsize=7)
+    ax.set_xticks(range(len(labels)), labels, fontsize=8)
+    ax.set_xlabel(f"{rows[0]['demos']} demonstrations")
 
 
 def _finished(run: Path, epochs: int | None = None) -> bool:

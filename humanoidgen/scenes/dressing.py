@@ -135,6 +135,12 @@ def apply_visuals(spec: mujoco.MjSpec, v: VisualParams, in_room: bool = False) -
         add_part(spec, part, f"distractor_{i}")
 
 
+# A randomized scene, as evaluation (`TaskEnvConfig.randomize`) and training data (`hgen collect --room random
+# --randomize-visuals`, the policy study's randomized data) draw it from the episode's seed: a room (background,
+# clutter, the table's height) and a look (textures, lighting, camera jitter, distractors).
+RANDOMIZED = {"room": "random", "randomize_visuals": True}
+
+
 def episode_dressing(room: str | int | None, randomize_visuals: bool, seed: int | None) -> dict | None:
     """The dressing of episode `seed` as stored data: `room` is None (tabletop), a room seed or "random" (a room
     per episode, drawn from its seed); with `randomize_visuals` the look is drawn from the episode's seed."""
