@@ -35,6 +35,12 @@ def wrap_point(side: Side, width: float, across: float | None = None) -> np.ndar
     return np.array([WRAP_NEAR_EDGE_X + along / 2, PALM_SIGN[side] * WRAP_PAD_OFFSET, WRAP_HEIGHT])
 
 
+def narrow_grasp() -> str | None:
+    """The posture a whole hand closes with on a narrow part of a round body (a bottle's shoulder, from above):
+    the thumb further in than `grasp`'s; None where the hand has none (it then closes as `grasp`)."""
+    return "grasp_narrow" if "grasp_narrow" in HAND_POSTURES else None
+
+
 def hand_axes(side: Side) -> dict[str, np.ndarray]:
     return _HAND.axes(side)
 

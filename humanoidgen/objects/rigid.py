@@ -135,6 +135,11 @@ ELONGATED_RATIO = 1.5
 # The other end's pinch sits deeper than the top's: a block held by one end lies across the hand (a hand-over),
 # and 1.5 cm in, thumb and index hold it level where nearer the end it droops out of the fingers (measured).
 END_PINCH_DEPTH = 0.015
+# A bottle taken from above (the hand that takes it from the other hand, which wraps the body): the whole hand's
+# grasp closes this far below the cap's top, so that the palm (4.5 cm over the hand's grasp point) stays just
+# over the cap and the fingers close round the shoulder, whose ledge then rests on them (measured on the 0.33 l
+# bottle: 1 cm deeper the palm meets the cap; 3 cm higher only the fingertips reach the shoulder's rim).
+SHOULDER_GRIP_DEPTH = 0.042
 
 
 def _elongated(size: Vec3) -> bool:
@@ -162,7 +167,8 @@ def _bottle_geometry(p: dict) -> Geometry:
         Prim("cap", "cylinder", (rn * 1.1, 0.006), (0, 0, hb + shoulder + hn - 0.006), rgba=p["cap_rgba"]),
     ]
     return _finish(prims, {"side": (-r, 0, hb / 2), "side_left": (0, r, hb / 2), "side_right": (0, -r, hb / 2),
-                           "neck": (-rn, 0, hb + shoulder + hn / 2), "top": (0, 0, hb + shoulder + hn)})
+                           "neck": (-rn, 0, hb + shoulder + hn / 2), "top": (0, 0, hb + shoulder + hn),
+                           "shoulder": (0, 0, hb + shoulder + hn - SHOULDER_GRIP_DEPTH)})
 
 
 def _can_geometry(p: dict) -> Geometry:

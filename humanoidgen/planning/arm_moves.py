@@ -47,7 +47,6 @@ def _with_hand(arm: np.ndarray, hand: np.ndarray) -> np.ndarray:
     return np.hstack([arm, np.repeat(hand[None], len(arm), 0)])
 
 
-
 def retreat(ctx: PlanningContext, side: Side, open_fingers: bool = False) -> None:
     """Back the hand out along its last approach axis (best effort: skipped if that way is blocked),
     optionally opening the fingers on the way."""
@@ -99,6 +98,10 @@ def coordinate_arms(ctx: PlanningContext, samples: dict[Side, np.ndarray]) -> di
         samples = shared_hold.in_step(ctx.kin, samples)
         ctx.kin.sync(ctx.env.data.qpos)
 
+    # Arms that start in contact may only come apart (a giver's thumb still on the bottle the taker holds).
+    ctx.kin.forward()
+    need = min(0.003, ctx.collisions.arm_arm_distance() - 1e-4)
+
     def clear(left: np.ndarray, right: np.ndarray) -> bool:
         # Each arm's own path was checked against the scene when it was planned; here only arm vs arm.
         n = max(len(left), len(right))
@@ -106,7 +109,7 @@ def coordinate_arms(ctx: PlanningContext, samples: dict[Side, np.ndarray]) -> di
             ctx.kin.set_arm("left", left[min(k, len(left) - 1), :7])
             ctx.kin.set_arm("right", right[min(k, len(right) - 1), :7])
             ctx.kin.forward()
-            if ctx.collisions.arm_arm_distance() < 0.003:
+            if ctx.collisions.arm_arm_distance() < need:
                 return False
         return True
 
@@ -132,8 +135,6 @@ def coordinate_arms(ctx: PlanningContext, samples: dict[Side, np.ndarray]) -> di
                             "way (e.g. its *_hand_init_pose), then the other, in two calls")
     finally:
         ctx.kin.sync(ctx.env.data.qpos)
-
-
 
 
 def turns_standing_object(ctx: PlanningContext, side: Side, target: Pose) -> bool:
@@ -338,7 +339,6 @@ def in_degrees(ctx: PlanningContext, f, openness: float) -> str:
         return ""
     art = follow_articulation(ctx.env, f)
     return f" ({np.degrees(abs(art.open - art.closed)) * openness:.0f} deg)"
-
 
 
 def turned_in_the_fingers(ctx: PlanningContext, side: Side, f) -> bool:

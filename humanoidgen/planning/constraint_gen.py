@@ -26,7 +26,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from humanoidgen.objects.describe import openness as openness_now
-from humanoidgen.objects.hands import hand_axes, wrap_point
+from humanoidgen.objects.hands import hand_axes, narrow_grasp, wrap_point
 from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env, wrist_point_in_env
 from humanoidgen.objects.schema import OperationAnnotation
 from humanoidgen.planning import placing
@@ -155,6 +155,8 @@ def _posture_score(side: Side, palm_world: np.ndarray, fingers_world: np.ndarray
 OTHER_GRIP_WEIGHT = 30.0
 OTHER_GRIP_CLEAR_M = 0.10
 FROM_BELOW_PENALTY = 5.0
+# A round body no hand holds is wrapped round its body before any other grasp (a bottle's shoulder: hand-overs).
+NOT_WRAP_PENALTY = 5.0
 
 
 def _rank_operations(env, side: Side, obj_name: str, obj_id: int, operation: str,
@@ -188,12 +190,15 @@ def _rank_operations(env, side: Side, obj_name: str, obj_id: int, operation: str
                 R = _frame_from_two(first_local, ax(op.approach_axis), second_local, sign * c)
                 if R is not None:
                     best = max(best, _posture_score(side, R @ loc["palm"], R @ loc["fingers"]))
-        if other_grip:
+        if other_grip:  # a wrap is centred on the body's axis, as the other hand's grip of it: compared there
             where = get_point_in_env(env, op.point, obj_name, obj_id, openness=openness)
+            where = where if op.width is None else where + op.width / 2 * ax(op.approach_axis)
             clear = min(float(np.linalg.norm(where - g)) for g in other_grip)
             best += OTHER_GRIP_WEIGHT * min(clear, OTHER_GRIP_CLEAR_M)
         elif rigid and float(ax(op.approach_axis)[2]) > 0.5:
             best -= FROM_BELOW_PENALTY
+        if not other_grip and operation == "grasp" and op.width is None and any(o.width is not None for o in ops):
+            best -= NOT_WRAP_PENALTY
         return best
 
     return sorted(ops, key=score, reverse=True)
@@ -235,10 +240,13 @@ def grasp_or_pinch(env, side: Side, obj_name: str, obj_id: int, operation: str,
 
 def _ways(env, side: Side, obj_name: str, obj_id: int, operation: str, ops: list[OperationAnnotation],
           openness: float | None, finger_offset: float) -> list[Generated]:
-    # (a body that is not round, `across` set, is wrapped only from its annotated directions)
-    turns = WRAP_TURNS_DEG if operation == "grasp" and all(op.width is not None and op.across is None
-                                                           for op in ops) else (0,)
-    return [g for turn in turns for op in ops
+    # Round wraps (not `across`: flat) also turn about the body; a non-wrap grip ranked below a wrap comes after.
+    wraps = [op for op in ops if op.width is not None]
+    turns = WRAP_TURNS_DEG if operation == "grasp" and wraps and all(o.across is None for o in wraps) else (0,)
+    k = ops.index(wraps[0]) if wraps else len(ops)
+    order = ([(op, 0) for op in ops[:k]] + [(op, t) for t in turns for op in ops[k:] if op.width is not None]
+             + [(op, 0) for op in ops[k:] if op.width is None])
+    return [g for op, turn in order
             for g in _grip_variants(env, side, obj_name, obj_id, operation, op, openness, turn, finger_offset)]
 
 
@@ -256,6 +264,8 @@ def _grip_variants(env, side: Side, obj_name: str, obj_id: int, operation: str, 
     kind = "grasp" if operation == "grasp" else "pinch"
     hand_point = get_point_in_env(env, f"{kind}_point_base_{side}_hand")
     wrap = kind == "grasp" and op.width is not None
+    round_body = any(o.width is not None for o in env.scene.object(obj_name, obj_id).annotations.operations_of(kind))
+    closing = "wrap" if wrap else narrow_grasp() if round_body and kind == "grasp" else None  # a bottle's shoulder
     if wrap:  # a round body goes against the finger pads, past the thumb (hands.wrap_point)
         hand_point = wrist_point_in_env(env, side, wrap_point(side, op.width, op.across))
     if finger_offset:
@@ -327,7 +337,7 @@ def _grip_variants(env, side: Side, obj_name: str, obj_id: int, operation: str, 
     body = env.scene.object(obj_name, obj_id).body
     out = []
     for cons, lead in variants:
-        gen = Generated(cons, approach_axis=lead, approach_object=body, posture="wrap" if wrap else None)
+        gen = Generated(cons, approach_axis=lead, approach_object=body, posture=closing)
         # The hand is already on the part; a grasp around a bar or tab may roll about the part's parallel axis.
         ride_with_part(env, gen, obj_name, obj_id, op.point, openness, grip_axis=op.parallel_axis,
                         roll_deg=GRASP_ROLL_DEG if kind == "grasp" else PINCH_ROLL_DEG,

@@ -12,8 +12,9 @@ template fits (and picks the yaw where no handle decides it).
 
 Snapping (by point name): a side grasp point goes onto the body's outer surface at the template's relative
 height, in the template's direction; the rim and the pouring lip onto the top opening; storage just above the
-inner bottom (a ray down the axis); top, pinch and support a fixed depth below the top (a ray down the axis);
-a handle point into the handle. Any other point is the ICP-mapped template point moved to the nearest surface.
+inner bottom (a ray down the axis); top, pinch, support and a bottle's shoulder grip a fixed depth below the top
+(a ray down the axis); a handle point into the handle. Any other point is the ICP-mapped template point moved
+to the nearest surface.
 
 A point's confidence is 1 when its feature was found and the snapped point agrees with the ICP-mapped
 template point, lower as they disagree or the template fits badly, and 0.3 at most when the feature was not
@@ -39,7 +40,7 @@ HANDLED = {"cup": 1, "pot": 2}  # families whose yaw is set by their handles: ho
 SYMMETRIC = {"bottle", "can", "bowl", "plate"}
 SIDE_POINTS = {"side", "side_left", "side_right", "neck"}
 RIM_POINTS = {"rim", "lip"}
-TOP_POINTS = {"top", "pinch", "support"}
+TOP_POINTS = {"top", "pinch", "support", "shoulder"}
 BOTTOM_POINTS = {"pinch_bottom", "base"}
 HANDLE_POINTS = {"handle_left", "handle_right", "grip_left", "grip_right"}
 _STANDS_OUT, _STANDS_OUT_M = 1.18, 0.004  # a surface farther from the axis than this times the body's radius

@@ -152,6 +152,6 @@ def _close_deeper(ctx: PlanningContext, side: Side, obj: SceneObject, axis: np.n
         kin.sync(ctx.env.data.qpos)
     ctx.run_arm_samples({side: time_dense_path(path.waypoints, 1.0 / ctx.env.control_hz,
                                                     v_max=DEEPER_SPEED)})
-    ctx.move_fingers((side,), posture)
+    ctx.move_fingers((side,), ctx.hands[side].closing or posture)  # as hand_grasp closed it (a wrap, a shoulder)
     ctx.settle(0.3)
     return is_held(finger_contacts(ctx.env.model, ctx.env.data, side, obj.body))
