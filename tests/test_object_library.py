@@ -119,6 +119,41 @@ def test_fetch_verifies_every_file_and_imports_it_from_the_wheel(tmp_path, monke
     assert not (other / "object_library" / "cup" / "wheel_mug").exists()
 
 
+def test_fetch_takes_a_model_from_a_zip_inside_the_wheel(tmp_path, monkeypatch):
+    """LIBERO ships one GSO bowl as bowl.zip inside its wheel: `extract.archive` opens it and the digest covers
+    its members under the archive's path."""
+    import io
+
+    inner = io.BytesIO()
+    with zipfile.ZipFile(inner, "w") as zf:
+        zf.writestr("mug/mug.obj", mug().export(file_type="obj"))
+        zf.writestr("mug/notes.txt", "inside the archive")
+        zf.writestr("other/skip.obj", "not taken: outside the prefix")
+    wheels = tmp_path / "wheels"
+    wheels.mkdir()
+    with zipfile.ZipFile(wheels / "hgen_test_meshes-1.0-py3-none-any.whl", "w") as zf:
+        zf.writestr("hgen_test_meshes/objects.zip", inner.getvalue())
+    arch = "hgen_test_meshes/objects.zip"
+    with zipfile.ZipFile(io.BytesIO(inner.getvalue())) as zf:
+        lines = sorted(f"{arch}/{n} {hashlib.sha256(zf.read(n)).hexdigest()}" for n in ("mug/mug.obj", "mug/notes.txt"))
+    digest = hashlib.sha256("\n".join(lines).encode()).hexdigest()
+    path = _manifest(tmp_path, digest)
+    raw = yaml.safe_load(path.read_text())
+    raw["models"][0].update(file=f"{arch}/mug/mug.obj",
+                            extract=[{"package": "hgen-test-meshes", "archive": arch, "prefix": "mug/"}])
+    path.write_text(yaml.safe_dump(raw))
+    monkeypatch.setattr(fetch, "MANIFEST", path)
+    monkeypatch.setenv("HGEN_COLLISION_CACHE", str(tmp_path / "coacd"))
+    report = fetch.fetch_library(tmp_path / "assets", wheels, log=lambda s: None)
+    assert report.imported == ["wheel_mug"] and not report.failed
+    assert (tmp_path / "assets" / "object_library" / "cup" / "wheel_mug" / "model.yaml").is_file()
+    # an archive the wheel does not hold is one failed model, nothing imported
+    raw["models"][0]["extract"][0]["archive"] = "hgen_test_meshes/missing.zip"
+    path.write_text(yaml.safe_dump(raw))
+    bad = fetch.fetch_library(tmp_path / "other", wheels, log=lambda s: None)
+    assert bad.imported == [] and "missing.zip is not in" in bad.failed[0]
+
+
 @pytest.fixture(scope="module")
 def fetched() -> Path:
     lib = library_dir()

