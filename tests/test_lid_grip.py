@@ -28,9 +28,12 @@ def test_the_box_grasp_centres_under_the_tab_tip():
 
 
 def test_a_lid_lowered_in_stages_by_its_tab_stays_in_the_grasp(tmp_path):
-    """close_box_easy seed 5, the contract corpus's grasp_lower_release (0.35, 0.2, 0.08, let go, push shut):
-    before, `box 0 is at openness 0.54 (54 deg) after the move, not the 0.35 (35 deg) asked (it moved 0% of the
-    way from 0.52): the right hand's grip on it came off`."""
+    """close_box_easy seed 5, the contract corpus's grasp_lower_release up to its release (0.35, 0.2, 0.08, let
+    go): before, `box 0 is at openness 0.54 (54 deg) after the move, not the 0.35 (35 deg) asked (it moved 0% of
+    the way from 0.52): the right hand's grip on it came off`. (The plan's fingertip push after it is left out: its
+    path search is time-limited, and on a loaded machine it may find no path.)"""
     text = open(os.path.join(ROOT, "bench/contract_plans/close_box_easy/grasp_lower_release.py")).read()
+    text = text[:text.index("# step: press the lid closed")]
     result = run_plan(tmp_path, "close_box_easy", 5, text)
-    assert result.success, (result.checks, [s.error for s in result.steps if s.error])
+    assert all(s.ok for s in result.steps), [s.error for s in result.steps]
+    assert result.objects["box[0]"]["openness"] < 0.15
