@@ -78,7 +78,8 @@ def wait_for_fall(ctx: PlanningContext, f) -> str:
         # Slow is not at rest where its weight still turns it on (a lid let go just under where it holds
         # starts slowly): at rest at a stop (shut, all the way open) or where its joint's friction holds it.
         at = follow_openness(ctx.env, f)
-        held = slow and (not AT_STOP < at < 1.0 - AT_STOP or part_stays(ctx.env, f.joint, float(ctx.env.data.qpos[adr])))
+        held = slow and (not AT_STOP < at < 1.0 - AT_STOP
+                         or part_stays(ctx.env, f.joint, float(ctx.env.data.qpos[adr])))
         still = still + dt if held else 0.0
     now = follow_openness(ctx.env, f)
     where = "shut" if now <= AT_STOP else f"at openness {now:.2f}"

@@ -86,7 +86,8 @@ def let_go(ctx: PlanningContext, side: Side, part: SceneObject, follow: PartFoll
         # A part whose joint does not hold it where it is let go (a light lid low) falls whatever the way out: the
         # least drift was then the way that shoved it up to where it balances (a lid let go at 0.53 left at 0.63,
         # where a fingertip then came under it to flip it open and it fell to 0.39 in the push, open_box_hard
-        # seeds 1, 3, 4, 7, 8). It is let go the usual way and falls, as the family's description says.
+        # seeds 1, 3, 4, 7, 8 with the tab grasped under its tip). It is let go the usual way and falls, as the
+        # family's description says.
         ways[0][1]()
         return
     # Only a part going back counts: one going on the way the hand moved it (a lid let go low falls shut, as a
