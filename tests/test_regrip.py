@@ -167,10 +167,11 @@ def test_a_part_asked_near_the_end_of_the_tasks_push_is_pushed_to_that_end():
 
 # The corpus's close_box_easy/alt_grasp_lid: grasp the lid's tab and turn it shut. Seed 0: taken shut in the
 # fingers, every way of letting go dragged the lid back to 0.28 (now: let go at 0.2 and pushed shut). Seed 5: the
-# tab slipped out of the fingers at once, "the grip came off" (now: the task's push shuts it from there).
+# tab slipped out of the fingers at once, "the grip came off" (then: the task's push shut it from there); since the
+# grasp centres under the tab's tip (the box's lid_grip) it holds, and seed 5 goes as seed 0.
 
 
-@pytest.mark.parametrize("seed, why", [(0, "not shut in its fingers"), (5, "grip on it slipping")])
+@pytest.mark.parametrize("seed, why", [(0, "not shut in its fingers"), (5, "not shut in its fingers")])
 def test_a_lid_to_be_shut_is_let_go_short_of_shut_and_pushed_shut(seed, why):
     result = _corpus("close_box_easy/alt_grasp_lid.py", seed)
     events = [e for s in result.steps for e in s.events]

@@ -117,6 +117,8 @@ class BoxFamily(_DataFamily):
     def _positions(self, p: dict) -> dict[str, Vec3]:
         D, tl, tab = p["depth"], p["lid_thick"], p["tab_half"]
         return {"lid_front": (-D - 2 * tab, 0, tl / 2), "lid_top": (-D + 0.015, 0, tl),
+                "lid_grip": (-D - 2 * tab, 0, tl / 2 - p["grip_under"]),
+                "lid_pinch": (-D - 2 * tab + p["pinch_in"], 0, tl / 2),
                 "storage": (0, 0, p["wall"] + 0.005)}
 
     def _articulation(self, p: dict) -> Articulation:

@@ -255,6 +255,8 @@ class BoxParams(ArticulatedParams):
     wall: Pos
     lid_thick: Pos
     tab_half: Pos  # half length of the tab on the lid's front edge
+    grip_under: NonNeg  # a grasp of the tab centres this far under its tip (toward the lid's inner side)
+    pinch_in: Pos  # a pinch of the tab centres this far in from its tip (toward the hinge)
     hinge: JointDynamics
 
 

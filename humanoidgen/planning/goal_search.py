@@ -63,6 +63,7 @@ ARC_MARGIN = 0.1  # another posture is taken only if it reaches this much more o
 REGRIP_MIN_SHARE = 0.25
 PARTIAL_ENOUGH = 0.5  # from this share of the way on, a part that stays put need not be gripped again (recoveries/grip_again.py)
 ON_POINT = 0.025  # a fingertip this near a push point is on it: a push from there rides with the part
+TWISTED_RAD = 1.5  # an arm joint this far from its nominal posture: a pre-push goal is solved from the nominal one
 
 
 
@@ -207,7 +208,7 @@ def exact_goal(ctx: PlanningContext, side: Side, constraints: list, gen, ignored
     first_gen = gen
     tried: list[tuple[object, list, GoalResult]] = []  # (grip or None, its constraints, result)
     use_ignores(ctx, side, gen, ignored_before)
-    result = ctx.solver.solve(side, list(constraints), ctx.kin.arm_q(side), ctx.nominal[side])
+    result = ctx.solver.solve(side, list(constraints), push_seed(ctx, side, gen), ctx.nominal[side])
     tried.append((gen, list(constraints), result))
     usable = result.success and approach.approach_fits(ctx, side, result, gen)
     for alternative in (gen.alternatives if gen is not None and not usable else []):
@@ -229,6 +230,20 @@ def exact_goal(ctx: PlanningContext, side: Side, constraints: list, gen, ignored
     if not result.success:
         gen = first_gen
     return result, gen, tried
+
+def push_seed(ctx: PlanningContext, side: Side, gen) -> np.ndarray:
+    """The arm posture the goal solver starts from: the arm's own, except for the pose before a fingertip push
+    (target1 of a task's push) where a grip before left the arm twisted far from its nominal posture: the push's
+    stages are tracked from the posture found here, and one found near the twisted arm may not carry the part
+    (open_box_hard seed 1, a lid lifted by its tab to 0.5 and let go shut: the arm's third joint 2.5 rad from
+    nominal, target2 then pushed the lid from 0.00 to 0.00; the same target1 solved from the nominal posture, as
+    in a fresh episode, flipped it open)."""
+    q = ctx.kin.arm_q(side)
+    push = getattr(gen, "push", None)
+    if getattr(push, "phase", None) == "pre" and np.max(np.abs(q - ctx.nominal[side])) > TWISTED_RAD:
+        return ctx.nominal[side]
+    return q
+
 
 # -- a grip on an articulated part: the arm posture that keeps the part's arc in reach ----------------
 def prefer_arc(ctx: PlanningContext, side: Side, gen, result: GoalResult, ignored_before: set[int]) -> tuple[GoalResult, object]:

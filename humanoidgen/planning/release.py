@@ -23,10 +23,11 @@ def open_hands(ctx: PlanningContext, sides: tuple[Side, ...]) -> None:
     for s in sides:
         held = ctx.hands[s].held
         if is_part(held):
+            f = ctx.hands[s].part_moved
             falls = falls_when_let_go(ctx, s, held)
             ctx.before("release", ReleaseRequest(s, held, sides))
             if falls:
-                ctx.events.append(falls)
+                ctx.events.append(falls + wait_for_fall(ctx, f))
             continue
         ctx.move_fingers((s,), f"pre_{ctx.hands[s].grip}" if held is not None else "open")
         ctx.hands[s].held = None
@@ -51,6 +52,39 @@ def open_hands(ctx: PlanningContext, sides: tuple[Side, ...]) -> None:
             where = " and ".join(below) if below else "nothing"
             state = "is still moving" if moving else f"stayed on {where}"
             ctx.events.append(f"released {obj.type_name} {obj.obj_id} and it {state}")
+
+
+FALL_WAIT_S = 4.0  # at most this long for a part let go where it does not stay to come to rest
+FALL_STILL = 0.05  # rad/s (m/s for a slide): the part's joint this slow for FALL_STILL_S is at rest
+FALL_STILL_S = 0.2
+AT_STOP = 0.02  # openness this near 0 or 1: the part rests against its stop (a lid shut on its walls)
+
+
+def wait_for_fall(ctx: PlanningContext, f) -> str:
+    """Let a part that falls when let go come to rest before the plan goes on, and say where it did (the event
+    after "it falls by its own weight"): a lid let go low falls shut by its own weight within 1-5 s, and the plan's
+    next step (a push to flip it open, solved for where the lid is) should meet it at rest, shut, as the family's
+    description says it ends up, not on its way down."""
+    from humanoidgen.planning.part_joint import follow_openness, part_stays
+
+    m = ctx.env.model
+    jid = m.joint(f.joint).id
+    dof, adr = m.jnt_dofadr[jid], m.jnt_qposadr[jid]
+    still, waited, dt = 0.0, 0.0, 1.0 / ctx.env.control_hz
+    while waited < FALL_WAIT_S and still < FALL_STILL_S:
+        ctx.step()
+        waited += dt
+        slow = abs(float(ctx.env.data.qvel[dof])) < FALL_STILL
+        # Slow is not at rest where its weight still turns it on (a lid let go just under where it holds
+        # starts slowly): at rest at a stop (shut, all the way open) or where its joint's friction holds it.
+        at = follow_openness(ctx.env, f)
+        held = slow and (not AT_STOP < at < 1.0 - AT_STOP
+                         or part_stays(ctx.env, f.joint, float(ctx.env.data.qpos[adr])))
+        still = still + dt if held else 0.0
+    now = follow_openness(ctx.env, f)
+    where = "shut" if now <= AT_STOP else f"at openness {now:.2f}"
+    rest = "came to rest" if still >= FALL_STILL_S else "was still moving"
+    return f"; it {rest} {where} {waited:.1f} s later"
 
 
 def falls_when_let_go(ctx: PlanningContext, side: Side, part) -> str | None:

@@ -12,8 +12,9 @@ Points (on the main part unless said): drawer: the handle is what stands out of 
 top and bottom), front beside it on the panel, head on the panel at the handle's height, storage over the drawer's
 inner bottom; laptop: screen_edge the middle of the lid's front edge, screen_grip 1.5 cm in from it, screen_back
 on the lid's outer face near the edge, screen_center under the lid's middle, keyboard on the base; box:
-lid_front the lid's front edge, lid_top its outer face 1.5 cm in, storage over the base's inner bottom. A point
-whose feature is missing (a drawer without a handle) takes the panel and is flagged (confidence 0.3).
+lid_front the lid's front edge, lid_grip and lid_pinch the same (where a grasp or a pinch holds it: a real lid has
+no tab), lid_top its outer face 1.5 cm in, storage over the base's inner bottom. A point whose feature is missing
+(a drawer without a handle) takes the panel and is flagged (confidence 0.3).
 """
 
 from __future__ import annotations
@@ -235,6 +236,8 @@ def _points(family: str, links: list[_Link], main: _Link, pm: trimesh.Trimesh, l
             P("keyboard", [(bl[0] + bh[0]) / 2, (bl[1] + bh[1]) / 2, bh[2]], rule="top of the base")
         else:
             P("lid_front", edge, rule="the lid's front edge")
+            P("lid_grip", edge, rule="the lid's front edge (no tab: a grasp holds the edge itself)")
+            P("lid_pinch", edge, rule="the lid's front edge (no tab: a pinch holds the edge itself)")
             P("lid_top", [plo[0] + 0.015, ymid, phi[2]], rule="lid's outer face 1.5 cm in")
             base = trimesh.util.concatenate([l.mesh for l in links if l.parent is None and len(l.mesh.faces)])
             bl, bh = base.bounds
