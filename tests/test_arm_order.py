@@ -48,8 +48,17 @@ def test_the_arms_go_one_after_the_other_in_the_order_that_keeps_them_apart(ctx,
     assert np.allclose(out["left"][: len(samples["right"])], samples["left"][0])  # the left waits at its start
     assert np.allclose(out["right"], samples["right"])
     assert "right first" in ctx.log[-1].message
-    # Touching whatever the order: the error says what to do instead.
-    monkeypatch.setattr(ctx.collisions, "arm_arm_distance", lambda: 0.0)
+    # Going into each other whatever the order (the signed distance falls below its start as either arm moves):
+    # the error says what to do instead. Arms that start in contact may only come apart, not go deeper.
+    def deeper() -> float:
+        return -sum(abs(ctx.kin.arm_q(s)[0] - start[s][0]) for s in ("left", "right"))
+
+    monkeypatch.setattr(ctx.collisions, "arm_arm_distance", deeper)
     with pytest.raises(PlanningError) as err:
         arm_moves.coordinate_arms(ctx, samples)
     assert "one after the other" in str(err.value) and "hand_init_pose" in str(err.value)
+    # Starting in contact and coming apart (a giver's thumb still on the bottle the taker holds) is allowed.
+    ctx.kin.sync(ctx.env.data.qpos)
+    monkeypatch.setattr(ctx.collisions, "arm_arm_distance", lambda: -deeper() - 0.002)
+    out = arm_moves.coordinate_arms(ctx, samples)
+    assert len(out["left"]) == 5 and len(out["right"]) == 20  # together

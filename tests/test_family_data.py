@@ -35,7 +35,8 @@ def test_every_model_is_what_it_was_before_the_move():
     pot/2) were not part of the move. Changed on purpose since, and the snapshot's entries with them: the safes'
     knob hinge friction (0.02 -> 0.1 N m), knob base (thinner than the fin) and fin pinch point (6 mm in from the
     fin's outer face), the storage box's description (when its lid falls; issue 35), the boxes' grasp and pinch
-    points (`lid_grip` under the tab's tip, `lid_pinch` 1 cm in from it; issue 35)."""
+    points (`lid_grip` under the tab's tip, `lid_pinch` 1 cm in from it; issue 35), the bottles' grasp from above
+    (`shoulder` with its `down` axis: the taking hand's grip in a hand-over; issue 35)."""
     old = json.loads(SNAPSHOT.read_text())
     new = json.loads(json.dumps(dump_all()))
     assert len(old) == 32 and set(old) <= set(new)

@@ -326,7 +326,7 @@ def test_cli_fetch_with_base_url(fetched: Path, server: _Server, tmp_path: Path)
     assert result.exit_code == 0, result.output
     assert server.requests[before:] == ["/h1_2/scene.xml"]
     assert str(dest / "h1_2") in result.output
-    assert f"All {N_FILES} files verified" in result.output
+    assert f"all {N_FILES} verified" in result.output
 
 
 def test_cli_fetch_error_is_red_message_and_exit_1(tmp_path: Path) -> None:

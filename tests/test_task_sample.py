@@ -26,6 +26,9 @@ def test_reference_plan_succeeds(task, seed):
 def test_round_bodies_declare_their_width_and_are_wrapped_past_the_thumb():
     for family in ("bottle", "can", "cup"):
         for op in annotations(family, 0).operations_of("grasp"):
+            if op.approach_axis == "down":  # a grasp from above (a bottle's shoulder) is no wrap of the body
+                assert op.width is None, (family, op)
+                continue
             assert op.width is not None and 0.04 < op.width < 0.1, (family, op)
     assert all(op.width is None for op in annotations("cube", 0).operations_of("grasp"))
     thin, thick = wrap_point("left", 0.05), wrap_point("left", 0.08)
