@@ -15,13 +15,18 @@ What the server would say after this process has gone is lost: there was nobody 
 
 from __future__ import annotations
 
+import array
 import contextlib
+import fcntl
 import os
 import sys
+import termios
 import threading
+import time
 from collections.abc import Iterator
 
 CHUNK = 1 << 16
+DRAIN_S = 2.0  # at the block's end, how long to wait for the copies to catch up with what was already written
 
 
 @contextlib.contextmanager
@@ -35,8 +40,9 @@ def relayed_stdio() -> Iterator[None]:
         yield
         return
     pipes = [os.pipe(), os.pipe()]
-    for (read_end, _), target in zip(pipes, targets):
-        threading.Thread(target=_copy, args=(read_end, target), name="hgen-relay", daemon=True).start()
+    copies = [_Copy(read_end, target) for (read_end, _), target in zip(pipes, targets)]
+    for copy in copies:
+        threading.Thread(target=copy.run, name="hgen-relay", daemon=True).start()
     _flush()
     saved = [os.dup(1), os.dup(2)]
     try:
@@ -50,23 +56,53 @@ def relayed_stdio() -> Iterator[None]:
             os.close(was)
         for _, write_end in pipes:  # the started process holds its own copies
             os.close(write_end)
+        # What was written before the block ended reaches the targets before this process goes on (and maybe
+        # exits): the copy threads are daemons, and on a busy machine they lag (a child's last line was lost).
+        deadline = time.monotonic() + DRAIN_S
+        for copy in copies:
+            copy.wait_caught_up(deadline)
 
 
-def _copy(source: int, target: int) -> None:
-    """Copy `source` to `target` until every writer has closed it. A target that fails is dropped and the
+class _Copy:
+    """Copies `source` to `target` until every writer has closed it. A target that fails is dropped and the
     pipe still drained, so that no writer ever blocks on it."""
-    try:
-        while data := os.read(source, CHUNK):
-            while data and target >= 0:
-                try:
-                    data = data[os.write(target, data):]
-                except OSError:  # a reader that went away (a closed pipe)
-                    os.close(target)
-                    target = -1
-    finally:
-        os.close(source)
-        if target >= 0:
-            os.close(target)
+
+    def __init__(self, source: int, target: int) -> None:
+        self.source, self.target = source, target
+        self.busy = False  # between reading a chunk and having written it
+        self.done = False
+
+    def run(self) -> None:
+        try:
+            while True:
+                data = os.read(self.source, CHUNK)
+                if not data:
+                    break
+                self.busy = True
+                while data and self.target >= 0:
+                    try:
+                        data = data[os.write(self.target, data):]
+                    except OSError:  # a reader that went away (a closed pipe)
+                        os.close(self.target)
+                        self.target = -1
+                self.busy = False
+        finally:
+            self.done = True
+            os.close(self.source)
+            if self.target >= 0:
+                os.close(self.target)
+
+    def wait_caught_up(self, deadline: float) -> None:
+        """Until nothing is left in the pipe nor in hand (or the deadline)."""
+        while not self.done and time.monotonic() < deadline:
+            pending = array.array("i", [0])
+            try:
+                fcntl.ioctl(self.source, termios.FIONREAD, pending)
+            except OSError:  # closed meanwhile: all copied
+                return
+            if pending[0] == 0 and not self.busy:
+                return
+            time.sleep(0.002)
 
 
 def _flush() -> None:
