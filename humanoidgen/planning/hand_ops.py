@@ -19,35 +19,36 @@ def _root(model: mujoco.MjModel, geom: int) -> int:
     return int(model.body_rootid[model.geom_bodyid[geom]])
 
 
+def hand_part(model: mujoco.MjModel, body: int, side: Side) -> str | None:
+    """Which part of `side`'s hand the body is: a finger (thumb, index, ...), "palm", or None (not the hand)."""
+    name = model.body(body).name
+    prefix = HAND_PREFIX[side] + "_"
+    if name.startswith(prefix):
+        return name[len(prefix):].split("_")[0]
+    return "palm" if name == WRIST_BODY[side] else None
+
+
 def finger_contacts(model: mujoco.MjModel, data: mujoco.MjData, side: Side, body: str) -> set[str]:
     """Which fingers of `side` touch the object `body`: a subset of thumb, index, middle, ring, pinky, palm."""
     root = model.body(body).id
-    prefix = HAND_PREFIX[side] + "_"
-    palm = WRIST_BODY[side]
     touched: set[str] = set()
     for c in data.contact[: data.ncon]:
         for mine, other in ((c.geom1, c.geom2), (c.geom2, c.geom1)):
             if _root(model, other) != root:
                 continue
-            name = model.body(model.geom_bodyid[mine]).name
-            if name.startswith(prefix):
-                touched.add(name[len(prefix):].split("_")[0])
-            elif name == palm:
-                touched.add("palm")
+            if (part := hand_part(model, model.geom_bodyid[mine], side)) is not None:
+                touched.add(part)
     return touched
 
 
 def hand_touches(scene: Scene, model: mujoco.MjModel, data: mujoco.MjData, side: Side) -> dict[str, set[str]]:
     """What `side`'s hand touches now: {"cube 1": {"index", "thumb"}, "the table": {"palm"}, ...}."""
-    prefix = HAND_PREFIX[side] + "_"
-    palm = WRIST_BODY[side]
     names = {model.body(o.body).id: f"{o.type_name} {o.obj_id}" for o in scene.objects}
     table = model.body("table").id if "table" in [model.body(b).name for b in range(model.nbody)] else -1
     out: dict[str, set[str]] = {}
     for c in data.contact[: data.ncon]:
         for mine, other in ((c.geom1, c.geom2), (c.geom2, c.geom1)):
-            name = model.body(model.geom_bodyid[mine]).name
-            part = name[len(prefix):].split("_")[0] if name.startswith(prefix) else ("palm" if name == palm else None)
+            part = hand_part(model, model.geom_bodyid[mine], side)
             if part is None:
                 continue
             root = _root(model, other)

@@ -22,9 +22,10 @@ import numpy as np
 from humanoidgen.planning import target_actions
 from humanoidgen.planning.constraint_gen import ConstraintGenerationError, Generated
 from humanoidgen.planning.errors import PlanningError
-from humanoidgen.planning.part_joint import PartFollow, follow_articulation, follow_openness
+from humanoidgen.planning.hand_ops import hand_part
+from humanoidgen.planning.part_joint import PartFollow, follow_openness
 from humanoidgen.sim.action import ARM_SLICE
-from humanoidgen.sim.layout import HAND_PREFIX, WRIST_BODY, Side
+from humanoidgen.sim.layout import Side
 
 FORCE_PAST_STOP = 1.3  # the openness, extrapolated past the end stop, a press to a force may aim for at most
 MAX_FORCE_N = 40.0  # more than a fingertip should be asked to push (the Inspire hand's rated grip is ~10 N a finger)
@@ -57,16 +58,13 @@ def generate(env, side: Side, obj, action: str, openness: float | None, force: f
 
 def contact_force(model: mujoco.MjModel, data: mujoco.MjData, side: Side, part_body: int) -> float:
     """The summed normal force (N) of the contacts between `side`'s hand (fingers and palm) and the body."""
-    prefix = HAND_PREFIX[side] + "_"
-    palm = WRIST_BODY[side]
     f6 = np.zeros(6)
     total = 0.0
     for i in range(data.ncon):
         c = data.contact[i]
         b1, b2 = model.geom_bodyid[c.geom1], model.geom_bodyid[c.geom2]
         for mine, other in ((b1, b2), (b2, b1)):
-            name = model.body(mine).name
-            if other == part_body and (name.startswith(prefix) or name == palm):
+            if other == part_body and hand_part(model, mine, side) is not None:
                 mujoco.mj_contactForce(model, data, i, f6)
                 total += abs(f6[0])
                 break
@@ -128,8 +126,7 @@ class Watch:
             obj = ctx.env.scene.object(*f.obj)
             label = f"{obj.type_name} {obj.obj_id}"
             now = contact_force(ctx.env.model, ctx.env.data, side, self.part_bodies[side])
-            at = follow_articulation(ctx.env, f).openness_of(float(ctx.env.data.qpos[
-                ctx.env.model.jnt_qposadr[ctx.env.model.joint(f.joint).id]]))
+            at = follow_openness(ctx.env, f)
             if side in self.reached and now >= HELD_SHARE * f.force:
                 ctx.events.append(f"the {side} fingertip pressed {label} with {now:.1f} N ({f.force:g} N asked), "
                                   f"the part at openness {at:.2f}")

@@ -24,6 +24,7 @@ from humanoidgen.policies.rollout import (  # noqa: F401 (evaluation's names, re
     policy_obs,
     rollout,
     run_episodes,
+    run_in_task,
     with_action_steps,
 )
 from humanoidgen.policies.train import resolve_device
@@ -54,8 +55,6 @@ def evaluate(run: Path, task: str | None = None, episodes: int = 20, seeds: tupl
         return evaluate_lerobot(run, task, episodes, seeds, resolve_device(device), dataset, video_dir, progress,
                                 max_steps, baselines, randomize)
 
-    from humanoidgen.envs.task_env import HumanoidTaskEnv
-
     check_scenes(episodes, seeds)
     device = resolve_device(device)
     paths = [Path(p) for p in checkpoints] if checkpoints else ck.run_checkpoints(run)
@@ -79,15 +78,8 @@ def evaluate(run: Path, task: str | None = None, episodes: int = 20, seeds: tupl
             report.outcomes = ray_outcomes(ray_address, paths, tuple(seeds), episodes, device, max_steps, video_dir,
                                            bar, ray_gpus, action_steps, randomize)
     else:
-        env = HumanoidTaskEnv(trained, config=env_config, render_mode="rgb_array" if video_dir is not None else None)
-        bar = tqdm(total=len(paths) * len(seeds) * episodes, unit="episode", desc=f"eval {policy} {trained}",
-                   disable=not progress, dynamic_ncols=True)
-        try:
-            for path, model, _ in loaded:
-                report.outcomes += run_episodes(model, env, str(path), seeds, episodes, device, video_dir, bar)
-        finally:
-            bar.close()
-            env.close()
+        report.outcomes = run_in_task(trained, env_config, [(str(path), model) for path, model, _ in loaded], seeds,
+                                      episodes, device, video_dir, progress, f"eval {policy} {trained}")
     if baselines:
         from humanoidgen.policies.baseline_eval import baselines_beside, demo_range
 

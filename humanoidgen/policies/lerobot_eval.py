@@ -9,7 +9,7 @@ from pathlib import Path
 from humanoidgen.envs.config import TaskEnvConfig
 from humanoidgen.policies.lerobot_policy import LeRobotPolicy, checkpoint_folder, dataset_of, source_meta
 from humanoidgen.policies.report import EvalReport
-from humanoidgen.policies.rollout import EvalError, check_scenes, run_episodes
+from humanoidgen.policies.rollout import EvalError, check_scenes, run_in_task
 
 
 def lerobot_env_config(meta: dict, model: LeRobotPolicy, max_steps: int | None, randomize: bool) -> TaskEnvConfig:
@@ -30,10 +30,6 @@ def evaluate_lerobot(path: Path, task: str | None = None, episodes: int = 20, se
                      randomize: bool = False) -> EvalReport:
     """Evaluate the LeRobot checkpoint at `path` (a `pretrained_model` folder or one holding it) on the task of
     the export it was trained on (`dataset`, default: its train_config.json's dataset.root)."""
-    from tqdm import tqdm
-
-    from humanoidgen.envs.task_env import HumanoidTaskEnv
-
     check_scenes(episodes, seeds)
     folder = checkpoint_folder(path)
     if folder is None:
@@ -47,14 +43,8 @@ def evaluate_lerobot(path: Path, task: str | None = None, episodes: int = 20, se
     env_config = lerobot_env_config(meta, model, max_steps, randomize)
     report = EvalReport(trained, model.name, [str(folder)], list(seeds), episodes,
                         scenes="randomized" if randomize else "clean", info={"dataset": str(data)})
-    env = HumanoidTaskEnv(trained, config=env_config, render_mode="rgb_array" if video_dir is not None else None)
-    bar = tqdm(total=len(seeds) * episodes, unit="episode", desc=f"eval {model.name} {trained}",
-               disable=not progress, dynamic_ncols=True)
-    try:
-        report.outcomes = run_episodes(model, env, str(folder), seeds, episodes, device, video_dir, bar)
-    finally:
-        bar.close()
-        env.close()
+    report.outcomes = run_in_task(trained, env_config, [(str(folder), model)], seeds, episodes, device, video_dir,
+                                  progress, f"eval {model.name} {trained}")
     if baselines:
         from humanoidgen.policies.baseline_eval import baselines_beside
 

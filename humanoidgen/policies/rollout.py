@@ -133,6 +133,28 @@ def run_episodes(model, env, label: str, seeds, episodes: int, device: str, vide
     return out
 
 
+def run_in_task(task: str, env_config: TaskEnvConfig, policies: list[tuple[str, object]], seeds, episodes: int,
+                device: str, video_dir: Path | None = None, progress: bool = True, desc: str = "eval"
+                ) -> list[EpisodeOutcome]:
+    """Each (label, policy) on the task's evaluation scenes (`run_episodes`), in one environment observing what
+    `env_config` says, with one progress bar."""
+    from tqdm import tqdm
+
+    from humanoidgen.envs.task_env import HumanoidTaskEnv
+
+    env = HumanoidTaskEnv(task, config=env_config, render_mode="rgb_array" if video_dir is not None else None)
+    bar = tqdm(total=len(policies) * len(seeds) * episodes, unit="episode", desc=desc, disable=not progress,
+               dynamic_ncols=True)
+    out: list[EpisodeOutcome] = []
+    try:
+        for label, model in policies:
+            out += run_episodes(model, env, label, seeds, episodes, device, video_dir, bar)
+    finally:
+        bar.close()
+        env.close()
+    return out
+
+
 def final_detail(info: dict) -> str:
     return "; ".join(str(c.get("detail", "")) for c in info.get("checks", []))
 
