@@ -140,3 +140,9 @@ def part_stays(env, joint: str, q: float) -> bool:
     mujoco.mj_forward(m, d)
     dof = m.jnt_dofadr[jid]
     return bool(abs(d.qfrc_bias[dof]) <= m.dof_frictionloss[dof])
+
+
+def stays_now(env, follow: PartFollow) -> bool:
+    """Would the part `follow` moves stay where it is now if let go (`part_stays` at its joint's value now)?"""
+    m = env.model
+    return part_stays(env, follow.joint, float(env.data.qpos[m.jnt_qposadr[m.joint(follow.joint).id]]))

@@ -65,11 +65,10 @@ def wait_for_fall(ctx: PlanningContext, f) -> str:
     after "it falls by its own weight"): a lid let go low falls shut by its own weight within 1-5 s, and the plan's
     next step (a push to flip it open, solved for where the lid is) should meet it at rest, shut, as the family's
     description says it ends up, not on its way down."""
-    from humanoidgen.planning.part_joint import follow_openness, part_stays
+    from humanoidgen.planning.part_joint import follow_openness, stays_now
 
     m = ctx.env.model
-    jid = m.joint(f.joint).id
-    dof, adr = m.jnt_dofadr[jid], m.jnt_qposadr[jid]
+    dof = m.jnt_dofadr[m.joint(f.joint).id]
     still, waited, dt = 0.0, 0.0, 1.0 / ctx.env.control_hz
     while waited < FALL_WAIT_S and still < FALL_STILL_S:
         ctx.step()
@@ -78,8 +77,7 @@ def wait_for_fall(ctx: PlanningContext, f) -> str:
         # Slow is not at rest where its weight still turns it on (a lid let go just under where it holds
         # starts slowly): at rest at a stop (shut, all the way open) or where its joint's friction holds it.
         at = follow_openness(ctx.env, f)
-        held = slow and (not AT_STOP < at < 1.0 - AT_STOP
-                         or part_stays(ctx.env, f.joint, float(ctx.env.data.qpos[adr])))
+        held = slow and (not AT_STOP < at < 1.0 - AT_STOP or stays_now(ctx.env, f))
         still = still + dt if held else 0.0
     now = follow_openness(ctx.env, f)
     where = "shut" if now <= AT_STOP else f"at openness {now:.2f}"
@@ -91,13 +89,10 @@ def falls_when_let_go(ctx: PlanningContext, side: Side, part) -> str | None:
     """Why a part let go here will not stay (its joint's friction does not hold its weight: a light lid let go
     low falls shut), in the family's terms, or None where it stays."""
     from humanoidgen.objects import library
-    from humanoidgen.planning.part_joint import follow_openness, part_stays
+    from humanoidgen.planning.part_joint import follow_openness, stays_now
 
     f = ctx.hands[side].part_moved
-    if f is None or ctx.env.scene.object(*f.obj).body != part.body:
-        return None
-    m = ctx.env.model
-    if part_stays(ctx.env, f.joint, float(ctx.env.data.qpos[m.jnt_qposadr[m.joint(f.joint).id]])):
+    if f is None or ctx.env.scene.object(*f.obj).body != part.body or stays_now(ctx.env, f):
         return None
     try:
         holds = library.model(part.type_name, part.type_id).params.get("holds_from")

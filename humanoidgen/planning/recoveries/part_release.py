@@ -38,7 +38,7 @@ from humanoidgen.planning.hand_ops import finger_contacts
 from humanoidgen.planning.motion import MotionError, plan_arm_motion, time_dense_path
 from humanoidgen.planning.paths import time_parametrize
 from humanoidgen.planning.part_joint import (PartFollow, follow_articulation, follow_openness, hinge_line,
-                                             hinge_through, point_motion)
+                                             hinge_through, point_motion, stays_now)
 from humanoidgen.planning.snapshot import take_snapshot, trial
 from humanoidgen.objects.hands import HAND_POSTURES
 from humanoidgen.sim.layout import Side
@@ -139,12 +139,7 @@ def let_go(ctx: PlanningContext, side: Side, part: SceneObject, follow: PartFoll
 def falls_here(ctx, follow: PartFollow | None) -> bool:
     """Whether the part `follow` moves would not stay where it is now if let go (its weight beats its joint's
     friction), as `part_joint.part_stays` judges it."""
-    from humanoidgen.planning.part_joint import part_stays
-
-    if follow is None:
-        return False
-    m = ctx.env.model
-    return not part_stays(ctx.env, follow.joint, float(ctx.env.data.qpos[m.jnt_qposadr[m.joint(follow.joint).id]]))
+    return follow is not None and not stays_now(ctx.env, follow)
 
 
 def _leave(ctx, side: Side) -> None:
