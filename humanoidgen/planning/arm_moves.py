@@ -344,16 +344,12 @@ def in_degrees(ctx: PlanningContext, f, openness: float) -> str:
 def turned_in_the_fingers(ctx: PlanningContext, side: Side, f) -> bool:
     """A held part turned about a hinge through the hold (a knob by its fin) that stays where it is left: the
     fingers' give lags it behind the hand by some degrees, which a second look can correct."""
-    from humanoidgen.objects.hands import hand_points
-    from humanoidgen.objects.queries import wrist_point_in_env
-    from humanoidgen.planning.part_joint import hinge_through, part_stays
+    from humanoidgen.planning.part_joint import hinge_through_hold, part_stays
 
     hand = ctx.hands[side]
     if hand.held is None:
         return False
-    kind = "pinch" if hand.grip == "pinch" else "grasp"
-    grip = wrist_point_in_env(ctx.env, side, hand_points(side)[f"{kind}_point_base_{side}_hand"])
-    return hinge_through(ctx.env.model, ctx.env.data, f.joint, grip) and part_stays(ctx.env, f.joint, f.q_target)
+    return hinge_through_hold(ctx.env, side, hand.grip, f.joint) and part_stays(ctx.env, f.joint, f.q_target)
 
 
 def settle_turn(ctx: PlanningContext, side: Side, target: Pose, wanted: float, start: float) -> None:

@@ -117,6 +117,17 @@ def hinge_through(model: mujoco.MjModel, data: mujoco.MjData, joint: str, point:
     return float(np.linalg.norm(off - (off @ hinge) * hinge)) < within_m
 
 
+def hinge_through_hold(env, side: str, grip: str | None, joint: str) -> bool:
+    """Whether the hinge of `joint` passes near `side`'s grip point of its grip now ("pinch", else the grasp's):
+    a part turned about an axis through the fingers' hold (a knob by its fin)."""
+    from humanoidgen.objects.hands import hand_points
+    from humanoidgen.objects.queries import wrist_point_in_env
+
+    kind = "pinch" if grip == "pinch" else "grasp"
+    point = wrist_point_in_env(env, side, hand_points(side)[f"{kind}_point_base_{side}_hand"])
+    return hinge_through(env.model, env.data, joint, point)
+
+
 def moving_bodies(model: mujoco.MjModel, joint: str) -> set[int]:
     """The bodies that `joint` moves: its own and all below it (a knob on a door moves only the knob)."""
     top = int(model.jnt_bodyid[model.joint(joint).id])

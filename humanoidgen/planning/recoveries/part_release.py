@@ -28,8 +28,7 @@ from collections.abc import Callable
 import numpy as np
 
 from humanoidgen.objects.describe import openness
-from humanoidgen.objects.hands import hand_points
-from humanoidgen.objects.queries import get_point_in_env, wrist_point_in_env
+from humanoidgen.objects.queries import get_point_in_env
 from humanoidgen.planning.arm_moves import RETREAT_DISTANCE
 from humanoidgen.planning.context import PlanningContext
 from humanoidgen.planning.recovery import Recovery, ReleaseRequest
@@ -38,7 +37,7 @@ from humanoidgen.planning.hand_ops import finger_contacts
 from humanoidgen.planning.motion import MotionError, plan_arm_motion, time_dense_path
 from humanoidgen.planning.paths import time_parametrize
 from humanoidgen.planning.part_joint import (PartFollow, follow_articulation, follow_openness, hinge_line,
-                                             hinge_through, point_motion, stays_now)
+                                             hinge_through_hold, point_motion, stays_now)
 from humanoidgen.planning.snapshot import take_snapshot, trial
 from humanoidgen.objects.hands import HAND_POSTURES
 from humanoidgen.sim.layout import Side
@@ -271,11 +270,7 @@ def _back_out(ctx, side: Side, u: np.ndarray, sampled: bool = False,
 def _on_the_hinge(ctx, side: Side, follow: PartFollow | None) -> bool:
     """Whether the part's hinge passes near the hand's grip point (a knob's axis through the pinched fin; a lid's
     or a door's hinge is far from the hand on it)."""
-    if follow is None:
-        return False
-    kind = "pinch" if ctx.hands[side].grip == "pinch" else "grasp"
-    grip = wrist_point_in_env(ctx.env, side, hand_points(side)[f"{kind}_point_base_{side}_hand"])
-    return hinge_through(ctx.env.model, ctx.env.data, follow.joint, grip)
+    return follow is not None and hinge_through_hold(ctx.env, side, ctx.hands[side].grip, follow.joint)
 
 
 def _hinge_away(ctx, side: Side, part: SceneObject, follow: PartFollow | None) -> np.ndarray | None:
