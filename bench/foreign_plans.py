@@ -26,6 +26,7 @@ Examples:
     python bench/foreign_plans.py --plans 'alt_*' --seeds 0,3,5-7 --workers 1 --json-out /tmp/alt.json
     python bench/foreign_plans.py --tasks cup_pour_easy --merge    # rerun one task, keep the others' results
     python bench/foreign_plans.py --seeds 5-9 --merge              # add seeds 5-9 to a report of seeds 0-4
+    HGEN_ROBOT=g1_inspire python bench/foreign_plans.py --seeds 0-2  # on another robot (recorded in the report)
 """
 
 from __future__ import annotations
@@ -405,6 +406,8 @@ def main(argv: list[str] | None = None) -> int:
 
     from tqdm import tqdm
 
+    from humanoidgen.robots.loader import default_robot
+
     jobs = [(p, s) for p in plans for s in args.seeds]
     runs: dict[str, list[dict]] = {p.key: [] for p in plans}
     t0 = time.monotonic()
@@ -435,6 +438,7 @@ def main(argv: list[str] | None = None) -> int:
         "generated": time.strftime("%Y-%m-%d %H:%M:%S"),
         "wall_s": round(time.monotonic() - t0, 1),
         "workers": args.workers,
+        "robot": default_robot().name,  # $HGEN_ROBOT picks it, as for every command
         "headline": head,
         "plans": entries,
     }

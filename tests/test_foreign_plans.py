@@ -139,3 +139,20 @@ def test_upstream_corpus_lays_out_only_numbered_step_files(tmp_path):
     assert len(load_plan(plans[0].path).steps) == 3
     with pytest.raises(SystemExit, match="TeleHuman"):
         up.lay_out(tmp_path / "nothing", tmp_path / "corpus2")
+
+
+@pytest.mark.parametrize("robot", ["h1_2_inspire", "g1_inspire"])
+def test_report_names_the_robot_it_ran_on(tmp_path, monkeypatch, robot):
+    """A corpus report says which robot the plans ran on ($HGEN_ROBOT, as for every command), so a G1 table
+    cannot pass for an H1-2 one. The episodes are stubbed: this checks the report, not the planner."""
+    import json
+
+    monkeypatch.setenv("HGEN_ROBOT", robot)
+    monkeypatch.setattr(bench, "run_one", lambda plan, seed, timeout: {
+        "seed": seed, "success": True, "message": "", "wall_s": 0.0, "steps_ok": 1, "steps": 1})
+    out = tmp_path / "r.json"
+    assert bench.main(["--tasks", "open_drawer", "--plans", "paper", "--seeds", "0", "--workers", "1",
+                       "--json-out", str(out), "--no-plot"]) == 0
+    report = json.loads(out.read_text())
+    assert report["robot"] == robot
+    assert report["plans"][0]["successes"] == 1

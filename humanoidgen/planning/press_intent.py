@@ -33,7 +33,7 @@ import numpy as np
 from humanoidgen.objects.describe import openness
 from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env
 from humanoidgen.planning.constraint_gen import PUSH_CONE_DEG, Generated, ride_with_part
-from humanoidgen.planning.constraints import Const, Constraint
+from humanoidgen.planning.constraints import Const
 from humanoidgen.sim.layout import Side
 
 SAME_POINT_M = 1e-3  # a constraint's hand point this near the press point now is the press point
