@@ -104,12 +104,18 @@ def test_an_imported_mug_rests_on_the_table_in_a_scene(imported_mug, monkeypatch
     assert ann.bbox_min[2] + pos[2] == pytest.approx(TABLE_TOP_Z, abs=0.004)
 
 
-@pytest.mark.parametrize("suffix,args", [(".stl", ["--scale", "0.001"]), (".ply", []), (".glb", ["--up", "z"])])
+@pytest.mark.parametrize("suffix,args", [(".stl", ["--scale", "0.001"]), (".ply", []), (".glb", ["--up", "z"]),
+                                         (".msh", [])])
 def test_every_mesh_format_imports(tmp_path, collision_cache, suffix, args):
+    from humanoidgen.objects.imported.msh_file import write_msh
+
     mesh = bottle()
     if suffix == ".stl":
         mesh.apply_scale(1000.0)  # millimetres
-    mesh.export(tmp_path / f"b{suffix}")
+    if suffix == ".msh":
+        write_msh(mesh, tmp_path / "b.msh")  # MuJoCo's binary mesh: trimesh does not write it
+    else:
+        mesh.export(tmp_path / f"b{suffix}")
     r = runner.invoke(app, ["assets", "import", str(tmp_path / f"b{suffix}"), "--family", "bottle", "--out",
                             str(tmp_path / "models"), "--no-preview", *args])
     assert r.exit_code == 0, r.output
@@ -156,6 +162,8 @@ def _bad(tmp_path: Path, name: str, content) -> Path:
     ("huge.obj", None, "cup", [], "would be 40 m across"),
     ("mug.obj", None, "teapot", [], "unknown family 'teapot'"),
     ("notes.txt", "a mug", "cup", [], "unknown file type '.txt'"),
+    ("cut.msh", b"\x08\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x0c\x00\x00\x00" + b"\x00" * 40, "cube", [],
+     "not a MuJoCo .msh file"),
     ("rigid.urdf", None, "drawer", [], "has no revolute or prismatic joint"),
     ("missing.urdf", None, "drawer", [], "mesh gone.obj is missing"),
 ])
@@ -373,3 +381,21 @@ def test_the_familys_own_drawers_pass_its_usable_rules():
                 assert p[2] - TABLE_TOP_Z >= r.min_height, (m.type_id, r)
             else:
                 assert get_point_in_env(env, r.from_point, "drawer", 0)[0] - p[0] >= r.min_out, (m.type_id, r)
+
+
+@pytest.mark.parametrize("extents,turn", [((0.06, 0.06, 0.04), 11.0), ((0.06, 0.06, 0.04), 37.0),
+                                          ((0.04, 0.07, 0.03), 25.0), ((0.07, 0.04, 0.03), -60.0)])
+def test_a_box_is_squared_to_the_axes_with_its_long_side_on_y(extents, turn):
+    """A box-like model's faces come out along x and y whatever its yaw in the file, a square one too (its
+    footprint's principal axes are any two directions: Meta-World's square bin came out turned 11 deg by them),
+    and a long one has its long side on y."""
+    from humanoidgen.objects.imported.transfer import transfer
+
+    mesh = trimesh.creation.box(extents=extents)
+    mesh.apply_translation((0.0, 0.0, extents[2] / 2))
+    mesh.apply_transform(trimesh.transformations.rotation_matrix(np.radians(turn), (0, 0, 1)))
+    res = transfer(mesh, "cube", 100, "a turned box")
+    out = mesh.copy()
+    out.apply_transform(res.transform)
+    ext = out.extents
+    assert ext[0] == pytest.approx(min(extents[:2]), abs=1e-4) and ext[1] == pytest.approx(max(extents[:2]), abs=1e-4)
