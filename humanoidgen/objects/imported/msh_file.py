@@ -33,14 +33,22 @@ def read_msh(path: Path) -> trimesh.Trimesh:
     faces = np.frombuffer(data, dtype="<i4", count=3 * nf, offset=start).reshape(-1, 3).astype(np.int64)
     if faces.min() < 0 or faces.max() >= nv:
         raise ImportError_(f"{path}: a face names a vertex the file does not have")
-    return trimesh.Trimesh(vertices, faces, process=False)
+    mesh = trimesh.Trimesh(vertices, faces, process=False)
+    if nt == nv:  # one texture coordinate per vertex: kept for an image given with --texture
+        uv = np.frombuffer(data, dtype="<f4", count=2 * nt, offset=_HEADER + 12 * nv + 12 * nn).reshape(-1, 2)
+        # MuJoCo keeps them as it samples images, v from the top; trimesh's (OBJ's) v runs from the bottom
+        mesh.visual = trimesh.visual.TextureVisuals(uv=np.column_stack([uv[:, 0], 1.0 - uv[:, 1]]).astype(float))
+    return mesh
 
 
-def write_msh(mesh: trimesh.Trimesh, path: Path) -> None:
-    """The mesh as a .msh file (vertices and faces only): for tests, and to hand a mesh to MuJoCo as it is."""
+def write_msh(mesh: trimesh.Trimesh, path: Path, uv: np.ndarray | None = None) -> None:
+    """The mesh as a .msh file (vertices, faces and, given, texture coordinates in trimesh's convention): for
+    tests, and to hand a mesh to MuJoCo as it is."""
     v = np.asarray(mesh.vertices, dtype="<f4")
     f = np.asarray(mesh.faces, dtype="<i4")
-    Path(path).write_bytes(np.array([len(v), 0, 0, len(f)], dtype="<i4").tobytes() + v.tobytes() + f.tobytes())
+    t = b"" if uv is None else np.column_stack([uv[:, 0], 1.0 - uv[:, 1]]).astype("<f4").tobytes()
+    counts = np.array([len(v), 0, 0 if uv is None else len(uv), len(f)], dtype="<i4")
+    Path(path).write_bytes(counts.tobytes() + v.tobytes() + t + f.tobytes())
 
 
 @dataclass(frozen=True)
