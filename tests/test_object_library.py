@@ -37,6 +37,21 @@ def test_the_manifest_names_40_real_rigid_models_and_6_articulated_with_their_li
         assert f"`{name}`" in docs, f"docs/guides/objects.md does not attribute source {name}"
 
 
+def test_the_guide_counts_the_permissive_models_the_manifest_has():
+    """The objects guide says how many models a default fetch brings (permissive licences only), by family: the
+    counts there are the manifest's, so a model added or taken out shows up in the docs too."""
+    man = fetch.manifest()
+    free = [m for m in man.models if man.sources[m.source].permissive]
+    rigid = [m for m in free if m.family in RIGID]
+    art = [m for m in free if m.family in ARTICULATED]
+    docs = " ".join((Path(__file__).resolve().parents[1] / "docs" / "guides" / "objects.md").read_text().split())
+    assert f"of them {len(rigid)} rigid models and the {len(art)} articulated ones, {len(free)} in all" in docs
+    names = {"cube": "box-like"}
+    for fam in ("cup", "bowl", "bottle", "can", "plate", "pot", "cube"):
+        n = sum(m.family == fam for m in rigid)
+        assert f"{names.get(fam, fam)} {n}" in docs, (fam, n)
+
+
 def _fake_wheel(folder: Path, mesh: trimesh.Trimesh) -> Path:
     folder.mkdir(parents=True, exist_ok=True)
     wheel = folder / "hgen_test_meshes-1.0-py3-none-any.whl"
