@@ -8,7 +8,8 @@ Two sets, neither seen while the transfer was tuned on the families' own models:
    dimensions. A point succeeds within 1 cm, an axis within 10 deg (the yaw error modulo the family's symmetry).
 2. The fetched library of real meshes (`hgen assets fetch --objects`), where no ground truth exists: a point
    succeeds when an independent check of the feature it names holds: a surface point (side, neck, rim, lip,
-   handle, top, support, pinch) lies within 1 cm of the mesh's surface, and storage lies inside the opening
+   handle, top, support, pinch) lies within 1 cm of the mesh's surface, a bottle's shoulder (on the axis) inside its
+   cross-section 2-6 cm under the top, and storage lies inside the opening
    (open above it, below the rim, at most 2 cm over the inner bottom).
 
 Usage: HGEN_ASSETS=... python bench/annotation_transfer.py [--variants 20] [--out bench/results]
@@ -117,6 +118,12 @@ def check_point(name: str, p: np.ndarray, mesh: trimesh.Trimesh, tree: cKDTree) 
         down = ray_hits(mesh.triangles, p, np.array([0.0, 0.0, -1.0]))
         top = mesh.bounds[1][2]
         return bool(len(up) == 0 and len(down) > 0 and down[0] <= 0.02 and p[2] < top)
+    if name == "shoulder":
+        # on the axis below the cap's top (the bottle family's own description), not on the surface: inside the
+        # bottle's cross-section at its height, and 2-6 cm under the top (the family's 4.2 cm)
+        ring = tree.data[np.abs(tree.data[:, 2] - p[2]) <= 0.004][:, :2]
+        inside = len(ring) >= 3 and bool(np.all(p[:2] >= ring.min(0)) and np.all(p[:2] <= ring.max(0)))
+        return bool(inside and 0.02 <= mesh.bounds[1][2] - p[2] <= 0.06)
     d, _ = tree.query(p)
     return bool(d <= 0.01)
 

@@ -104,12 +104,18 @@ def test_an_imported_mug_rests_on_the_table_in_a_scene(imported_mug, monkeypatch
     assert ann.bbox_min[2] + pos[2] == pytest.approx(TABLE_TOP_Z, abs=0.004)
 
 
-@pytest.mark.parametrize("suffix,args", [(".stl", ["--scale", "0.001"]), (".ply", []), (".glb", ["--up", "z"])])
+@pytest.mark.parametrize("suffix,args", [(".stl", ["--scale", "0.001"]), (".ply", []), (".glb", ["--up", "z"]),
+                                         (".msh", [])])
 def test_every_mesh_format_imports(tmp_path, collision_cache, suffix, args):
+    from humanoidgen.objects.imported.msh_file import write_msh
+
     mesh = bottle()
     if suffix == ".stl":
         mesh.apply_scale(1000.0)  # millimetres
-    mesh.export(tmp_path / f"b{suffix}")
+    if suffix == ".msh":
+        write_msh(mesh, tmp_path / "b.msh")  # MuJoCo's binary mesh: trimesh does not write it
+    else:
+        mesh.export(tmp_path / f"b{suffix}")
     r = runner.invoke(app, ["assets", "import", str(tmp_path / f"b{suffix}"), "--family", "bottle", "--out",
                             str(tmp_path / "models"), "--no-preview", *args])
     assert r.exit_code == 0, r.output
@@ -156,6 +162,8 @@ def _bad(tmp_path: Path, name: str, content) -> Path:
     ("huge.obj", None, "cup", [], "would be 40 m across"),
     ("mug.obj", None, "teapot", [], "unknown family 'teapot'"),
     ("notes.txt", "a mug", "cup", [], "unknown file type '.txt'"),
+    ("cut.msh", b"\x08\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x00\x0c\x00\x00\x00" + b"\x00" * 40, "cube", [],
+     "not a MuJoCo .msh file"),
     ("rigid.urdf", None, "drawer", [], "has no revolute or prismatic joint"),
     ("missing.urdf", None, "drawer", [], "mesh gone.obj is missing"),
 ])
@@ -373,3 +381,69 @@ def test_the_familys_own_drawers_pass_its_usable_rules():
                 assert p[2] - TABLE_TOP_Z >= r.min_height, (m.type_id, r)
             else:
                 assert get_point_in_env(env, r.from_point, "drawer", 0)[0] - p[0] >= r.min_out, (m.type_id, r)
+
+
+@pytest.mark.parametrize("extents,turn", [((0.06, 0.06, 0.04), 11.0), ((0.06, 0.06, 0.04), 37.0),
+                                          ((0.04, 0.07, 0.03), 25.0), ((0.07, 0.04, 0.03), -60.0)])
+def test_a_box_is_squared_to_the_axes_with_its_long_side_on_y(extents, turn):
+    """A box-like model's faces come out along x and y whatever its yaw in the file, a square one too (its
+    footprint's principal axes are any two directions: Meta-World's square bin came out turned 11 deg by them),
+    and a long one has its long side on y."""
+    from humanoidgen.objects.imported.transfer import transfer
+
+    mesh = trimesh.creation.box(extents=extents)
+    mesh.apply_translation((0.0, 0.0, extents[2] / 2))
+    mesh.apply_transform(trimesh.transformations.rotation_matrix(np.radians(turn), (0, 0, 1)))
+    res = transfer(mesh, "cube", 100, "a turned box")
+    out = mesh.copy()
+    out.apply_transform(res.transform)
+    ext = out.extents
+    assert ext[0] == pytest.approx(min(extents[:2]), abs=1e-4) and ext[1] == pytest.approx(max(extents[:2]), abs=1e-4)
+
+
+def test_a_msh_with_texture_coordinates_takes_the_image_given_with_texture(tmp_path, collision_cache):
+    """MuJoCo's .msh keeps texture coordinates but names no image (its MJCF does): --texture gives it; a mesh
+    without coordinates refuses one in one line."""
+    from PIL import Image
+
+    from humanoidgen.objects.imported.msh_file import read_msh, write_msh
+
+    box = trimesh.creation.box(extents=(0.05, 0.06, 0.04))
+    box.apply_translation((0, 0, 0.02))
+    uv = (box.vertices[:, :2] - box.vertices[:, :2].min(0)) / np.ptp(box.vertices[:, :2], axis=0)
+    write_msh(box, tmp_path / "box.msh", uv=uv)
+    assert np.allclose(read_msh(tmp_path / "box.msh").visual.uv, uv, atol=1e-6)  # trimesh's convention back
+    Image.new("RGB", (8, 8), (200, 30, 30)).save(tmp_path / "label.png")
+    r = runner.invoke(app, ["assets", "import", str(tmp_path / "box.msh"), "--family", "cube", "--out",
+                            str(tmp_path / "models"), "--no-preview", "--texture", str(tmp_path / "label.png")])
+    assert r.exit_code == 0, r.output
+    folder = tmp_path / "models" / "cube" / "box"
+    info = yaml.safe_load((folder / "model.yaml").read_text())
+    assert info["links"][0]["textured"] and (folder / "texture.png").is_file()
+    write_msh(box, tmp_path / "plain.msh")
+    r = runner.invoke(app, ["assets", "import", str(tmp_path / "plain.msh"), "--family", "cube", "--out",
+                            str(tmp_path / "models"), "--no-preview", "--texture", str(tmp_path / "label.png")])
+    assert r.exit_code == 1 and "--texture needs a rigid mesh with a texture coordinate per vertex" in r.output
+    assert not (tmp_path / "models" / "cube" / "plain").exists()
+
+
+def test_coacd_past_its_time_limit_is_killed_and_hulls_of_clusters_stand_in(tmp_path, monkeypatch):
+    """A decomposition that does not finish in COACD_SECONDS (pybullet's lego brick took more than 300 s) is
+    killed; the parts are hulls of the surface's clusters, which cover the mesh."""
+    import time
+
+    from humanoidgen.objects.imported import collision
+
+    def slow(*args, **kwargs):
+        time.sleep(30)
+
+    monkeypatch.setattr(collision, "_coacd", slow)
+    monkeypatch.setattr(collision, "COACD_SECONDS", 1.0)
+    cup = mug()
+    t0 = time.perf_counter()
+    parts = collision.convex_parts(cup, cache=tmp_path)
+    assert time.perf_counter() - t0 < 10
+    assert 1 <= len(parts) <= 8 and all(p.is_convex for p in parts)
+    lo = np.min([p.bounds[0] for p in parts], axis=0)
+    hi = np.max([p.bounds[1] for p in parts], axis=0)
+    assert np.allclose(lo, cup.bounds[0], atol=0.005) and np.allclose(hi, cup.bounds[1], atol=0.005)

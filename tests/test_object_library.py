@@ -37,6 +37,21 @@ def test_the_manifest_names_40_real_rigid_models_and_6_articulated_with_their_li
         assert f"`{name}`" in docs, f"docs/guides/objects.md does not attribute source {name}"
 
 
+def test_the_guide_counts_the_permissive_models_the_manifest_has():
+    """The objects guide says how many models a default fetch brings (permissive licences only), by family: the
+    counts there are the manifest's, so a model added or taken out shows up in the docs too."""
+    man = fetch.manifest()
+    free = [m for m in man.models if man.sources[m.source].permissive]
+    rigid = [m for m in free if m.family in RIGID]
+    art = [m for m in free if m.family in ARTICULATED]
+    docs = " ".join((Path(__file__).resolve().parents[1] / "docs" / "guides" / "objects.md").read_text().split())
+    assert f"of them {len(rigid)} rigid models and the {len(art)} articulated ones, {len(free)} in all" in docs
+    names = {"cube": "box-like"}
+    for fam in ("cup", "bowl", "bottle", "can", "plate", "pot", "cube"):
+        n = sum(m.family == fam for m in rigid)
+        assert f"{names.get(fam, fam)} {n}" in docs, (fam, n)
+
+
 def _fake_wheel(folder: Path, mesh: trimesh.Trimesh) -> Path:
     folder.mkdir(parents=True, exist_ok=True)
     wheel = folder / "hgen_test_meshes-1.0-py3-none-any.whl"
@@ -163,11 +178,17 @@ def fetched() -> Path:
     return lib
 
 
+def _fetched_models(lib: Path) -> list[fetch.LibraryModel]:
+    """The manifest's models a fetched library holds: every permissively licensed one (the default fetch), and
+    the others (HOPE's, non-commercial) where `--include-noncommercial` brought them."""
+    man = fetch.manifest()
+    return [m for m in man.models if man.sources[m.source].permissive or (lib / m.family / m.name).is_dir()]
+
+
 def test_the_fetched_library_has_every_manifest_model(fetched):
     from humanoidgen.objects import library
 
-    man = fetch.manifest()
-    for m in man.models:
+    for m in _fetched_models(fetched):
         model = library.model_named(m.family, m.name)
         assert model.type_id == m.type_id
         ann = library.annotations(m.family, m.type_id)
@@ -183,7 +204,7 @@ def test_library_models_rest_on_the_table(fetched, family):
     from humanoidgen.sim.env import HumanoidEnv
     from humanoidgen.sim.scene import SceneBuilder
 
-    models = [m for m in fetch.manifest().models if m.family == family]
+    models = [m for m in _fetched_models(fetched) if m.family == family]
     for k in range(0, len(models), 4):
         chunk = models[k:k + 4]
         b = SceneBuilder()
@@ -207,7 +228,7 @@ def test_library_drawers_and_laptops_open(fetched):
     from humanoidgen.sim.env import HumanoidEnv
     from humanoidgen.sim.scene import SceneBuilder
 
-    for m in [m for m in fetch.manifest().models if m.family in ARTICULATED]:
+    for m in [m for m in _fetched_models(fetched) if m.family in ARTICULATED]:
         b = SceneBuilder()
         obj = library.add_object(b, m.family, m.type_id, pos=(-0.05, 0.30))
         env = HumanoidEnv(b.build())
@@ -229,7 +250,7 @@ def test_the_manifests_exclusions_are_what_the_families_rules_say(fetched):
     from humanoidgen.objects.imported.usable import unusable_reason
     from humanoidgen.objects.stand_ins import drawable_models
 
-    for m in fetch.manifest().models:
+    for m in _fetched_models(fetched):
         model = next(i for i in library.family(m.family).imported() if i.info.name == m.name)
         reason = unusable_reason(model)
         assert (reason is None) == (m.excluded is None), (m.name, reason, m.excluded)

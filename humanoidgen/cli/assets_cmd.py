@@ -193,7 +193,8 @@ def show(
 
 @app.command("import")
 def import_model(
-    path: Path = typer.Argument(..., help="A mesh (OBJ, STL, PLY, GLB/glTF) or an articulated model (URDF, MJCF)."),
+    path: Path = typer.Argument(..., help="A mesh (OBJ, STL, PLY, GLB/glTF, MuJoCo .msh) or an articulated model "
+                                          "(URDF, MJCF)."),
     family: str = typer.Option(..., "--family", help="The family it is a model of (see `hgen assets list`)."),
     name: str | None = typer.Option(None, "--name", help="The model's name (default: the file's name)."),
     scale: float | None = typer.Option(None, "--scale", help="Multiply the file's coordinates (0.001: mm)."),
@@ -208,6 +209,8 @@ def import_model(
     allow_open: bool = typer.Option(False, "--allow-open", help="Accept a mesh that is not watertight."),
     force: bool = typer.Option(False, "--force", help="Replace a model of that name."),
     preview: bool = typer.Option(True, "--preview/--no-preview", help="Write preview.png beside the model."),
+    texture: Path | None = typer.Option(None, "--texture", help="An image for a mesh whose file has texture "
+                                        "coordinates but names no image (a MuJoCo .msh: its MJCF names it)."),
 ) -> None:
     """Import a model file: a model folder with collision parts and annotations transferred from the family.
 
@@ -230,7 +233,7 @@ def import_model(
         _fail("--scale and --size must be positive")
     req = ImportRequest(path=path, family=family, name=name, units=Units(scale, size), up=up, mass=mass,
                         density=density, out=out, allow_open=allow_open, force=force, preview=preview,
-                        fit_family=fit_family)
+                        fit_family=fit_family, texture=texture)
     try:
         report = run_import(req)
     except (ImportError_, ModelFolderError, rf.AssetsError) as exc:

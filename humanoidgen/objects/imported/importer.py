@@ -45,6 +45,9 @@ class ImportRequest:
     licence: str | None = None
     sha256: str | None = None  # the library's digest of the files (default: the file's own sha256)
     fit_family: bool = False  # scale the model into its family's size range (sizing.py)
+    # an image for a mesh whose file has texture coordinates but names no image (MuJoCo's .msh names none: the
+    # MJCF that uses it does)
+    texture: Path | None = None
 
 
 @dataclass
@@ -72,6 +75,8 @@ def import_model(req: ImportRequest) -> ImportReport:
     if target.exists() and not req.force:
         raise ImportError_(f"{target} already exists: pass --force to replace it, or --name another")
     src = fmt.load(path)
+    if req.texture is not None:
+        src.texture = _given_texture(src, Path(req.texture), path)
     if req.fit_family:
         req = replace(req, units=replace(req.units, fit=family_size_range(req.family)))
     articulated = fams[req.family].articulated
@@ -105,6 +110,21 @@ def import_model(req: ImportRequest) -> ImportReport:
                 d.rmdir()
         raise
     return ImportReport(target, mf.read_model(target), tr, warnings)
+
+
+def _given_texture(src: SourceModel, image: Path, path: Path):
+    """The image given for a rigid mesh with texture coordinates, opened (PIL)."""
+    from PIL import Image
+
+    mesh = src.links[0].mesh
+    uv = getattr(mesh.visual, "uv", None)
+    if src.articulated or uv is None or len(uv) != len(mesh.vertices):
+        raise ImportError_(f"{path}: --texture needs a rigid mesh with a texture coordinate per vertex; "
+                           "this file has none")
+    try:
+        return Image.open(image)
+    except (OSError, ValueError) as exc:
+        raise ImportError_(f"{image}: not a readable image ({type(exc).__name__})") from None
 
 
 def _preview(folder: Path, warnings: list[str]) -> None:

@@ -5,8 +5,8 @@ surface, with a confidence per point.
 Alignment: the mesh is upright already (the importer turned its up axis to +z). Its vertical axis is the centre
 of its base; its yaw puts the family's handles where the template has them (a cup's handle on +y, a pot's two
 on +-y), found as the part of the surface that stands out of the body's radius at its height; rotationally
-symmetric families (bottle, can, bowl, plate) keep their yaw; a box turns its long side onto y (a pinch's
-fingers close along x, across the narrow side). ICP
+symmetric families (bottle, can, bowl, plate) keep their yaw; a box turns the smallest rectangle around its
+footprint square to the axes, its long side onto y (a pinch's fingers close along x, across the narrow side). ICP
 of the template's surface, scaled to the mesh's box, over the family's symmetric yaws, then says how well the
 template fits (and picks the yaw where no handle decides it).
 
@@ -28,7 +28,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import trimesh
-from scipy.spatial import cKDTree
+from scipy.spatial import ConvexHull, cKDTree
 
 from humanoidgen.objects.imported.template import ray_hits, template_mesh
 from humanoidgen.objects.schema import KeyPoint, ObjectAnnotations
@@ -132,11 +132,24 @@ def _handle_box(samples: np.ndarray, axis: np.ndarray, side: float) -> tuple[np.
     return np.percentile(pts, 2, axis=0), np.percentile(pts, 98, axis=0)
 
 
-def _principal_yaw(samples: np.ndarray) -> float:
-    xy = samples[:, :2] - samples[:, :2].mean(0)
-    w, v = np.linalg.eigh(xy.T @ xy)
-    major = v[:, np.argmax(w)]
-    return math.pi / 2 - math.atan2(major[1], major[0])  # the long side along y: fingers close across x
+def _box_yaw(samples: np.ndarray) -> float:
+    """The yaw that squares the smallest rectangle around the footprint to the axes, its long side onto y (a
+    pinch's fingers close across x). Not the principal axes: a square footprint has none of its own (its
+    spread is the same every way), and Meta-World's square bin came out turned 11 deg by them."""
+    xy = samples[:, :2]
+    hull = xy[ConvexHull(xy).vertices]
+    edges = np.roll(hull, -1, axis=0) - hull
+    angles = np.arctan2(edges[:, 1], edges[:, 0])[np.linalg.norm(edges, axis=1) > 1e-9]
+    best = None
+    for th in angles:  # the smallest enclosing rectangle has a side along an edge of the hull
+        c, s = math.cos(th), math.sin(th)
+        p = hull @ np.array([[c, -s], [s, c]])  # the hull in the frame turned by th
+        ext = p.max(0) - p.min(0)
+        if best is None or ext[0] * ext[1] < best[0] - 1e-12:
+            best = (ext[0] * ext[1], th, ext)
+    _, th, ext = best
+    longest = th if ext[0] >= ext[1] else th + math.pi / 2
+    return float(math.pi / 2 - longest)
 
 
 def _box(points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -212,7 +225,7 @@ def transfer(upright: trimesh.Trimesh, family: str, type_id: int, description: s
     elif family in SYMMETRIC:
         yaws = [0.0]
     else:
-        yaws = [_principal_yaw(samples)]
+        yaws = [_box_yaw(samples)]
     tsamples = np.asarray(trimesh.sample.sample_surface(tmesh, 1500, seed=1)[0])
     best = None
     for yaw in yaws:
