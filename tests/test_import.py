@@ -447,3 +447,31 @@ def test_coacd_past_its_time_limit_is_killed_and_hulls_of_clusters_stand_in(tmp_
     lo = np.min([p.bounds[0] for p in parts], axis=0)
     hi = np.max([p.bounds[1] for p in parts], axis=0)
     assert np.allclose(lo, cup.bounds[0], atol=0.005) and np.allclose(hi, cup.bounds[1], atol=0.005)
+
+
+def test_a_library_model_written_under_other_import_rules_is_imported_again(imported_mug, tmp_path):
+    """The library fetch keeps a model already there only if the same import rules wrote it: a model imported
+    before a rule changed (e.g. box-like models squared to the axes) is imported again, not kept as it was."""
+    import shutil
+
+    from humanoidgen.objects.imported import fetch
+    from humanoidgen.objects.imported.model_file import IMPORT_RULES
+
+    root = tmp_path / "lib"
+    shutil.copytree(imported_mug / "cup" / "my_mug", root / "cup" / "my_mug")
+    path = root / "cup" / "my_mug" / "model.yaml"
+    info = yaml.safe_load(path.read_text())
+    assert info["import_rules"] == IMPORT_RULES
+    m = fetch.LibraryModel(name="my_mug", family="cup", type_id=200, package="pkg", file="mug.obj",
+                           sha256=info["source"]["sha256"] if len(info["source"]["sha256"]) == 64 else "0" * 64,
+                           scale=info["scale"] / (info["fitted"] or 1.0), up=info["up"], source="test",
+                           fit=info["fitted"] is not None)
+    info["type_id"] = 200
+    path.write_text(yaml.safe_dump(info, sort_keys=False))
+    assert fetch._present(root, m)
+    info["import_rules"] = IMPORT_RULES - 1  # the same files, imported under the rules before
+    path.write_text(yaml.safe_dump(info, sort_keys=False))
+    assert not fetch._present(root, m)
+    del info["import_rules"]  # written before the rules were numbered
+    path.write_text(yaml.safe_dump(info, sort_keys=False))
+    assert not fetch._present(root, m)

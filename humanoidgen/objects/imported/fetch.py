@@ -21,7 +21,7 @@ from pydantic import Field
 
 from humanoidgen.objects.imported.formats import ImportError_
 from humanoidgen.objects.imported.geometry import UpAxis, Units
-from humanoidgen.objects.imported.model_file import LIBRARY_DIR, MODEL_FILE, ImportedModelFile
+from humanoidgen.objects.imported.model_file import IMPORT_RULES, LIBRARY_DIR, MODEL_FILE, ImportedModelFile
 from humanoidgen.objects.schema import _Strict
 
 MANIFEST = Path(__file__).with_name("library.yaml")
@@ -155,7 +155,7 @@ def _present(out: Path, m: LibraryModel) -> bool:
     except Exception:
         return False
     base = info.scale / (info.fitted or 1.0)  # the manifest's scale, before the family's size range
-    return (info.source.sha256 == m.sha256 and info.type_id == m.type_id and info.up == m.up
+    return (info.import_rules == IMPORT_RULES and info.source.sha256 == m.sha256 and info.type_id == m.type_id and info.up == m.up
             and abs(base - m.scale) <= 1e-6 * m.scale and (info.fitted is not None) == m.fit)
 
 

@@ -208,6 +208,7 @@ def _import_rigid(src: SourceModel, req: ImportRequest, name: str, type_id: int,
         arrays[f"base_c{k}_v"], arrays[f"base_c{k}_f"] = (np.asarray(p.vertices, np.float32),
                                                           np.asarray(p.faces, np.int32))
     info = mf.ImportedModelFile(
+        import_rules=mf.IMPORT_RULES,
         family=req.family, name=name, type_id=type_id, description=description,
         source=mf.SourceInfo(file=path.name, sha256=req.sha256 or _sha256(path),
                              format=path.suffix.lower().lstrip("."),

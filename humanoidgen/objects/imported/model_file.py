@@ -57,8 +57,15 @@ class LinkFile(_Strict):
     textured: bool = False
 
 
+# The import rules a model was written under. Bump it when a change to the importer (sizing, squaring a box to the
+# axes, transfer) changes what an import writes from the same file: `hgen assets fetch --objects` imports again any
+# library model written under other rules (0: written before the rules were numbered) instead of keeping it.
+IMPORT_RULES = 2
+
+
 class ImportedModelFile(_Strict):
     format_version: Literal[1] = 1
+    import_rules: int = 0
     family: str
     name: str = Field(pattern=r"^[A-Za-z0-9_][A-Za-z0-9_.-]*$")
     type_id: int = Field(ge=FIRST_IMPORTED_TYPE_ID)

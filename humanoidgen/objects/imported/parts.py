@@ -160,6 +160,7 @@ def import_articulated(src: SourceModel, req, name: str, type_id: int, path):
                        results, main, links, opened - closed, lo - ctr, hi - ctr)
     arrays, link_files = _meshes(links, main, main_range, family, req.mass)
     info = mf.ImportedModelFile(
+        import_rules=mf.IMPORT_RULES,
         family=family, name=name, type_id=type_id, description=ann.description,
         source=mf.SourceInfo(file=path.name, sha256=req.sha256 or _sha(path),
                              format=path.suffix.lower().lstrip("."),
