@@ -40,17 +40,28 @@ def test_the_h1_2_gives_every_position_back_bit_for_bit():
 
 
 @pytest.mark.parametrize("task", HANDOVER_TASKS)
-def test_a_hand_over_target_lies_where_the_spec_says_for_the_h1_2_and_further_out_for_the_g1(task: str):
+def test_a_hand_over_target_lies_where_the_spec_says_for_the_h1_2_and_elsewhere_for_a_robot_with_a_workspace(
+        task: str, robot_copy: Path):
     assert layout.ROBOT.name == "h1_2_inspire"  # the process's robot in tests
-    g1 = load_robot("g1_inspire").workspace
+    path = robot_copy / "robot.yaml"
+    data = yaml.safe_load(path.read_text())
+    data["workspace"] = {"offset": [0.05, 0.0, 0.0], "per_height": [0.2, 0.0, 0.0]}
+    path.write_text(yaml.safe_dump(data, sort_keys=False))
+    other = load_robot(path, cached=False).workspace
     targets = _pos_targets(task)
     assert targets
     for spec in targets:
         here = Target(spec, np.zeros(3)).position(env=None)
         assert here.tobytes() == np.array(spec.pos, float).tobytes()
-        there = g1.point(spec.pos)
-        # out from the G1's body (x), on the same side (y), not lower than the table
-        assert there[0] > spec.pos[0] + 0.02 and there[1] == spec.pos[1] and there[2] >= 0.0
+        there = other.point(spec.pos)
+        # out from the robot's body (x; more the higher it is), on the same side (y), at the same height
+        assert there[0] == pytest.approx(spec.pos[0] + 0.05 + 0.2 * spec.pos[2])
+        assert there[1] == spec.pos[1] and there[2] == spec.pos[2]
+
+
+def test_the_g1_keeps_the_reference_spots_as_measured():
+    # docs/results/g1.md: hand-overs moved out lost episodes on the G1; its file says so with the identity.
+    assert load_robot("g1_inspire").workspace.identity
 
 
 def test_the_map_moves_mid_air_positions_more_than_positions_on_the_table():
@@ -95,3 +106,15 @@ def test_the_reference_plans_ask_for_their_hand_over_spots():
     for task in HANDOVER_TASKS:
         plan = plan_path(load_task(task)).read_text()
         assert "planner.workspace_point(" in plan, task
+
+
+def test_plans_ask_the_planner_for_workspace_positions():
+    from humanoidgen.planning.planner import HumanoidMotionPlanner, PlanningError
+    from humanoidgen.tasks.scene import build_scene
+
+    _, env = build_scene(load_task("block_stack_single"), 0)
+    planner = HumanoidMotionPlanner(env)
+    p = planner.workspace_point([-0.36, 0.0, 0.045])
+    assert p.tobytes() == np.array([-0.36, 0.0, 0.045]).tobytes()
+    with pytest.raises(PlanningError, match="workspace_point: a workspace position has x, y and z"):
+        planner.workspace_point([-0.36, 0.0])
