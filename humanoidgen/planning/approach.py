@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Iterator
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -53,6 +53,8 @@ PART_TOUCH = 0.002  # how far an approach may press into a movable part it comes
 OTHER_WAY_DISTANCES = (0.05, 0.03)
 OTHER_WAY_MAX_COS = 0.7  # other directions at least ~45 deg off the axis and off each other
 APPROACH_BUDGET_S = 12.0  # no further way of coming in is tried after this long
+# A transit that ends farther than this (rad, any joint) from where the way in starts ends in another arm posture.
+JOIN_TOL = 1e-6
 TRANSIT_TIME_LIMIT = 2.0  # RRT-Connect seconds per way of coming in after the first (the first gets the default)
 
 
@@ -93,10 +95,36 @@ def plan_approach(ctx: PlanningContext, side: Side, q0: np.ndarray, target: Pose
             reasons.append(f"{way.label}: no way to the pre-approach pose ({exc})")
             first = False
             continue
-        return ApproachPlan([transit, JointPath(way.path, "screw")], way.posture, way.label, way.axis)
+        joined = join(ctx, side, transit, way, target, reasons)
+        if joined is None:
+            first = False
+            continue
+        return ApproachPlan([transit, JointPath(joined.path, "screw")], joined.posture, joined.label, joined.axis)
     advice = approach_advice(side, reasons, target.p, target.approach_axis)
     raise MotionError("no straight approach to the target (" + "; ".join(reasons) + ")"
                       + (f". Suggestion: {advice}" if advice else ""))
+
+def join(ctx: PlanningContext, side: Side, transit: JointPath, way: ComeIn, target: Pose,
+         reasons: list[str]) -> ComeIn | None:
+    """The way in, starting where the transit ends. A 7-joint arm reaches one hand pose in many postures, and the
+    transit may reach the pre-pose in another than the way in starts from (the G1's shoulder near its roll
+    singularity: the same pose with shoulder pitch and yaw 1.0-1.4 rad apart). Played one after the other, the
+    arm's targets would jump there in one control step and swing a pinched block out of the fingers; so the way in
+    is tracked again from the transit's end (None, with the reason, where it cannot be followed from there)."""
+    end = transit.waypoints[-1]
+    if np.max(np.abs(end - way.path[0])) <= JOIN_TOL:
+        return way
+    fwd, reason = track_poses(ctx.kin, side, end, screw_interpolate(*way.pre, target.p, target.R))
+    if not reason:
+        path = np.vstack([end, fwd])
+        posture, reason = check_way_in(ctx, side, path, target.approach_object, target.posture == "wrap",
+                                       target.approach_part)
+        if not reason:
+            return replace(way, path=path, posture=posture)
+    reasons.append(f"{way.label}: the way to the pre-approach pose ends in another arm posture than the way in "
+                   f"starts from, and the way in cannot be followed from there ({reason})")
+    return None
+
 
 def ways_in(ctx: PlanningContext, side: Side, target: Pose, reasons: list[str]) -> Iterator[ComeIn]:
     """Every way of coming in that fits, most direct first; appends why the others do not fit."""

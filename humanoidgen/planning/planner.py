@@ -32,7 +32,7 @@ from humanoidgen.planning.pipeline import BUDGETS, Pipeline
 from humanoidgen.planning.poses import Pose
 from humanoidgen.planning.push_spec import TaskTargets
 from humanoidgen.sim.env import HumanoidEnv
-from humanoidgen.sim.layout import SIDES, Side
+from humanoidgen.sim.layout import ROBOT, SIDES, Side
 
 
 def _sides(hand_name: str) -> tuple[Side, ...]:
@@ -109,6 +109,16 @@ class HumanoidMotionPlanner:
     @on_step.setter
     def on_step(self, hook: Callable[[np.ndarray], None] | None) -> None:
         self.ctx.on_step = hook
+
+    # -- the robot's workspace ---------------------------------------------------------------------------
+    def workspace_point(self, p) -> np.ndarray:
+        """Where a position written for the reference workspace (the robot the task's plans were written for)
+        lies for this robot: a hand-over spot, a height to lift to. Positions about reach, not about an object,
+        so that one plan puts them where each robot's arms work; the reference robot gets `p` back unchanged."""
+        try:
+            return ROBOT.workspace.point(p)
+        except ValueError as exc:
+            raise PlanningError("workspace_point", str(exc)) from None
 
     # -- hands ------------------------------------------------------------------------------------------
     @_logged

@@ -18,6 +18,7 @@ import yaml
 from pydantic import ValidationError
 
 from humanoidgen.robots.schema import SIDE_NAMES, HandFile, RobotFile
+from humanoidgen.robots.workspace import WorkspaceMap
 
 ROBOTS_DIR = Path(__file__).parent
 HANDS_DIR_NAME = "hands"
@@ -122,6 +123,11 @@ class Robot:
     @property
     def name(self) -> str:
         return self.data.name
+
+    @cached_property
+    def workspace(self) -> WorkspaceMap:
+        """How positions of the reference workspace map to this robot's (`robots.workspace`)."""
+        return WorkspaceMap.of(self.data.workspace)
 
     @property
     def folder(self) -> Path:

@@ -12,6 +12,8 @@ from pydantic import BaseModel, ConfigDict, Field, field_validator, model_valida
 Vec3 = tuple[float, float, float]
 Quat = tuple[float, float, float, float]
 SIDE_NAMES = ("left", "right")
+MAX_WORKSPACE_OFFSET_M = 0.2  # a robot's workspace is the reference's moved centimetres, not another table
+MAX_WORKSPACE_SLOPE = 1.0
 
 
 class _Strict(BaseModel):
@@ -172,6 +174,31 @@ class Stand(_Strict):
     table_x: tuple[float, float] | None = None
 
 
+class Workspace(_Strict):
+    """Where this robot's arms work, against the reference workspace the task specs and reference plans are written
+    in (the H1-2's): a position p given there (a spec target's `pos`, a plan's `planner.workspace_point(p)`) is
+    p + offset + per_height * (p.z - table top) for this robot. The default (zeros) is the identity."""
+
+    offset: Vec3 = (0.0, 0.0, 0.0)  # metres, every workspace position
+    per_height: Vec3 = (0.0, 0.0, 0.0)  # metres per metre above the table: how mid-air positions move
+
+    @field_validator("offset")
+    @classmethod
+    def _small_offset(cls, v: Vec3) -> Vec3:
+        if not all(math.isfinite(c) and abs(c) <= MAX_WORKSPACE_OFFSET_M for c in v):
+            raise ValueError(f"give metres within +-{MAX_WORKSPACE_OFFSET_M}, got {list(v)}")
+        return v
+
+    @field_validator("per_height")
+    @classmethod
+    def _keeps_heights_in_order(cls, v: Vec3) -> Vec3:
+        if not all(math.isfinite(c) and abs(c) <= MAX_WORKSPACE_SLOPE for c in v):
+            raise ValueError(f"give slopes within +-{MAX_WORKSPACE_SLOPE}, got {list(v)}")
+        if v[2] <= -1.0:  # heights scale by 1 + per_height.z: at or below 0 the map would fold mid-air onto the table
+            raise ValueError(f"z must be above -1 (heights scale by 1 + z), got {v[2]}")
+        return v
+
+
 class ArmJoint(_Strict):
     joint: str
     link: str
@@ -243,6 +270,7 @@ class RobotFile(_Strict):
     robot_type: str = Field(min_length=1)
     model: ModelFiles
     stand: Stand
+    workspace: Workspace = Workspace()
     torso_bodies: list[str] = []
     arm_actuators: ArmActuators
     arms: dict[Literal["left", "right"], list[ArmJoint]]

@@ -10,7 +10,10 @@ the bowl, a stacking spot, the hand-over pose). A task lists them under `targets
       - {object: "bottle[0]", relative_to: "bottle[0]", anchor: initial, offset: [0, 0, 0.10]}
       - {object: "cube[0]", hand: right, pos: [-0.34, 0.03, 0.045], note: "hand-over pose"}
 
-- `pos` is a world position (the held object's centre); `random` adds an offset drawn per episode seed.
+- `pos` is a position in the reference workspace (the held object's centre; the world of the robot the specs were
+  written for), placed for the robot at hand by its robot file's `workspace` (robots/workspace.py: the identity for
+  the H1-2; the G1's moves a mid-air hand-over out and down to where its shorter arms meet); `random` adds an
+  offset drawn per episode seed.
 - `relative_to` (one object or several: their mean) + `offset` (world frame) follows the reference object: it is
   evaluated when the plan asks (`anchor: current`, default), or at the episode's start (`anchor: initial`, e.g. "10
   cm above where the bottle stood"). `point` uses a key point of the reference instead of its centre.
@@ -46,7 +49,7 @@ import numpy as np
 from pydantic import BeforeValidator, Field, field_validator, model_validator
 
 from humanoidgen.objects import library
-from humanoidgen.sim.layout import OPERABLE_RANGE, TABLE_TOP_Z
+from humanoidgen.sim.layout import OPERABLE_RANGE, ROBOT, TABLE_TOP_Z
 from humanoidgen.tasks.bounds import MAX_OFFSET_M, MAX_POSITION_M, Strict, bad, check_number, check_vector
 from humanoidgen.tasks.predicates import ObjRef, Ref
 
@@ -340,8 +343,8 @@ class Target:
         s = self.spec
         if s.push is not None:  # where the push starts: its point on the part, now
             return get_point_in_env(env, s.push.point, s.object.type, s.object.id)
-        if s.pos is not None:
-            return np.asarray(s.pos, float) + self.random_offset
+        if s.pos is not None:  # a position about the arms' reach: placed in this robot's workspace
+            return ROBOT.workspace.point(np.asarray(s.pos, float) + self.random_offset)
         if s.anchor == "initial" and self.initial is not None:
             base = self.initial
         else:

@@ -18,7 +18,7 @@ planner.move_to_pose_with_screw(pose, "right", attach_obj=True, object_name="cub
 p = get_point_in_env(planner.env, "center", "cube", 0)
 c = planner.generate_constraints(obj_name="cube", obj_id=0, action="move", hand_name="right",
                                  relative_obj_name="cube", relative_obj_id=0,
-                                 relative_p=np.array([HANDOVER[0] - p[0], HANDOVER[1] - p[1], 0.041 - p[2]]))
+                                 relative_p=planner.workspace_point([HANDOVER[0], HANDOVER[1], 0.041]) - p)
 _, pose = planner.generate_end_effector_pose(c, hand_name="right")
 planner.move_to_pose_with_screw(pose, "right", attach_obj=True, object_name="cube", object_id=0)
 planner.open_hand("right")

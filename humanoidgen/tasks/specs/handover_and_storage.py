@@ -30,7 +30,7 @@ _, pose = planner.generate_end_effector_pose(c, hand_name="right")
 planner.move_to_pose_with_screw(pose, "right", attach_obj=True, object_name="cube", object_id=0)
 
 # step: right hand hands the block over by standing it on the table in the middle, in the left hand's reach
-handover = np.array([-0.36, 0.0, 0.045]) - get_point_in_env(planner.env, "center", "cube", 0)
+handover = planner.workspace_point([-0.36, 0.0, 0.045]) - get_point_in_env(planner.env, "center", "cube", 0)
 c = planner.generate_constraints(obj_name="cube", obj_id=0, action="move", hand_name="right",
                                  relative_obj_name="cube", relative_obj_id=0, relative_p=handover)
 _, pose = planner.generate_end_effector_pose(c, hand_name="right")
@@ -52,7 +52,7 @@ _, pose = planner.generate_end_effector_pose(c, hand_name="left")
 planner.move_to_pose_with_screw(pose, "left", attach_obj=True, object_name="cube", object_id=0)
 
 # step: left hand raises the block above the drawer's walls, carries it over the open drawer and drops it in
-lift = get_point_in_env(planner.env, "center", "cube", 0) * np.array([1, 1, 0]) + np.array([0, 0, 0.31])
+lift = planner.workspace_point(get_point_in_env(planner.env, "center", "cube", 0) * np.array([1, 1, 0]) + np.array([0, 0, 0.31]))
 c = planner.generate_constraints(obj_name="cube", obj_id=0, action="move", hand_name="left",
                                  relative_obj_name="cube", relative_obj_id=0,
                                  relative_p=lift - get_point_in_env(planner.env, "center", "cube", 0))
