@@ -237,9 +237,11 @@ def plan_side_timed(ctx: PlanningContext, side: Side, target: Pose, path_constra
     return np.vstack(out)
 
 def plan_leg(ctx: PlanningContext, side: Side, q: np.ndarray, target: Pose, path_constraints: list) -> JointPath:
-    """A screw motion (or a sampled path) from `q` to the target."""
+    """A screw motion (or a sampled path) from `q` to the target; to a pre-push pose (target1) in the posture
+    solved for it where a way keeps to it: the push's stages are tracked from there (push_move)."""
     return plan_arm_motion(ctx.kin, ctx.collisions, side, q, (target.p, target.R), q_goal=target.joint_q,
-                           path_constraints=path_constraints, seed=ctx.seed)
+                           path_constraints=path_constraints, seed=ctx.seed,
+                           keep_posture=getattr(target.push, "phase", None) == "pre")
 
 
 def plain_move(ctx: PlanningContext, side: Side, q0: np.ndarray, target: Pose, path_constraints: list) -> list[JointPath]:
