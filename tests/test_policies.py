@@ -332,3 +332,31 @@ def test_policy_bench_trains_on_randomized_data_when_asked(monkeypatch, tmp_path
     assert CliRunner().invoke(app, args).exit_code == 0
     assert [(c.train_scenes, c.scenes) for c in seen] == [(("clean", "randomized"), ("clean", "randomized")),
                                                           (("clean",), ("clean",))]
+
+
+def test_an_interrupted_study_does_not_evaluate_a_row_again(demos_zarr, tmp_path, monkeypatch):
+    """A study stopped after some rows were evaluated continues with the rest: each run keeps the rows evaluated
+    so far under what decides them (checkpoint, scenes, episodes, seeds); asked for other scenes, it evaluates."""
+    import humanoidgen.policies.eval as ev
+    from humanoidgen.policies.bench import EVALUATED, StudyConfig, data_name, run_study
+
+    data = tmp_path / "data"
+    shutil.copytree(demos_zarr, data / f"{data_name('close_drawer', 'clean')}.zarr")
+    cfg = dict(tasks=("close_drawer",), demos=(2,), policies=("dp3",), data_root=data, runs_root=tmp_path / "runs",
+               overrides={"dp3": _with(TINY_DP3, epochs=1)}, eval_episodes=1, eval_seeds=(0,), device="cpu",
+               scenes=("clean",), recipe="tiny", eval_max_steps=2)
+    first = run_study(StudyConfig(**cfg), progress=False)
+    (tmp_path / "runs" / "close_drawer_dp3_2" / EVALUATED).open("a").write('{"key": {"checkpoint"')  # cut short
+    calls = []
+    real = ev.evaluate
+    monkeypatch.setattr(ev, "evaluate", lambda *a, **k: calls.append(k) or real(*a, **k))
+    again = run_study(StudyConfig(**cfg), progress=False)
+    assert again == first and calls == []
+    both = run_study(StudyConfig(**{**cfg, "scenes": ("clean", "randomized")}), progress=False)
+    assert both[0] == first[0] and [k["randomize"] for k in calls] == [True]
+    assert both[1]["scenes"] == "randomized"
+    run_study(StudyConfig(**{**cfg, "eval_seeds": (1,)}), progress=False)
+    assert len(calls) == 2  # other scenes: evaluated
+    rows = [json.loads(line) for line in (tmp_path / "runs" / "close_drawer_dp3_2" / EVALUATED).read_text()
+            .splitlines() if line.endswith("}")]
+    assert len(rows) == 3  # the line cut short did not swallow the one written after it

@@ -5,8 +5,9 @@ Missing data is collected first (as `hgen collect TASK --cameras head` records: 
 the fused point cloud; `max(demos)` episodes), then exported (`hgen dataset export --zarr`), into
 DATA/<task> and DATA/<task>.zarr; randomized training data (`train_scenes`, as `hgen collect --room random
 --randomize-visuals` records it: the scenes evaluation's `randomize` draws) into DATA/<task>_randomized(.zarr),
-trained into RUNS/<task>_<policy>_<n>_randomized. A run whose last checkpoint exists is not trained again, so an
-interrupted study continues where it stopped."""
+trained into RUNS/<task>_<policy>_<n>_randomized. A run whose last checkpoint exists is not trained again, and a
+row evaluated before (the same checkpoint, scenes, episodes and seeds: RUN/study_rows.jsonl) is not evaluated
+again, so an interrupted study continues where it stopped."""
 
 from __future__ import annotations
 
@@ -127,7 +128,11 @@ def run_study(cfg: StudyConfig, progress: bool = True) -> list[dict]:
                             raise KeyboardInterrupt
                     last = ck.run_checkpoints(run)[-1]
                     for scenes in cfg.scenes:
-                        row = _evaluated_row(cfg, task, policy, n, run, last, result, scenes, progress)
+                        key = _eval_key(cfg, last, scenes)
+                        row = _stored_row(run, key)
+                        if row is None:
+                            row = _evaluated_row(cfg, task, policy, n, run, last, result, scenes, progress)
+                            _store_row(run, key, row)
                         rows.append({**row, "train_scenes": trained_on})
                         if progress:
                             print(format_row(rows[-1]), flush=True)
@@ -155,6 +160,37 @@ def _evaluated_row(cfg: StudyConfig, task: str, policy: str, n: int, run: Path, 
             "episodes": [{"seed": o.seed, "scene_seed": o.scene_seed, "success": o.success,
                           "steps": o.steps, "final": o.final} for o in report.outcomes],
             **baseline_columns(report)}
+
+
+EVALUATED = "study_rows.jsonl"  # in each run: the rows evaluated so far, each under the key that made it
+
+
+def _eval_key(cfg: StudyConfig, last: Path, scenes: str) -> dict:
+    """What decides an evaluated row: the checkpoint, the scenes and how many, the baselines, the episode length."""
+    return {"checkpoint": Path(last).name, "scenes": scenes, "episodes": cfg.eval_episodes,
+            "seeds": list(cfg.eval_seeds), "baselines": cfg.baselines, "max_steps": cfg.eval_max_steps}
+
+
+def _stored_row(run: Path, key: dict) -> dict | None:
+    """The row a previous study evaluated under `key` (an interrupted study does not evaluate it again), or None."""
+    path = Path(run) / EVALUATED
+    if not path.exists():
+        return None
+    for line in path.read_text().splitlines():
+        try:
+            item = json.loads(line)
+        except json.JSONDecodeError:  # a line cut short by an interruption
+            continue
+        if item.get("key") == key:
+            return item["row"]
+    return None
+
+
+def _store_row(run: Path, key: dict, row: dict) -> None:
+    path = Path(run) / EVALUATED
+    cut = path.exists() and not path.read_text().endswith("\n")  # a line cut short stays a line of its own
+    with open(path, "a") as f:
+        f.write(("\n" if cut else "") + json.dumps({"key": key, "row": row}) + "\n")
 
 
 def baseline_columns(report) -> dict:
