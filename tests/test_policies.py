@@ -306,7 +306,9 @@ def test_the_study_trains_on_clean_and_randomized_data_and_rows_say_which(demos_
         ("clean", "clean"), ("clean", "randomized"), ("randomized", "clean"), ("randomized", "randomized")]
     for r in rows:
         assert {"task", "policy", "demos", "recipe", "scenes", "success_mean", "success_std", "baseline_random",
-                "baseline_noop"} <= r.keys()
+                "baseline_noop", "success_ci95"} <= r.keys()
+        assert r["success_ci95"][0] <= r["success_mean"] <= r["success_ci95"][1]
+        assert all(len(b["success_ci95"]) == 2 for b in r["baselines"].values())
         assert (r["task"], r["policy"], r["demos"], r["recipe"]) == ("close_drawer", "dp3", 2, "tiny")
         assert r["baselines"]["random"]["rates"] and [e["scene_seed"] for e in r["episodes"]] == [100_000]
         trained_on = ck.load_policy(Path(r["checkpoint"]))[1]["data"]
@@ -360,3 +362,25 @@ def test_an_interrupted_study_does_not_evaluate_a_row_again(demos_zarr, tmp_path
     rows = [json.loads(line) for line in (tmp_path / "runs" / "close_drawer_dp3_2" / EVALUATED).read_text()
             .splitlines() if line.endswith("}")]
     assert len(rows) == 3  # the line cut short did not swallow the one written after it
+
+
+def test_rows_carry_a_wilson_interval_for_the_policy_and_each_baseline():
+    """With 10-20 episodes a cell the spread over seeds says little; each row carries the 95% Wilson interval of
+    its pooled episodes (an older row gets it from its episodes), for the policy and the baselines beside it."""
+    from humanoidgen.policies.bench import with_intervals
+    from humanoidgen.policies.report import wilson_interval
+
+    lo, hi = wilson_interval(0, 20)
+    assert lo == 0.0 and 0.15 < hi < 0.17  # 0 of 20 still allows up to ~16%
+    lo, hi = wilson_interval(20, 20)
+    assert 0.83 < lo < 0.84 and hi == 1.0
+    lo, hi = wilson_interval(10, 20)
+    assert abs((lo + hi) / 2 - 0.5) < 1e-9 and 0.29 < lo < 0.30
+    assert wilson_interval(0, 0) == (0.0, 1.0)
+    row = {"episodes": [{"success": k < 3} for k in range(10)],
+           "baselines": {"random": {"successes": [100_001]}, "noop": {"successes": [], "success_ci95": [0.0, 0.5]}}}
+    out = with_intervals(row)
+    assert out["success_ci95"] == list(wilson_interval(3, 10))
+    assert out["baselines"]["random"]["success_ci95"] == list(wilson_interval(1, 10))
+    assert out["baselines"]["noop"]["success_ci95"] == [0.0, 0.5]  # kept where the row has it
+    assert "success_ci95" not in row  # the row itself is not changed

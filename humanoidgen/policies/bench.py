@@ -152,7 +152,8 @@ def _evaluated_row(cfg: StudyConfig, task: str, policy: str, n: int, run: Path, 
     return {"task": task, "policy": policy, "demos": n, "scenes": scenes,
             "recipe": cfg.recipe,
             "success_mean": report.success_mean,
-            "success_std": report.success_std, "rates": [r["success"] for r in report.to_dict()["rates"]],
+            "success_std": report.success_std, "success_ci95": list(report.interval()),
+            "rates": [r["success"] for r in report.to_dict()["rates"]],
             "epochs": int(state["epoch"]), "final_loss": float(state["losses"][-1]),
             "train_seconds": result.seconds if result else None,
             "seconds_per_epoch": result.seconds_per_epoch if result else None,
@@ -198,9 +199,25 @@ def baseline_columns(report) -> dict:
     out: dict = {f"baseline_{name}": b.success_mean for name, b in report.baselines.items()}
     if report.baselines:
         out["baselines"] = {name: {"success_mean": b.success_mean, "success_std": b.success_std,
+                                   "success_ci95": list(b.interval()),
                                    "rates": [r["success"] for r in b.to_dict()["rates"]], **b.info,
                                    "successes": [o.scene_seed for o in b.outcomes if o.success]}
                             for name, b in report.baselines.items()}
+    return out
+
+
+def with_intervals(row: dict) -> dict:
+    """The row with `success_ci95` (95% Wilson, episodes pooled) for the policy and each baseline, from its
+    episodes where a row written before the column lacks it (a baseline's episodes are the policy's scenes)."""
+    from humanoidgen.policies.report import wilson_interval
+
+    out = dict(row)
+    total = len(row.get("episodes", []))
+    if "success_ci95" not in out and total:
+        out["success_ci95"] = list(wilson_interval(sum(e["success"] for e in row["episodes"]), total))
+    if total and row.get("baselines"):
+        out["baselines"] = {name: b if "success_ci95" in b else {**b, "success_ci95": list(
+            wilson_interval(len(b.get("successes", [])), total))} for name, b in row["baselines"].items()}
     return out
 
 
