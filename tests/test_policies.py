@@ -384,3 +384,37 @@ def test_rows_carry_a_wilson_interval_for_the_policy_and_each_baseline():
     assert out["baselines"]["random"]["success_ci95"] == list(wilson_interval(1, 10))
     assert out["baselines"]["noop"]["success_ci95"] == [0.0, 0.5]  # kept where the row has it
     assert "success_ci95" not in row  # the row itself is not changed
+
+
+def test_rows_of_one_checkpoint_on_other_seeds_are_pooled():
+    """A study run again on another evaluation seed (`--seeds 2` beside `--seeds 0,1`) gives rows that `--combine`
+    pools with the first: every seed's rate, the mean and spread over them, the baselines likewise, intervals over
+    all the episodes; rows that share a seed are refused, rows of other scenes or checkpoints stay apart."""
+    from humanoidgen.policies.bench import pool_rows
+    from humanoidgen.policies.report import wilson_interval
+
+    def row(seeds, passed, scenes="clean", ckpt="c.pt"):
+        eps = [{"seed": s, "scene_seed": 100_000 + 1000 * s + i, "success": i < passed[k]}
+               for k, s in enumerate(seeds) for i in range(10)]
+        rates = [p / 10 for p in passed]
+        base = {"success_mean": 0.0, "success_std": 0.0, "rates": [0.0] * len(seeds), "successes": []}
+        return {"task": "t", "policy": "dp3", "demos": 50, "train_scenes": "clean", "scenes": scenes,
+                "checkpoint": ckpt, "rates": rates, "success_mean": sum(rates) / len(rates), "success_std": 0.0,
+                "episodes": eps, "eval_seconds": 1.0, "baseline_random": 0.0, "success_ci95": [0.0, 1.0],
+                "baselines": {"random": {**base, "successes": [100_000 + 1000 * seeds[0]] if seeds == [2] else []},
+                              "noop": base}}
+
+    rows = pool_rows([row([0, 1], [9, 7]), row([0, 1], [5, 5], "randomized"), row([2], [8]),
+                      row([0], [1], ckpt="other.pt")])
+    assert [(r["scenes"], r["checkpoint"]) for r in rows] == [("clean", "c.pt"), ("randomized", "c.pt"),
+                                                             ("clean", "other.pt")]
+    pooled = rows[0]
+    assert pooled["rates"] == [0.9, 0.7, 0.8] and abs(pooled["success_mean"] - 0.8) < 1e-9
+    assert abs(pooled["success_std"] - 0.0816) < 1e-3 and len(pooled["episodes"]) == 30
+    assert pooled["success_ci95"] == list(wilson_interval(24, 30)) and pooled["eval_seconds"] == 2.0
+    random = pooled["baselines"]["random"]
+    assert random["rates"] == [0.0, 0.0, 0.0] and random["successes"] == [102_000]
+    assert random["success_ci95"] == list(wilson_interval(1, 30))
+    assert rows[1]["rates"] == [0.5, 0.5]  # a lone row as it was
+    with pytest.raises(ValueError, match="share seeds"):
+        pool_rows([row([0, 1], [9, 7]), row([1], [8])])

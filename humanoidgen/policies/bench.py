@@ -221,6 +221,43 @@ def with_intervals(row: dict) -> dict:
     return out
 
 
+def pool_rows(rows: list[dict]) -> list[dict]:
+    """Rows of one checkpoint on the same kind of scenes, evaluated on other seeds (a study run again with
+    `--seeds 2` beside one of `--seeds 0,1`), as one row over all their seeds: the rates and episodes of each,
+    the mean and spread over every seed, the baselines likewise, the intervals over the pooled episodes."""
+    import numpy as np
+
+    groups: dict[tuple, list[dict]] = {}
+    for r in rows:
+        key = (r["task"], r["policy"], r["demos"], r.get("train_scenes"), r.get("scenes"), r.get("checkpoint"))
+        groups.setdefault(key, []).append(r)
+    out = []
+    for part in groups.values():
+        if len(part) == 1:
+            out.append(part[0])
+            continue
+        part = sorted(part, key=lambda r: min(e["seed"] for e in r["episodes"]))
+        seeds = [{e["seed"] for e in r["episodes"]} for r in part]
+        if len(set().union(*seeds)) != sum(len(x) for x in seeds):
+            raise ValueError(f"rows of {part[0]['checkpoint']} on {part[0].get('scenes')} scenes share seeds")
+        rates = [x for r in part for x in r["rates"]]
+        row = {k: v for k, v in part[0].items() if k != "success_ci95"}
+        row.update(rates=rates, success_mean=float(np.mean(rates)), success_std=float(np.std(rates)),
+                   episodes=[e for r in part for e in r["episodes"]],
+                   eval_seconds=sum(r.get("eval_seconds") or 0.0 for r in part))
+        if all(r.get("baselines") for r in part):
+            row["baselines"] = {}
+            for name in part[0]["baselines"]:
+                b_rates = [x for r in part for x in r["baselines"][name]["rates"]]
+                b = {k: v for k, v in part[0]["baselines"][name].items() if k != "success_ci95"}
+                b.update(rates=b_rates, success_mean=float(np.mean(b_rates)), success_std=float(np.std(b_rates)),
+                         successes=[x for r in part for x in r["baselines"][name]["successes"]])
+                row["baselines"][name] = b
+                row[f"baseline_{name}"] = b["success_mean"]
+        out.append(with_intervals(row))
+    return out
+
+
 def format_row(r: dict) -> str:
     train = f"{r['train_seconds'] / 60:.1f} min ({r['seconds_per_epoch']:.1f} s/epoch)" if r["train_seconds"] else "-"
     base = "".join(f"  {k[len('baseline_'):]} {100 * v:.0f}%" for k, v in r.items()
