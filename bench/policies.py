@@ -113,11 +113,13 @@ def main() -> int:
 
 
 def combine(names: tuple[str, ...], name: str) -> int:
-    """The rows of bench/results/policies_<n>.json for each n, into policies_<name>.json and .png."""
-    from humanoidgen.policies.bench import plot
+    """The rows of bench/results/policies_<n>.json for each n, into policies_<name>.json and .png (each row with
+    its 95% Wilson intervals, `success_ci95`, for the policy and the baselines; rows of one checkpoint on the same
+    scenes from other evaluation seeds pooled into one: `pool_rows`)."""
+    from humanoidgen.policies.bench import plot, pool_rows, with_intervals
 
     parts = {n: json.loads((ROOT / "results" / f"policies_{n}.json").read_text()) for n in names}
-    rows = [r for part in parts.values() for r in part["rows"]]
+    rows = pool_rows([with_intervals(r) for part in parts.values() for r in part["rows"]])
     out = ROOT / "results" / f"policies_{name}.json"
     out.write_text(json.dumps({"settings": {"combined": list(names), **{n: part["settings"] for n, part in
                                                                         parts.items()}}, "rows": rows}, indent=2))

@@ -306,7 +306,9 @@ def test_the_study_trains_on_clean_and_randomized_data_and_rows_say_which(demos_
         ("clean", "clean"), ("clean", "randomized"), ("randomized", "clean"), ("randomized", "randomized")]
     for r in rows:
         assert {"task", "policy", "demos", "recipe", "scenes", "success_mean", "success_std", "baseline_random",
-                "baseline_noop"} <= r.keys()
+                "baseline_noop", "success_ci95"} <= r.keys()
+        assert r["success_ci95"][0] <= r["success_mean"] <= r["success_ci95"][1]
+        assert all(len(b["success_ci95"]) == 2 for b in r["baselines"].values())
         assert (r["task"], r["policy"], r["demos"], r["recipe"]) == ("close_drawer", "dp3", 2, "tiny")
         assert r["baselines"]["random"]["rates"] and [e["scene_seed"] for e in r["episodes"]] == [100_000]
         trained_on = ck.load_policy(Path(r["checkpoint"]))[1]["data"]
@@ -332,3 +334,87 @@ def test_policy_bench_trains_on_randomized_data_when_asked(monkeypatch, tmp_path
     assert CliRunner().invoke(app, args).exit_code == 0
     assert [(c.train_scenes, c.scenes) for c in seen] == [(("clean", "randomized"), ("clean", "randomized")),
                                                           (("clean",), ("clean",))]
+
+
+def test_an_interrupted_study_does_not_evaluate_a_row_again(demos_zarr, tmp_path, monkeypatch):
+    """A study stopped after some rows were evaluated continues with the rest: each run keeps the rows evaluated
+    so far under what decides them (checkpoint, scenes, episodes, seeds); asked for other scenes, it evaluates."""
+    import humanoidgen.policies.eval as ev
+    from humanoidgen.policies.bench import EVALUATED, StudyConfig, data_name, run_study
+
+    data = tmp_path / "data"
+    shutil.copytree(demos_zarr, data / f"{data_name('close_drawer', 'clean')}.zarr")
+    cfg = dict(tasks=("close_drawer",), demos=(2,), policies=("dp3",), data_root=data, runs_root=tmp_path / "runs",
+               overrides={"dp3": _with(TINY_DP3, epochs=1)}, eval_episodes=1, eval_seeds=(0,), device="cpu",
+               scenes=("clean",), recipe="tiny", eval_max_steps=2)
+    first = run_study(StudyConfig(**cfg), progress=False)
+    (tmp_path / "runs" / "close_drawer_dp3_2" / EVALUATED).open("a").write('{"key": {"checkpoint"')  # cut short
+    calls = []
+    real = ev.evaluate
+    monkeypatch.setattr(ev, "evaluate", lambda *a, **k: calls.append(k) or real(*a, **k))
+    again = run_study(StudyConfig(**cfg), progress=False)
+    assert again == first and calls == []
+    both = run_study(StudyConfig(**{**cfg, "scenes": ("clean", "randomized")}), progress=False)
+    assert both[0] == first[0] and [k["randomize"] for k in calls] == [True]
+    assert both[1]["scenes"] == "randomized"
+    run_study(StudyConfig(**{**cfg, "eval_seeds": (1,)}), progress=False)
+    assert len(calls) == 2  # other scenes: evaluated
+    rows = [json.loads(line) for line in (tmp_path / "runs" / "close_drawer_dp3_2" / EVALUATED).read_text()
+            .splitlines() if line.endswith("}")]
+    assert len(rows) == 3  # the line cut short did not swallow the one written after it
+
+
+def test_rows_carry_a_wilson_interval_for_the_policy_and_each_baseline():
+    """With 10-20 episodes a cell the spread over seeds says little; each row carries the 95% Wilson interval of
+    its pooled episodes (an older row gets it from its episodes), for the policy and the baselines beside it."""
+    from humanoidgen.policies.bench import with_intervals
+    from humanoidgen.policies.report import wilson_interval
+
+    lo, hi = wilson_interval(0, 20)
+    assert lo == 0.0 and 0.15 < hi < 0.17  # 0 of 20 still allows up to ~16%
+    lo, hi = wilson_interval(20, 20)
+    assert 0.83 < lo < 0.84 and hi == 1.0
+    lo, hi = wilson_interval(10, 20)
+    assert abs((lo + hi) / 2 - 0.5) < 1e-9 and 0.29 < lo < 0.30
+    assert wilson_interval(0, 0) == (0.0, 1.0)
+    row = {"episodes": [{"success": k < 3} for k in range(10)],
+           "baselines": {"random": {"successes": [100_001]}, "noop": {"successes": [], "success_ci95": [0.0, 0.5]}}}
+    out = with_intervals(row)
+    assert out["success_ci95"] == list(wilson_interval(3, 10))
+    assert out["baselines"]["random"]["success_ci95"] == list(wilson_interval(1, 10))
+    assert out["baselines"]["noop"]["success_ci95"] == [0.0, 0.5]  # kept where the row has it
+    assert "success_ci95" not in row  # the row itself is not changed
+
+
+def test_rows_of_one_checkpoint_on_other_seeds_are_pooled():
+    """A study run again on another evaluation seed (`--seeds 2` beside `--seeds 0,1`) gives rows that `--combine`
+    pools with the first: every seed's rate, the mean and spread over them, the baselines likewise, intervals over
+    all the episodes; rows that share a seed are refused, rows of other scenes or checkpoints stay apart."""
+    from humanoidgen.policies.bench import pool_rows
+    from humanoidgen.policies.report import wilson_interval
+
+    def row(seeds, passed, scenes="clean", ckpt="c.pt"):
+        eps = [{"seed": s, "scene_seed": 100_000 + 1000 * s + i, "success": i < passed[k]}
+               for k, s in enumerate(seeds) for i in range(10)]
+        rates = [p / 10 for p in passed]
+        base = {"success_mean": 0.0, "success_std": 0.0, "rates": [0.0] * len(seeds), "successes": []}
+        return {"task": "t", "policy": "dp3", "demos": 50, "train_scenes": "clean", "scenes": scenes,
+                "checkpoint": ckpt, "rates": rates, "success_mean": sum(rates) / len(rates), "success_std": 0.0,
+                "episodes": eps, "eval_seconds": 1.0, "baseline_random": 0.0, "success_ci95": [0.0, 1.0],
+                "baselines": {"random": {**base, "successes": [100_000 + 1000 * seeds[0]] if seeds == [2] else []},
+                              "noop": base}}
+
+    rows = pool_rows([row([0, 1], [9, 7]), row([0, 1], [5, 5], "randomized"), row([2], [8]),
+                      row([0], [1], ckpt="other.pt")])
+    assert [(r["scenes"], r["checkpoint"]) for r in rows] == [("clean", "c.pt"), ("randomized", "c.pt"),
+                                                             ("clean", "other.pt")]
+    pooled = rows[0]
+    assert pooled["rates"] == [0.9, 0.7, 0.8] and abs(pooled["success_mean"] - 0.8) < 1e-9
+    assert abs(pooled["success_std"] - 0.0816) < 1e-3 and len(pooled["episodes"]) == 30
+    assert pooled["success_ci95"] == list(wilson_interval(24, 30)) and pooled["eval_seconds"] == 2.0
+    random = pooled["baselines"]["random"]
+    assert random["rates"] == [0.0, 0.0, 0.0] and random["successes"] == [102_000]
+    assert random["success_ci95"] == list(wilson_interval(1, 30))
+    assert rows[1]["rates"] == [0.5, 0.5]  # a lone row as it was
+    with pytest.raises(ValueError, match="share seeds"):
+        pool_rows([row([0, 1], [9, 7]), row([1], [8])])

@@ -5,8 +5,9 @@ Missing data is collected first (as `hgen collect TASK --cameras head` records: 
 the fused point cloud; `max(demos)` episodes), then exported (`hgen dataset export --zarr`), into
 DATA/<task> and DATA/<task>.zarr; randomized training data (`train_scenes`, as `hgen collect --room random
 --randomize-visuals` records it: the scenes evaluation's `randomize` draws) into DATA/<task>_randomized(.zarr),
-trained into RUNS/<task>_<policy>_<n>_randomized. A run whose last checkpoint exists is not trained again, so an
-interrupted study continues where it stopped."""
+trained into RUNS/<task>_<policy>_<n>_randomized. A run whose last checkpoint exists is not trained again, and a
+row evaluated before (the same checkpoint, scenes, episodes and seeds: RUN/study_rows.jsonl) is not evaluated
+again, so an interrupted study continues where it stopped."""
 
 from __future__ import annotations
 
@@ -127,7 +128,11 @@ def run_study(cfg: StudyConfig, progress: bool = True) -> list[dict]:
                             raise KeyboardInterrupt
                     last = ck.run_checkpoints(run)[-1]
                     for scenes in cfg.scenes:
-                        row = _evaluated_row(cfg, task, policy, n, run, last, result, scenes, progress)
+                        key = _eval_key(cfg, last, scenes)
+                        row = _stored_row(run, key)
+                        if row is None:
+                            row = _evaluated_row(cfg, task, policy, n, run, last, result, scenes, progress)
+                            _store_row(run, key, row)
                         rows.append({**row, "train_scenes": trained_on})
                         if progress:
                             print(format_row(rows[-1]), flush=True)
@@ -147,7 +152,8 @@ def _evaluated_row(cfg: StudyConfig, task: str, policy: str, n: int, run: Path, 
     return {"task": task, "policy": policy, "demos": n, "scenes": scenes,
             "recipe": cfg.recipe,
             "success_mean": report.success_mean,
-            "success_std": report.success_std, "rates": [r["success"] for r in report.to_dict()["rates"]],
+            "success_std": report.success_std, "success_ci95": list(report.interval()),
+            "rates": [r["success"] for r in report.to_dict()["rates"]],
             "epochs": int(state["epoch"]), "final_loss": float(state["losses"][-1]),
             "train_seconds": result.seconds if result else None,
             "seconds_per_epoch": result.seconds_per_epoch if result else None,
@@ -157,14 +163,98 @@ def _evaluated_row(cfg: StudyConfig, task: str, policy: str, n: int, run: Path, 
             **baseline_columns(report)}
 
 
+EVALUATED = "study_rows.jsonl"  # in each run: the rows evaluated so far, each under the key that made it
+
+
+def _eval_key(cfg: StudyConfig, last: Path, scenes: str) -> dict:
+    """What decides an evaluated row: the checkpoint, the scenes and how many, the baselines, the episode length."""
+    return {"checkpoint": Path(last).name, "scenes": scenes, "episodes": cfg.eval_episodes,
+            "seeds": list(cfg.eval_seeds), "baselines": cfg.baselines, "max_steps": cfg.eval_max_steps}
+
+
+def _stored_row(run: Path, key: dict) -> dict | None:
+    """The row a previous study evaluated under `key` (an interrupted study does not evaluate it again), or None."""
+    path = Path(run) / EVALUATED
+    if not path.exists():
+        return None
+    for line in path.read_text().splitlines():
+        try:
+            item = json.loads(line)
+        except json.JSONDecodeError:  # a line cut short by an interruption
+            continue
+        if item.get("key") == key:
+            return item["row"]
+    return None
+
+
+def _store_row(run: Path, key: dict, row: dict) -> None:
+    path = Path(run) / EVALUATED
+    cut = path.exists() and not path.read_text().endswith("\n")  # a line cut short stays a line of its own
+    with open(path, "a") as f:
+        f.write(("\n" if cut else "") + json.dumps({"key": key, "row": row}) + "\n")
+
+
 def baseline_columns(report) -> dict:
     """A row's baseline columns: baseline_<name> (success mean on the row's scenes) and their details."""
     out: dict = {f"baseline_{name}": b.success_mean for name, b in report.baselines.items()}
     if report.baselines:
         out["baselines"] = {name: {"success_mean": b.success_mean, "success_std": b.success_std,
+                                   "success_ci95": list(b.interval()),
                                    "rates": [r["success"] for r in b.to_dict()["rates"]], **b.info,
                                    "successes": [o.scene_seed for o in b.outcomes if o.success]}
                             for name, b in report.baselines.items()}
+    return out
+
+
+def with_intervals(row: dict) -> dict:
+    """The row with `success_ci95` (95% Wilson, episodes pooled) for the policy and each baseline, from its
+    episodes where a row written before the column lacks it (a baseline's episodes are the policy's scenes)."""
+    from humanoidgen.policies.report import wilson_interval
+
+    out = dict(row)
+    total = len(row.get("episodes", []))
+    if "success_ci95" not in out and total:
+        out["success_ci95"] = list(wilson_interval(sum(e["success"] for e in row["episodes"]), total))
+    if total and row.get("baselines"):
+        out["baselines"] = {name: b if "success_ci95" in b else {**b, "success_ci95": list(
+            wilson_interval(len(b.get("successes", [])), total))} for name, b in row["baselines"].items()}
+    return out
+
+
+def pool_rows(rows: list[dict]) -> list[dict]:
+    """Rows of one checkpoint on the same kind of scenes, evaluated on other seeds (a study run again with
+    `--seeds 2` beside one of `--seeds 0,1`), as one row over all their seeds: the rates and episodes of each,
+    the mean and spread over every seed, the baselines likewise, the intervals over the pooled episodes."""
+    import numpy as np
+
+    groups: dict[tuple, list[dict]] = {}
+    for r in rows:
+        key = (r["task"], r["policy"], r["demos"], r.get("train_scenes"), r.get("scenes"), r.get("checkpoint"))
+        groups.setdefault(key, []).append(r)
+    out = []
+    for part in groups.values():
+        if len(part) == 1:
+            out.append(part[0])
+            continue
+        part = sorted(part, key=lambda r: min(e["seed"] for e in r["episodes"]))
+        seeds = [{e["seed"] for e in r["episodes"]} for r in part]
+        if len(set().union(*seeds)) != sum(len(x) for x in seeds):
+            raise ValueError(f"rows of {part[0]['checkpoint']} on {part[0].get('scenes')} scenes share seeds")
+        rates = [x for r in part for x in r["rates"]]
+        row = {k: v for k, v in part[0].items() if k != "success_ci95"}
+        row.update(rates=rates, success_mean=float(np.mean(rates)), success_std=float(np.std(rates)),
+                   episodes=[e for r in part for e in r["episodes"]],
+                   eval_seconds=sum(r.get("eval_seconds") or 0.0 for r in part))
+        if all(r.get("baselines") for r in part):
+            row["baselines"] = {}
+            for name in part[0]["baselines"]:
+                b_rates = [x for r in part for x in r["baselines"][name]["rates"]]
+                b = {k: v for k, v in part[0]["baselines"][name].items() if k != "success_ci95"}
+                b.update(rates=b_rates, success_mean=float(np.mean(b_rates)), success_std=float(np.std(b_rates)),
+                         successes=[x for r in part for x in r["baselines"][name]["successes"]])
+                row["baselines"][name] = b
+                row[f"baseline_{name}"] = b["success_mean"]
+        out.append(with_intervals(row))
     return out
 
 

@@ -10,6 +10,17 @@ import numpy as np
 from humanoidgen.policies.rollout import EpisodeOutcome
 
 
+def wilson_interval(passed: int, total: int, z: float = 1.96) -> tuple[float, float]:
+    """The Wilson score interval of a success rate, passed of total episodes (95% at z = 1.96): with few
+    episodes it stays inside [0, 1] and is not zero-width at 0 or total passes, as the normal one is."""
+    if total <= 0:
+        return 0.0, 1.0
+    p = passed / total
+    centre = (p + z * z / (2 * total)) / (1 + z * z / total)
+    half = z * np.sqrt(p * (1 - p) / total + z * z / (4 * total * total)) / (1 + z * z / total)
+    return float(max(0.0, centre - half)), float(min(1.0, centre + half))
+
+
 @dataclass
 class EvalReport:
     task: str
@@ -36,6 +47,10 @@ class EvalReport:
     @property
     def success_std(self) -> float:
         return float(np.std(list(self.rates().values()))) if self.outcomes else 0.0
+
+    def interval(self) -> tuple[float, float]:
+        """The 95% Wilson interval of the success rate over all episodes pooled (`wilson_interval`)."""
+        return wilson_interval(sum(o.success for o in self.outcomes), len(self.outcomes))
 
     def summary(self) -> str:
         """'dp3 on close_drawer: success 68.3% +- 6.2 over 3 (checkpoint, seed) pairs'."""
