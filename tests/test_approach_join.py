@@ -53,3 +53,27 @@ def test_a_transit_ending_in_another_posture_gets_the_way_in_tracked_from_there(
     p, _ = ctx.kin.ee_pose("right")
     assert np.linalg.norm(p - pose.p) < 0.005  # it still ends at the goal pose
     ctx.kin.sync(ctx.env.data.qpos)
+
+
+def test_a_lift_before_a_turn_is_kept_before_the_approach_that_starts_where_it_ends(monkeypatch):
+    """A carried object resting on something is lifted before the hand turns it (`arm_moves.turns_standing_object`).
+    When the move then comes in along an approach axis, the approach is planned from the lift's end: the lift must
+    stay the first leg, else the arm's targets jump from where the arm is to where the lift would have ended."""
+    from humanoidgen.planning import arm_moves
+
+    planner, pose, _ = _pinch_way()
+    ctx = planner.ctx
+    q_now = ctx.kin.arm_q("right").copy()
+    starts: list[np.ndarray] = []
+
+    def stub_approach(ctx_, side, q0, target):
+        starts.append(np.array(q0))
+        return approach.ApproachPlan(legs=[JointPath(np.vstack([q0, target.joint_q]), "screw")], posture=None,
+                                     label="along its axis")
+
+    monkeypatch.setattr(arm_moves, "turns_standing_object", lambda ctx_, side, target: True)
+    monkeypatch.setattr(approach, "plan_approach", stub_approach)
+    out = arm_moves.plan_side_timed(ctx, "right", pose, [])
+    assert len(starts) == 1 and np.max(np.abs(starts[0] - q_now)) > 1e-4  # the approach starts after a lift
+    assert np.max(np.abs(out[0, :7] - q_now)) < 0.05  # the targets start where the arm is
+    assert np.max(np.abs(np.diff(out[:, :7], axis=0))) < 0.05  # and never jump on the way

@@ -200,7 +200,8 @@ def plan_side_timed(ctx: PlanningContext, side: Side, target: Pose, path_constra
         if target.approach_axis is not None and target.joint_q is not None:
             # Come in straight along the approach axis from a pre-pose reached any collision-free way.
             plan = approach.plan_approach(ctx, side, q0, target)
-            legs, posture = plan.legs, plan.posture
+            # after the lift before a turn, if there was one: the approach starts where the lift ends
+            legs, posture = legs + plan.legs, plan.posture
             if plan.axis is not None:
                 ctx.hands[side].approach_used = plan.axis  # the way back out after the grip
             if "solved" in plan.label or posture is not None or plan.axis is not None:  # not the way asked
