@@ -1,5 +1,5 @@
 """A hand that let go of an object another hand holds (a hand-over) gets clear of it even where it cannot back out
-the way it came in: the hand that takes pulls the object out of the loosened fingers instead.
+the way it came in: a hand that takes it in a pinch pulls it out of the loosened fingers instead.
 
 `arm_moves.retreat` backs the hand out along its approach. After a mid-air hand-over that way can leave the arm's
 reach: measured on handover_and_storage_cooperation (alt_folder seed 1), the right hand had come down onto the
@@ -27,14 +27,17 @@ PULL_SPEED = 0.1  # m/s: slow, the object is in a pinch
 
 def retreat_from(ctx: PlanningContext, side: Side, obj: SceneObject | None) -> bool:
     """Back `side`'s hand out along its approach (`arm_moves.retreat`); where that way is blocked and the other
-    hand holds `obj` (a hand-over), the other hand pulls `obj` away instead. True when the hands came apart."""
+    hand pinches `obj` (a hand-over), the other hand pulls `obj` away instead. True when the hands came apart."""
     before = ctx.env.hand_pose(side)[0].copy()
     arm_moves.retreat(ctx, side)
     if float(np.linalg.norm(ctx.env.hand_pose(side)[0] - before)) >= MOVED_M:
         return True
     taker = OTHER_SIDE[side]
     axis = ctx.hands[taker].last_approach
-    if obj is None or ctx.hands[taker].held is not obj or axis is None:
+    # Only a pinch: fingertips on one end of the object, which a giver's touch drags out of place. A whole-hand
+    # grasp is not dragged so, and pulled out of a giver's hand wrapped round it (bottle_handover: the giver's
+    # thumb three quarters round the bottle) it lost its hold in the release trial.
+    if obj is None or ctx.hands[taker].held is not obj or axis is None or ctx.hands[taker].grip != "pinch":
         return False
     for dist in PULL_DISTANCES:
         if _pull(ctx, taker, -dist * np.asarray(axis, float)):
