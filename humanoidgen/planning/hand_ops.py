@@ -63,6 +63,13 @@ def is_held(touched: set[str]) -> bool:
     return "thumb" in touched and bool(touched & {"index", "middle", "ring", "pinky", "palm"})
 
 
+def is_pinched(touched: set[str]) -> bool:
+    """A pinch proper: the thumb against the index. Thumb and middle alone hold an object at the middle's tip,
+    past the index's pad, by one edge: measured after a mid-air hand-over (handover_and_storage_cooperation,
+    alt_folder seed 1), such a grip held while still but the block tilted 25 deg in 0.4 s on the carry and fell."""
+    return "thumb" in touched and "index" in touched
+
+
 def resting_on(scene: Scene, model: mujoco.MjModel, data: mujoco.MjData, obj: SceneObject) -> list[str]:
     """What supports the object from below its centre: "table" and other objects ("cube 0"); hands don't count."""
     root = model.body(obj.body).id

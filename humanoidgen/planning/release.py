@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from humanoidgen.planning import arm_moves, finger_room
+from humanoidgen.planning import back_away, finger_room
 from humanoidgen.planning.context import PlanningContext
 from humanoidgen.planning.hand_ops import body_speed, is_part, resting_on
 from humanoidgen.planning.recovery import ReleaseRequest
@@ -38,7 +38,7 @@ def open_hands(ctx: PlanningContext, sides: tuple[Side, ...]) -> None:
         backed = []
         for side, obj in rigid:
             axis = ctx.hands[side].last_approach
-            arm_moves.retreat(ctx, side)
+            back_away.retreat_from(ctx, side, obj)
             backed.append((side, obj, None if axis is None else -np.asarray(axis, float)))
         finger_room.open_clear_of(ctx, backed)
     if released:

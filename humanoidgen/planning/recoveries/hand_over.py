@@ -10,6 +10,11 @@ So before the giver lets go, that is tried in the simulation from a snapshot, wi
 loosens, backs out and opens as `open_hand` does, and the object must stay in the taker's fingers. Where it would
 fall, the taker loosens, goes deeper along the way it came in (REGRIP_DEPTHS) and closes again, and the release is
 tried once more (all of it a trial); the first deeper grip that holds alone is then taken for real, with an event.
+A pinch holds alone only between thumb and index (`hand_ops.is_pinched`), and where no deeper one does, grips
+further out are tried: measured on handover_and_storage_cooperation (alt_folder seeds 0 and 1), the left hand's
+pinch of the block's free end sat so deep that it touched the tucked middle finger; once the giver had let go the
+block turned onto thumb and middle, the index off it, and fell on the carry into the drawer. Taken again 6 mm
+further out it stayed between thumb and index through the carry.
 Where none does and in the trial the object fell out of the taker's fingers, the giver keeps it: open_hand fails
 with what the trial showed and what to do instead (measured, bottle_handover: the left hand's pinch of a 0.2 kg
 bottle's neck, where its whole-hand grasp did not fit beside the right hand's, let the bottle fall 10 cm the moment
@@ -22,7 +27,7 @@ from __future__ import annotations
 import numpy as np
 
 from humanoidgen.objects.hands import HAND_POSTURES
-from humanoidgen.planning.hand_ops import finger_contacts, is_held, is_part
+from humanoidgen.planning.hand_ops import finger_contacts, is_held, is_part, is_pinched
 from humanoidgen.planning.motion import MotionError, plan_arm_motion, time_dense_path
 from humanoidgen.planning.context import PlanningContext
 from humanoidgen.planning.errors import PlanningError
@@ -30,11 +35,11 @@ from humanoidgen.planning.recovery import Recovery, ReleaseRequest
 from humanoidgen.planning.snapshot import trial
 from humanoidgen.sim.layout import OTHER_SIDE, Side
 from humanoidgen.sim.scene import SceneObject
-from humanoidgen.planning import arm_moves
+from humanoidgen.planning import back_away
 
 TRIAL_S = 0.4  # after the giver let go, the object is watched this long
 DROP_M = 0.01  # an object that moved this far from the taking hand in the trial is not held by it
-REGRIP_DEPTHS = (0.006, 0.012)  # deeper along the taker's way in, tried in turn
+REGRIP_DEPTHS = (0.006, 0.012, -0.006, -0.012)  # along the taker's way in (negative: further out), in turn
 DEEPER_SPEED = 0.1  # m/s, the taker's short move in
 
 
@@ -42,9 +47,10 @@ class HandOverTrial(Recovery):
     stage = "release"
     trigger = "before"
     answers = "a hand lets go of an object the other hand also holds (a hand-over)"
-    tries = ("the release in a trial from a snapshot; where the object would fall, the taker closes deeper "
-             f"({', '.join(f'{d * 1000:.0f}' for d in REGRIP_DEPTHS)} mm) and the release is tried again")
-    event = "the <taker> hand's <grip> would not hold <object> alone: it took it again <n> mm deeper"
+    tries = ("the release in a trial from a snapshot; where the object would fall (a pinch: not between thumb and "
+             "index), the taker closes deeper or further out "
+             f"({', '.join(f'{d * 1000:+.0f}' for d in REGRIP_DEPTHS)} mm) and the release is tried again")
+    event = "the <taker> hand's <grip> would not hold <object> alone: it took it again <n> mm deeper (or further out)"
 
     def applies(self, ctx: PlanningContext, request: ReleaseRequest, failure: Exception | None) -> bool:
         held, other = request.held, OTHER_SIDE[request.side]
@@ -57,14 +63,23 @@ class HandOverTrial(Recovery):
 
 
 def holds_alone(ctx: PlanningContext, giver: Side, taker: Side, obj: SceneObject) -> bool:
-    """Whether `taker` keeps `obj` once `giver` loosens its grip (tried from a snapshot; the state is restored)."""
-    moved, held = release_trial(ctx, giver, taker, obj)
+    """Whether `taker` keeps `obj` once `giver` loosens its grip (tried from a snapshot; the state is restored).
+    A pinch keeps it only between thumb and index (`hand_ops.is_pinched`): thumb and middle alone, the index
+    off the object once the giver let go, held still but dropped the block on the carry that followed."""
+    moved, touched = _release_outcome(ctx, giver, taker, obj)
+    held = is_pinched(touched) if ctx.hands[taker].grip == "pinch" else is_held(touched)
     return moved <= DROP_M and held
 
 
 def release_trial(ctx: PlanningContext, giver: Side, taker: Side, obj: SceneObject) -> tuple[float, bool]:
     """How far `obj` moves in `taker`'s hand once `giver` lets go, and whether `taker` still holds it then (tried
     from a snapshot; the state is restored)."""
+    moved, touched = _release_outcome(ctx, giver, taker, obj)
+    return moved, is_held(touched)
+
+
+def _release_outcome(ctx: PlanningContext, giver: Side, taker: Side, obj: SceneObject) -> tuple[float, set[str]]:
+    """How far `obj` moves in `taker`'s hand once `giver` lets go, and which of `taker`'s fingers touch it then."""
     env = ctx.env
     before = _in_hand(ctx, taker, obj)
     with trial(ctx):
@@ -73,11 +88,11 @@ def release_trial(ctx: PlanningContext, giver: Side, taker: Side, obj: SceneObje
         ctx.hands[giver].held = None
         ctx.kin.detach(giver)
         ctx.settle(0.3)
-        arm_moves.retreat(ctx, giver)
+        back_away.retreat_from(ctx, giver, obj)
         ctx.move_fingers((giver,), "open")
         ctx.settle(TRIAL_S)
         moved = float(np.linalg.norm(_in_hand(ctx, taker, obj) - before))
-        return moved, is_held(finger_contacts(env.model, env.data, taker, obj.body))
+        return moved, finger_contacts(env.model, env.data, taker, obj.body)
 
 
 def secure_taker(ctx: PlanningContext, giver: Side, obj: SceneObject) -> None:
@@ -97,14 +112,15 @@ def secure_taker(ctx: PlanningContext, giver: Side, obj: SceneObject) -> None:
             works = _close_deeper(ctx, taker, obj, axis, depth, posture) and holds_alone(ctx, giver, taker, obj)
         if works:
             _close_deeper(ctx, taker, obj, axis, depth, posture)  # the same, for real (the state is restored)
+            where = "deeper" if depth > 0 else "further out"
             ctx.events.append(f"the {taker} hand's {posture} would not hold {obj.type_name} {obj.obj_id} alone: "
-                                  f"it took it again {depth * 1000:.0f} mm deeper before the {giver} hand let go")
+                                  f"it took it again {abs(depth) * 1000:.0f} mm {where} before the {giver} hand let go")
             return
     moved, held = release_trial(ctx, giver, taker, obj)
     if not held:
         raise PlanningError("open_hand", would_fall(ctx, giver, taker, obj, moved))
     ctx.events.append(f"the {taker} hand's {posture} may not hold {obj.type_name} {obj.obj_id} alone when the "
-                          f"{giver} hand lets go (taking it deeper did not help)")
+                          f"{giver} hand lets go (taking it deeper or further out did not help)")
 
 
 def would_fall(ctx: PlanningContext, giver: Side, taker: Side, obj: SceneObject, moved: float) -> str:
