@@ -32,3 +32,16 @@ def task_planner(env, **kwargs):
     from humanoidgen.planning.planner import HumanoidMotionPlanner
 
     return HumanoidMotionPlanner(env, targets=getattr(env.scene, "targets", None), **kwargs)
+
+
+def cube_pinch_pose(task: str = "block_stack_single", seed: int = 0, side: str = "right"):
+    """A planner on the task's scene, the hand opened for a pinch, and the solved pose pinching cube 0 (the way
+    several tests start): (planner, pose)."""
+    from humanoidgen.tasks.registry import load_task
+    from humanoidgen.tasks.scene import build_scene
+
+    _, env = build_scene(load_task(task), seed)
+    planner = task_planner(env)
+    planner.hand_pre_pinch(side)
+    _, pose = planner.generate_end_effector_pose(planner.generate_constraints("cube", 0, "pinch", side), side)
+    return planner, pose

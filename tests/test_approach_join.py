@@ -11,18 +11,12 @@ import numpy as np
 
 from humanoidgen.planning import approach
 from humanoidgen.planning.motion import JointPath
-from humanoidgen.tasks.registry import load_task
-from humanoidgen.tasks.scene import build_scene
 
-from plan_runs import task_planner  # noqa: E402
+from plan_runs import cube_pinch_pose  # noqa: E402
 
 
 def _pinch_way():
-    _, env = build_scene(load_task("block_stack_single"), 0)
-    planner = task_planner(env)
-    planner.hand_pre_pinch("right")
-    c = planner.generate_constraints("cube", 0, "pinch", "right")
-    _, pose = planner.generate_end_effector_pose(c, "right")
+    planner, pose = cube_pinch_pose()
     reasons: list[str] = []
     way = next(approach.ways_in(planner.ctx, "right", pose, reasons))
     return planner, pose, way

@@ -19,15 +19,11 @@ from humanoidgen.planning.constraints import Constraint
 from humanoidgen.tasks.registry import load_task
 from humanoidgen.tasks.scene import build_scene
 
-from plan_runs import task_planner  # noqa: E402
+from plan_runs import cube_pinch_pose, task_planner  # noqa: E402
 
 
 def test_other_directions_keep_the_object_between_thumb_and_fingers():
-    _, env = build_scene(load_task("block_stack_single"), 0)
-    planner = task_planner(env)
-    planner.hand_pre_pinch("right")
-    c = planner.generate_constraints("cube", 0, "pinch", "right")
-    _, pose = planner.generate_end_effector_pose(c, "right")
+    planner, pose = cube_pinch_pose()
     ways = approach.other_ways_in(planner.ctx, "right", pose)
     assert len(ways) >= 2
     thumb, index = approach.fingertips_at(planner.ctx, "right", pose.joint_q)

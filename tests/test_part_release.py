@@ -21,7 +21,7 @@ from humanoidgen.planning.recoveries import part_release
 from humanoidgen.planning.snapshot import restore_snapshot, take_snapshot
 from humanoidgen.tasks.registry import load_task
 from humanoidgen.tasks.scene import build_scene
-from plan_runs import run_plan, task_planner
+from plan_runs import cube_pinch_pose, run_plan, task_planner
 
 
 @pytest.fixture
@@ -153,11 +153,8 @@ def test_a_lifted_screen_stays_up_when_the_hand_lets_go(tmp_path, monkeypatch):
 def test_a_trial_leaves_no_trace():
     """A snapshot restored mid-grip steps on bit for bit as the original did (it holds the contact solver's warm
     start too: without it a pinched cube stepped on a hair off, and a trial would change the rest of the run)."""
-    _, env = build_scene(load_task("block_stack_single"), 0)
-    planner = task_planner(env)
-    planner.hand_pre_pinch("right")
-    c = planner.generate_constraints("cube", 0, "pinch", "right")
-    _, pose = planner.generate_end_effector_pose(c, "right")
+    planner, pose = cube_pinch_pose()
+    env = planner.ctx.env
     planner.move_to_pose_with_screw(pose, "right")
     planner.hand_pinch("right", "cube", 0)
     start = take_snapshot(planner.ctx)
