@@ -25,6 +25,7 @@ from humanoidgen.mcts.tree import Tree  # noqa: E402
 from humanoidgen.objects import library  # noqa: E402
 from humanoidgen.objects.describe import describe_scene  # noqa: E402
 from humanoidgen.planning.constraint_gen import ACTIONS, PUSH_ACTIONS  # noqa: E402
+from humanoidgen.planning.skills import PULL_ACTIONS  # noqa: E402
 from humanoidgen.planning.planner import HumanoidMotionPlanner  # noqa: E402
 from humanoidgen.tasks.registry import load_task, parse_task  # noqa: E402
 from humanoidgen.tasks.spec import TaskSpec  # noqa: E402
@@ -52,7 +53,7 @@ def test_each_entry_documents_exactly_the_arguments_of_its_signature(entry: api.
 
 def test_the_actions_documented_are_the_actions_accepted() -> None:
     documented = {a.strip() for k in api.data()["actions"] for a in k.split(",")}
-    assert documented == set(ACTIONS + PUSH_ACTIONS)
+    assert documented == set(ACTIONS + PUSH_ACTIONS + PULL_ACTIONS)
 
 
 def test_the_documented_attributes_exist() -> None:

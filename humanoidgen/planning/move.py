@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from humanoidgen.planning import arm_moves, execute, press_force, push_move
+from humanoidgen.planning import arm_moves, execute, onto_point, press_force, push_move
 from humanoidgen.planning.context import PlanningContext
 from humanoidgen.planning.errors import PlanningError
 from humanoidgen.planning.execute import SLIP_LIMIT
@@ -29,6 +29,11 @@ def move_hands(ctx: PlanningContext, sides: tuple[Side, ...], poses: list, path_
         if not isinstance(target, Pose):
             raise PlanningError(CALL, f"pose must be a Pose (from generate_end_effector_pose), got {type(target).__name__}")
         hand = ctx.hands[side]
+        if (operation := onto_point.operation_of(ctx, target)) is not None:
+            # A ride with a part asked from afar: onto its point first (onto_point), then the ride from there.
+            move_hands(ctx, (side,), [onto_point.pose_onto(ctx, side, target, operation)], None, verbs)
+            ctx.events.append(f"the {side} fingertip came onto {' '.join(map(str, target.follow.obj))}'s "
+                              f"{target.follow.part_point} first ({operation} without openness), to ride from there")
         mine = [c for c in (path_constraints or []) if c.side == side]
         samples[side] = arm_moves.plan_side(ctx, side, target, mine)
         target = hand.take("goal_moved", target)

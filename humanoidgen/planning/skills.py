@@ -24,6 +24,9 @@ from humanoidgen.planning.push_spec import TaskTargets
 from humanoidgen.planning.hand_ops import is_part
 from humanoidgen.sim.layout import HAND_BASE_FRAME, Side
 
+# Objects list pull@<point> (a drawer's handle) among their operations; a hand pulls by gripping: the grasp.
+PULL_ACTIONS = ("pull",)
+
 
 def generate(env, holding: dict, obj_name: str, obj_id: int, action: str, side: Side, openness: float | None = None,
              relative_obj_name: str | None = None, relative_obj_id: int | None = None,
@@ -32,9 +35,18 @@ def generate(env, holding: dict, obj_name: str, obj_id: int, action: str, side: 
     """`targets`: the task's target poses and pushes (None: the task defines none); `force`: a press to that
     force (`press_force`)."""
     ta = target_actions
-    if action not in ACTIONS + PUSH_ACTIONS:
-        raise ConstraintGenerationError(f"unknown action {action!r}; use one of {', '.join(ACTIONS)}")
+    if action not in ACTIONS + PUSH_ACTIONS + PULL_ACTIONS:
+        raise ConstraintGenerationError(f"unknown action {action!r}; use one of "
+                                        f"{', '.join(ACTIONS + PUSH_ACTIONS + PULL_ACTIONS)}")
     obj = env.scene.object(obj_name, obj_id)  # a clear error for an unknown object; aliases resolve here
+    pulled = action in PULL_ACTIONS
+    if pulled:
+        # Authors ask for the pull the object lists by name. A hand pulls a part by gripping it: the part's grasp,
+        # and with openness the held grip takes it along.
+        if not (obj.annotations is not None and obj.annotations.operations_of("pull")):
+            raise ConstraintGenerationError(f"{obj.type_name} has no 'pull' annotation; actions for it: "
+                                            f"{', '.join(ta.actions_of(obj))}")
+        action = "grasp"
     obj_name, obj_id = obj.type_name, obj.obj_id
     rel = None
     if relative_obj_name is not None:
@@ -45,6 +57,9 @@ def generate(env, holding: dict, obj_name: str, obj_id: int, action: str, side: 
     if action in ("grasp", "pinch"):
         operation, note = ta.operation_for(obj, action)
         gen = grasp_or_pinch(env, side, obj_name, obj_id, operation, openness, point, finger_offset, holding)
+        if pulled:
+            gen.notes.append(f"pull: the {side} hand's {operation} of {obj.type_name} {obj_id}"
+                             + (f", moving the part to openness {openness:g}" if openness is not None else ""))
         if note is not None:
             if operation == "pinch":
                 _close_as_pinch(gen)

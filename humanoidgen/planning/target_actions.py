@@ -57,8 +57,14 @@ def task_push(env, holding: dict, targets: TaskTargets | None, obj: SceneObject,
               openness: float | None) -> Generated | None:
     """target1/target2 on an articulated object as the task defines its push (None where it defines none)."""
     push = targets.push(obj.type_name, obj.obj_id) if targets is not None else None
-    if push is None or action not in ("target1", "target2"):
+    if push is None:
         return None
+    if action not in ("target1", "target2"):
+        # action="push"/"flip" with openness at the very point the task pushes: that push, staged as the task
+        # defines it (a fingertip riding a lid along its arc in one stroke slips off its edge part way).
+        if openness is None or not any(o.operation == action and o.point == push.spec.push.point
+                                       for o in obj.annotations.operations):
+            return None
     return push_actions.generate(env, holding, obj, side, action, push.spec.push, openness)
 
 
