@@ -110,5 +110,6 @@ def test_a_package_of_an_unknown_kind_is_refused(tmp_path, monkeypatch):
 def test_a_missing_download_tool_is_a_fetch_error(tmp_path, monkeypatch):
     monkeypatch.setattr(fetch, "MANIFEST", _manifest(tmp_path, "0" * 64))
     monkeypatch.setattr(type(KINDS["deb"]), "command", lambda self, p, v: ["hgen-no-such-apt-get", "download"])
-    with pytest.raises(fetch.FetchError_, match="not on this machine"):
-        fetch.fetch_library(tmp_path / "assets", tmp_path / "packages", log=lambda s: None)
+    report = fetch.fetch_library(tmp_path / "assets", tmp_path / "packages", log=lambda s: None)
+    # the package's models fail with the reason; the fetch goes on with the other packages' models
+    assert report.imported == [] and len(report.failed) == 1 and "not on this machine" in report.failed[0]

