@@ -65,3 +65,11 @@ def test_pull_on_an_object_without_one_says_what_it_has() -> None:
     env, planner = _planner("press_toaster")
     with pytest.raises(PlanningError, match="toaster has no 'pull' annotation; actions for it: .*target1"):
         planner.generate_constraints("toaster", 0, action="pull", hand_name="right", openness=1.0)
+
+
+def test_a_push_the_way_the_tasks_push_goes_is_that_push_at_its_point() -> None:
+    # The laptop's annotated push is at the screen's back (out of reach); the task shuts it pushing at its edge.
+    env, planner = _planner("close_laptop_easy", 1)
+    planner.hand_press("right")
+    _go(planner, "right", "laptop", "push", openness=0.0)
+    assert _open(env, "laptop") < 0.1

@@ -94,7 +94,8 @@ def check_push_direction(ctx: PlanningContext, side: Side, gen) -> None:
     op = push_op(ctx, gen)
     why = (f"a flip gets under {obj.type_name} {obj.obj_id} at {f.part_point} and lifts it: it opens it, it "
            f"cannot bring it down to openness {wanted:g}" if op is not None and op.operation == "flip" else
-           f"a fingertip at {obj.type_name} {obj.obj_id} {f.part_point} cannot move it to openness {wanted:g}: "
+           f"a fingertip at {obj.type_name} {obj.obj_id} {f.part_point} cannot move it to openness {wanted:g} "
+           f"(it is at {follow_openness(ctx.env, f):.2f} now): "
            f"the point moves {np.degrees(np.arccos(np.clip(cos, -1, 1))):.0f} deg away from the push direction, "
            f"so the finger would have to pull")
     raise PlanningError("generate_end_effector_pose",

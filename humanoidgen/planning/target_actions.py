@@ -40,6 +40,7 @@ POUR_SIDE_M = 0.06
 POUR_ABOVE_RIM_M = 0.16
 # An action the object lacks -> the operation that does the same job on it (a laptop screen's edge is pinched,
 # not grasped; a drawer handle is grasped, not pinched).
+SAME_WAY_MIN = 0.02  # an openness asked this far from now says which way the part is to move
 SIMILAR_OPERATIONS = {"grasp": ("pinch",), "pinch": ("grasp",)}
 
 
@@ -60,10 +61,16 @@ def task_push(env, holding: dict, targets: TaskTargets | None, obj: SceneObject,
     if push is None:
         return None
     if action not in ("target1", "target2"):
-        # action="push"/"flip" with openness at the very point the task pushes: that push, staged as the task
-        # defines it (a fingertip riding a lid along its arc in one stroke slips off its edge part way).
-        if openness is None or not any(o.operation == action and o.point == push.spec.push.point
-                                       for o in obj.annotations.operations):
+        # action="push"/"flip" with openness at the point the task pushes, or the way the task's push moves the
+        # part (shutting a screen pushed at its edge, not at its back): that push, staged as the task defines it
+        # (a fingertip riding a lid along its arc in one stroke slips off its edge part way).
+        if openness is None:
+            return None
+        at_point = any(o.operation == action and o.point == push.spec.push.point for o in obj.annotations.operations)
+        now = push_actions.part_openness(env, obj)
+        # (at the openness it is at now: the fingertip put on the part to push it the task's way next)
+        same_way = abs(openness - now) <= SAME_WAY_MIN or (openness - now) * (push.spec.push.to - now) > 0
+        if not (at_point or same_way):
             return None
     return push_actions.generate(env, holding, obj, side, action, push.spec.push, openness)
 
