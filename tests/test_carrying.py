@@ -130,7 +130,7 @@ def test_a_cube_set_down_beside_another_lines_up_with_it_just_clear():
     goal = first[0].object_key_point
     c0 = get_point_in_env(env, "center", "cube", 0)
     assert goal[1] < c0[1] - 0.04  # moved further from cube 0 along the plan's line (the cubes' yaws differ)
-    assert abs(goal[0] - c0[0]) < 1e-6 and c0[1] - goal[1] - 0.04 <= move_action.MAX_NUDGE_M
+    assert abs(goal[0] - c0[0]) < 1e-6 and c0[1] - goal[1] - 0.04 <= move_action.LINE_NUDGE_M
     # Lined up: the turn makes cube 1's x axis parallel to one of cube 0's faces' axes (mod 90 deg).
     align = [c for c in first if "square to" in c.name][0]
     R0 = env.data.xmat[env.model.body(cube0.body).id].reshape(3, 3)
