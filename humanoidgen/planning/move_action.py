@@ -7,7 +7,8 @@
   under it, come to from above; a cube may be turned a quarter about the vertical (the move's alternatives).
 - Set down beside another object (a pyramid's second base against the first), a cube is turned to line up with
   it, the hand's squeeze across the line between them (so no finger is between the two), and put just clear of
-  it (`beside`).
+  it (`beside`): along the plan's line, or against the neighbour's nearest face where the line runs toward its
+  corner. A neighbour overlapped only corner to corner (the cube's centre off its footprint) is one, not a support.
 """
 
 from __future__ import annotations
