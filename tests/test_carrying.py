@@ -129,8 +129,12 @@ def test_a_cube_set_down_beside_another_lines_up_with_it_just_clear():
     assert "lined up with cube 0" in first[0].name and any("square to cube 0" in c.name for c in first)
     goal = first[0].object_key_point
     c0 = get_point_in_env(env, "center", "cube", 0)
-    assert goal[1] < c0[1] - 0.04  # moved further from cube 0 along the plan's line (the cubes' yaws differ)
-    assert abs(goal[0] - c0[0]) < 1e-6 and c0[1] - goal[1] - 0.04 <= move_action.MAX_NUDGE_M
+    assert goal[1] < c0[1] - 0.04  # moved further from cube 0 (the cubes' yaws differ)
+    # Along the plan's line where that costs at most LINE_NUDGE_M; here (cube 0 turned further from the line) it
+    # would cost more (seed 0: cube 0 turned to the line): set against its nearest face, as close as the gap allows.
+    on_line = abs(goal[0] - c0[0]) < 1e-6 and c0[1] - goal[1] - 0.04 <= move_action.LINE_NUDGE_M
+    against = any("nearest face" in n for n in gen.notes) and 0.04 < np.linalg.norm(goal[:2] - c0[:2]) < 0.05
+    assert on_line or against
     # Lined up: the turn makes cube 1's x axis parallel to one of cube 0's faces' axes (mod 90 deg).
     align = [c for c in first if "square to" in c.name][0]
     R0 = env.data.xmat[env.model.body(cube0.body).id].reshape(3, 3)

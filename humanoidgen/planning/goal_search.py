@@ -11,7 +11,9 @@ In order, each rung tried only when the ones before found nothing (so a goal fou
    goal needs is between a finger and the table: a fingertip taking a low edge (an event says so);
 4. the wrist's freedom: each exact axis of a generated grip or push relaxed into a cone (CONE_DEG for the
    approach direction, ROLL_DEG about it), the exact axes kept as a preference, then wider (WIDE_CONE_DEG,
-   WIDE_ROLL_DEG); for at most RELAXED_WAYS grips and RELAX_BUDGET_S seconds (an event gives the angles taken).
+   WIDE_ROLL_DEG); for at most RELAXED_WAYS grips and RELAX_BUDGET_S seconds (an event gives the angles taken);
+5. a loose object's pinch with the fingers turned about the squeeze axis (`pinch_slant`: the wrist higher, over
+   the torso or a wall beside the hand).
 
 A goal found for a carried object that turns a joint past near_goal.FAR_JOINT_DEG is solved again near the arm's
 posture (near_goal.py; an event says so).
@@ -38,7 +40,7 @@ from humanoidgen.planning.part_joint import PartFollow, part_stays, follow_artic
 from humanoidgen.planning import regrip_request as regrip
 from humanoidgen.planning.poses import Pose
 from humanoidgen.sim.layout import HAND_PREFIX, ROOT_BODY, Side
-from humanoidgen.planning import approach
+from humanoidgen.planning import approach, pinch_slant
 from humanoidgen.planning import part_grip
 from humanoidgen.planning.context import PlanningContext
 from humanoidgen.planning.recovery import GoalFound
@@ -91,6 +93,8 @@ def solve_goal(ctx: PlanningContext, constraints: list, side: Side) -> tuple[Goa
                 result = first_try  # the part's own path says best why not
         if not result.success and not riding and ctx.wider_search:
             result, gen, slack = wider_goal(ctx, side, gen, tried, ignored_before, result)
+            if not result.success:
+                result, gen = pinch_slant.slanted_goal(ctx, side, gen, ignored_before, result)
         if result.success and not riding and getattr(gen, "grip_part", None) is not None:
             result, gen = prefer_arc(ctx, side, gen, result, ignored_before)
         if result.success and not riding:

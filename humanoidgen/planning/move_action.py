@@ -7,7 +7,8 @@
   under it, come to from above; a cube may be turned a quarter about the vertical (the move's alternatives).
 - Set down beside another object (a pyramid's second base against the first), a cube is turned to line up with
   it, the hand's squeeze across the line between them (so no finger is between the two), and put just clear of
-  it (`beside`).
+  it (`beside`): along the plan's line, or against the neighbour's nearest face where the line runs toward its
+  corner. A neighbour overlapped only corner to corner (the cube's centre off its footprint) is one, not a support.
 """
 
 from __future__ import annotations
@@ -25,7 +26,10 @@ from humanoidgen.sim.scene import SceneObject
 
 BESIDE_M = 0.012  # a neighbour whose footprint comes this near the held object's at the goal is "beside" it
 BESIDE_GAP_M = 0.006  # set down beside a neighbour, the footprints end this far apart (the solver's clearance)
-MAX_NUDGE_M = 0.015  # the goal moves at most this far away from the neighbour to keep that gap
+# The goal moves at most this far away from the neighbour along the plan's line to keep that gap; where that is
+# not enough, it is set against the neighbour's nearest face instead (`_beside_ways`). 15 mm along the line put a
+# pyramid's bases 5.8-6.4 cm apart on the G1 (the first base turned 35-40 deg in its pinch), 4.0-5.5 wanted.
+LINE_NUDGE_M = 0.01
 ALIGN_WITHIN_DEG = 3.0  # a cube lined up with its neighbour is within this of its faces' directions
 
 
@@ -83,10 +87,11 @@ def _held_move(env, obj_name: str, obj_id: int, side: Side, rel, point: np.ndarr
     for up in ups or [None]:
         R_goal = R_now if up is None else placing.turning(R_now[:, 2], up) @ R_now
         goal, lifted = placing.release_lift(env, obj, point, R_goal)
+        nb, nb_goal, nb_lifted = _neighbour(env, obj, point, R_goal) if symmetric else (None, goal, lifted)
+        lifted = nb_lifted if nb is not None else lifted
         notes += [lifted] if lifted and not notes else []
-        nb = beside(env, obj, goal, R_goal) if symmetric else None
         if nb is not None:
-            ways += _beside_ways(env, side, obj, nb, goal, R_goal, centre, label)
+            ways += _beside_ways(env, side, obj, nb, nb_goal, R_goal, centre, label)
         above = placing.height_above(env, obj, goal, R_goal)
         low = above < placing.RAISED_RELEASE_M[0]
         # Set down on or beside something, the fingers may be in a neighbour's way: let go higher (last resort).
@@ -154,12 +159,12 @@ def _gap(c1, axes1, half1, c2, axes2, half2) -> float:
     return best
 
 
-def beside(env, obj: SceneObject, goal: np.ndarray, R: np.ndarray) -> Neighbour | None:
+def beside(env, obj: SceneObject, goal: np.ndarray, R: np.ndarray, centred: bool = False) -> Neighbour | None:
     """The nearest object standing beside the held object's place at `goal` (its footprint within BESIDE_M, not
     under it, not a container, reaching the held object's height), or None."""
     axes, half = _footprint(obj, R)
     bottom = goal[2] - placing.lowest_offset(obj, R)
-    _, under = placing.support_below(env, obj, goal, R)
+    _, under = placing.support_below(env, obj, goal, R, centred)
     best = None
     for o in env.scene.objects:
         if o is obj or o.annotations is None or placing.is_container(o) or f"{o.type_name} {o.obj_id}" == under:
@@ -172,6 +177,24 @@ def beside(env, obj: SceneObject, goal: np.ndarray, R: np.ndarray) -> Neighbour 
         if gap < BESIDE_M and (best is None or gap < best.gap):
             best = Neighbour(o, c, o_axes, o_half, gap)
     return best
+
+
+def _neighbour(env, obj: SceneObject, point: np.ndarray, R: np.ndarray
+               ) -> tuple[Neighbour | None, np.ndarray, str | None]:
+    """The neighbour the held cube is set down beside, the goal (`placing.release_lift`) and its note. An object
+    the cube's footprint overlaps only corner to corner (both turned 40-50 deg to the plan's line, its centre
+    off the object's footprint) is a neighbour, not a support: the cube could not rest on it. Judged a support,
+    the goal was raised onto its corner and the cube slid off (a pyramid's bases 6-7 cm apart where 4-5.5 cm
+    are asked)."""
+    goal, lifted = placing.release_lift(env, obj, point, R)
+    nb = beside(env, obj, goal, R)
+    if nb is not None:
+        return nb, goal, lifted
+    goal_c, lifted_c = placing.release_lift(env, obj, point, R, centred=True)
+    if np.allclose(goal_c, goal):
+        return None, goal, lifted
+    nb = beside(env, obj, goal_c, R, centred=True)
+    return (nb, goal_c, lifted_c) if nb is not None else (None, goal, lifted)
 
 
 def _wrap(deg: float, period: float) -> float:
@@ -195,8 +218,16 @@ def _beside_ways(env, side: Side, obj: SceneObject, nb: Neighbour, goal: np.ndar
     # line the plan drew, which is what the next steps (a block across both) are measured along.
     away = to_goal / max(float(np.linalg.norm(to_goal)), 1e-9)
     nudge = np.zeros(3)
-    if need > 0.0 and float(out @ away) > 0.5 and need / float(out @ away) <= MAX_NUDGE_M:
+    face = False
+    if need > 0.0 and float(out @ away) > 0.5 and need / float(out @ away) <= LINE_NUDGE_M:
         nudge[:2] = need / float(out @ away) * away
+    elif need > 0.0:
+        # The plan's line runs toward the neighbour's corner (it stands turned 35-50 deg to that line): kept on
+        # the line, the cube is clear of it only 1.4-2 cm further out than asked, and the two end 5.7-7 cm apart
+        # where the plan asked 4.3. Face to face against the neighbour's face nearest the place asked instead,
+        # as close as the gap allows: the distance asked kept, the direction turned.
+        nudge[:2] = nb.centre[:2] + out * (nb.half[k] + half_held + BESIDE_GAP_M) - goal[:2]
+        face = True
     squeeze = get_axis_in_env(env, f"{side}_thumb_2_index")[:2]
     turns = sorted((align + q for q in (0.0, 90.0, -90.0)),
                    key=lambda t: (round(abs(float(placing.turned_about_vertical(np.r_[squeeze, 0.0], t)[:2] @ out)), 1),
@@ -215,8 +246,10 @@ def _beside_ways(env, side: Side, obj: SceneObject, nb: Neighbour, goal: np.ndar
                        name=f"{obj.type_name} {obj.obj_id}'s faces square to {nb.obj.type_name} {nb.obj.obj_id}'s"),
         ], approach_axis=placing.DOWN)
         gen.notes.append(f"{obj.type_name} {obj.obj_id} is turned {t:+.0f} deg to line up with {nb.obj.type_name} "
-                         f"{nb.obj.obj_id} beside it" + (f" and set {np.linalg.norm(nudge) * 1000:.0f} mm further "
-                                                         "from it, just clear" if nudge.any() else "")
+                         f"{nb.obj.obj_id} beside it" + (
+                             f" and set against its nearest face, {np.linalg.norm(nudge) * 1000:.0f} mm from the "
+                             "place asked" if face else f" and set {np.linalg.norm(nudge) * 1000:.0f} mm further "
+                             "from it, just clear" if nudge.any() else "")
                          + (f", let go {raise_by * 100:.1f} cm higher (lower down a finger would touch it)"
                             if raise_by else ""))
         ways.append(gen)

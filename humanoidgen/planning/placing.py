@@ -117,9 +117,17 @@ def highest_offset(obj: SceneObject, R: np.ndarray) -> float:
     return float((_corners(obj) @ R.T)[:, 2].max())
 
 
-def support_below(env, obj: SceneObject, goal: np.ndarray, R: np.ndarray) -> tuple[float, str]:
+def _centre_over(obj: SceneObject, c: np.ndarray, Ro: np.ndarray, goal: np.ndarray) -> bool:
+    """Whether `goal` lies over the object's footprint (its own horizontal axes, not the world box)."""
+    lo, hi = np.asarray(obj.annotations.bbox_min), np.asarray(obj.annotations.bbox_max)
+    local = Ro.T @ (np.asarray(goal, float) - c)
+    return bool(np.all(local[:2] >= lo[:2]) and np.all(local[:2] <= hi[:2]))
+
+
+def support_below(env, obj: SceneObject, goal: np.ndarray, R: np.ndarray, centred: bool = False) -> tuple[float, str]:
     """The height of what the held object would rest on with its centre at `goal` in orientation R: the table or
-    the top of an object whose footprint is under it (containers excepted: things go down into them)."""
+    the top of an object whose footprint is under it (containers excepted: things go down into them). `centred`:
+    only an object the centre is over counts (one whose corner the held object's corner overlaps is beside it)."""
     pts = _corners(obj) @ R.T + goal
     lo, hi = pts[:, :2].min(0), pts[:, :2].max(0)
     best, what = TABLE_TOP_Z, "the table"
@@ -132,6 +140,8 @@ def support_below(env, obj: SceneObject, goal: np.ndarray, R: np.ndarray) -> tup
         overlap = np.minimum(hi, ohi) - np.maximum(lo, olo)
         need = np.maximum(SUPPORT_OVERLAP_M, SUPPORT_SHARE * np.minimum(hi - lo, ohi - olo))
         top = float(c[2] + highest_offset(o, Ro))
+        if centred and not _centre_over(o, c, Ro, goal):
+            continue
         if np.all(overlap > need) and top > best and top < goal[2]:
             best, what = top, f"{o.type_name} {o.obj_id}"
     return best, what
@@ -148,12 +158,13 @@ def height_above_support(env, obj: SceneObject) -> float:
     return height_above(env, obj, *object_pose(env, obj))
 
 
-def release_lift(env, obj: SceneObject, goal: np.ndarray, R: np.ndarray) -> tuple[np.ndarray, str | None]:
+def release_lift(env, obj: SceneObject, goal: np.ndarray, R: np.ndarray,
+                 centred: bool = False) -> tuple[np.ndarray, str | None]:
     """The goal moved up or down so that the held object ends RELEASE_CLEARANCE_M above its support, and a note
     saying so (None when it is left as it is). Up where it would reach into the support; down where it would be
     let go less than DROP_LIMIT_M above it (a plan's "a little above" is a drop otherwise); higher goals are
     where the plan wants the object held, and stay."""
-    support, what = support_below(env, obj, goal, R)
+    support, what = support_below(env, obj, goal, R, centred)
     bottom = goal[2] - lowest_offset(obj, R)
     lift = support + RELEASE_CLEARANCE_M - bottom
     if -DROP_LIMIT_M < lift < -1e-3:
