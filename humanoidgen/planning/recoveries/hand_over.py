@@ -43,12 +43,13 @@ from humanoidgen.planning.recovery import Recovery, ReleaseRequest
 from humanoidgen.planning.snapshot import trial
 from humanoidgen.sim.layout import OTHER_SIDE, Side
 from humanoidgen.sim.scene import SceneObject
-from humanoidgen.planning import back_away
+from humanoidgen.planning import back_away, finger_room
 
 TRIAL_S = 0.4  # after the giver let go, the object is watched this long ...
 DROP_M = 0.01  # ... and one that moved this far from the taking hand by then is not held by it
 HOLD_S = 2.0  # it is watched on until this long after ...
 FALL_M = 0.03  # ... and one that moved this far by then fell out of the taker's fingers
+AWAY_BIT = 1 << 30  # a contact bit no geom uses: the object's, while the giver's hand is kept off it
 REGRIP_DEPTHS = (0.006, 0.012, -0.006, -0.012)  # along the taker's way in (negative: further out), in turn
 DEEPER_SPEED = 0.1  # m/s, the taker's short move in
 
@@ -98,16 +99,19 @@ def _release_outcome(ctx: PlanningContext, giver: Side, taker: Side, obj: SceneO
         ctx.hands[giver].held = None
         ctx.kin.detach(giver)
         ctx.settle(0.3)
+        axis = ctx.hands[giver].last_approach
         back_away.retreat_from(ctx, giver, obj)
-        ctx.move_fingers((giver,), "open")
-        # Watched with the giver's hand no longer touching anything: a giver that cannot open clear of the
+        # and opens as open_hand does: clear of the object, or not at all (opened where it is, a half-open
+        # giver's fingers swept into a bottle and pressed it into the taker's hand, holding it up)
+        finger_room.open_clear_of(ctx, [(giver, obj, None if axis is None else -np.asarray(axis, float))])
+        # Watched with the giver's hand no longer touching the object: a giver that cannot open clear of the
         # object (a thumb three quarters round a bottle) still bore part of its weight in the trial, and the
         # object slid out of the taker's fingers once the giver went (bottle_handover, both_hands_all seed 0:
         # 3 mm in the trial, "slipped 231 mm" on the giver's way home, its hand off the bottle after 0.3 s).
         # Such a grip gives way only after a while (there: 13 mm at 0.8 s, 50 mm at 1 s), so it is watched
         # HOLD_S; a grip that holds still creeps a few mm in that time (the shoulder grip that held on every
         # carry: 6-11 mm in 2 s).
-        with _hand_away(env.model, giver):
+        with _hand_away(env.model, giver, obj.body):
             ctx.settle(TRIAL_S)
             moved = float(np.linalg.norm(_in_hand(ctx, taker, obj) - before))
             ctx.settle(HOLD_S - TRIAL_S)
@@ -116,16 +120,26 @@ def _release_outcome(ctx: PlanningContext, giver: Side, taker: Side, obj: SceneO
 
 
 @contextmanager
-def _hand_away(model, side: Side):
-    """`side`'s hand collides with nothing while inside (its geoms' contact bits cleared, then restored)."""
-    geoms = [g for g in range(model.ngeom) if hand_part(model, int(model.geom_bodyid[g]), side) is not None]
-    saved = model.geom_contype[geoms].copy(), model.geom_conaffinity[geoms].copy()
-    model.geom_contype[geoms] = 0
-    model.geom_conaffinity[geoms] = 0
+def _hand_away(model, side: Side, body: str):
+    """`side`'s hand and the object `body` do not touch while inside; each touches all else as before (the taker's
+    fingers still rest on the giver's where they did: a block pinched between them fell in the trial when the
+    giver's hand was taken out of every contact, and held in the real hand-over). The object's geoms get a
+    contact bit of their own that only what it could touch before accepts; restored on the way out."""
+    mine = [g for g in range(model.ngeom) if hand_part(model, int(model.geom_bodyid[g]), side) is not None]
+    root = model.body(body).id
+    obj = [g for g in range(model.ngeom) if model.body_rootid[model.geom_bodyid[g]] == root]
+    saved = model.geom_contype.copy(), model.geom_conaffinity.copy()
+    c_o = int(np.bitwise_or.reduce(model.geom_contype[obj])) if obj else 0
+    a_o = int(np.bitwise_or.reduce(model.geom_conaffinity[obj])) if obj else 0
+    others = [g for g in range(model.ngeom) if g not in set(obj) | set(mine)
+              and (model.geom_contype[g] & a_o or c_o & model.geom_conaffinity[g])]
+    model.geom_conaffinity[others] |= AWAY_BIT
+    model.geom_contype[obj] = AWAY_BIT
+    model.geom_conaffinity[obj] = 0
     try:
         yield
     finally:
-        model.geom_contype[geoms], model.geom_conaffinity[geoms] = saved
+        model.geom_contype[:], model.geom_conaffinity[:] = saved
 
 
 def secure_taker(ctx: PlanningContext, giver: Side, obj: SceneObject) -> None:
