@@ -21,9 +21,9 @@ bottle's neck, where its whole-hand grasp did not fit beside the right hand's, l
 the right hand opened; the plan went on and failed at the next move with "slipped 236 mm"). Where the object only
 shifted in the fingers, the plan goes on as asked, with an event.
 
-The trial watches the object with the giver's hand gone (it touches nothing) for HOLD_S: a giver that cannot open
-clear of it bears part of its weight until it leaves, and a grip that holds only with that help gives way a second
-later (bottle_handover: the left hand's grip of a bottle's shoulder slid off it on the giver's way home). Where
+The trial opens the giver as open_hand does (clear of the object, or not at all) and watches the object with the
+giver's hand kept off it for HOLD_S: a giver that cannot open clear of it bears part of its weight until it leaves,
+and a grip that holds only with that help gives way a second later (bottle_handover: the left hand's grip of a bottle's shoulder slid off it on the giver's way home). Where
 neither deeper nor further out holds, a grip the hand has a firmer closing for is closed firmer
 (`objects.hands.firmer`).
 """
