@@ -46,7 +46,7 @@ def test_where_no_deeper_grip_holds_one_further_out_is_tried(monkeypatch):
     env, planner, cube = _mid_air()
     tried = []
 
-    def closing(ctx, side, obj, axis, depth, posture):  # the grip itself is tested with the deeper ones
+    def closing(ctx, side, obj, axis, depth, posture, close=None):  # the grip itself is tested with the deeper ones
         tried.append(depth)
         return True
 

@@ -41,6 +41,12 @@ def narrow_grasp() -> str | None:
     return "grasp_narrow" if "grasp_narrow" in HAND_POSTURES else None
 
 
+def firmer(posture: str) -> str | None:
+    """A firmer closing of `posture` (its `<posture>_firm`, the thumb further in), for a grip that would not hold
+    alone; None where the hand has none."""
+    return f"{posture}_firm" if f"{posture}_firm" in HAND_POSTURES else None
+
+
 def hand_axes(side: Side) -> dict[str, np.ndarray]:
     return _HAND.axes(side)
 
