@@ -12,7 +12,7 @@ import math
 import numpy as np
 
 from humanoidgen.objects.describe import openness
-from humanoidgen.objects.queries import get_axis_in_env, get_point_in_env
+from humanoidgen.objects.queries import get_axis_in_env, get_openness_in_env, get_point_in_env
 from humanoidgen.planning.constraints import Const, Constraint
 from humanoidgen.planning.planner import HumanoidMotionPlanner
 from humanoidgen.sim.env import HumanoidEnv
@@ -29,6 +29,7 @@ def step_namespace(planner: HumanoidMotionPlanner) -> dict:
         "Cost": Const,  # upstream's name for the soft relation (its prompts say Const, its plans write Cost)
         "get_point_in_env": get_point_in_env,
         "get_axis_in_env": get_axis_in_env,
+        "get_openness_in_env": get_openness_in_env,
         "HumanoidMotionPlanner": HumanoidMotionPlanner,
     }
 

@@ -52,6 +52,20 @@ def wrist_point_in_env(env, side: str, local: np.ndarray) -> np.ndarray:
     return pos + R @ np.asarray(local, float)
 
 
+def get_openness_in_env(env, type_name: str, obj_id: int = 0, part: str | None = None) -> float:
+    """How open object `type_name[obj_id]`'s moving part is now: 0 (closed) to 1 (open), as `openness=` counts
+    it everywhere. `part`: another moving part by name, for an object with two (a safe's "knob")."""
+    from humanoidgen.objects.describe import openness
+
+    obj, ann = _object(env, type_name, obj_id)
+    if ann is None or ann.articulation is None:
+        raise KeyError(f"{type_name}[{obj_id}] has no moving part, so no openness")
+    parts = sorted({k.part for k in ann.points if k.part} | {a.part for a in ann.part_articulations if a.part})
+    if part is not None and part not in parts:
+        raise KeyError(f"{type_name}[{obj_id}] has no part {part!r}; its parts: {', '.join(parts) or 'none named'}")
+    return float(np.clip(openness(env.model, env.data, obj, part), 0.0, 1.0))
+
+
 # Object point names the paper's plans use, for ours.
 PAPER_POINT_NAMES = {"articulated_object_head": "head"}
 
