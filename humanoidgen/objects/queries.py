@@ -9,6 +9,7 @@ from __future__ import annotations
 import mujoco
 import numpy as np
 
+from humanoidgen.objects.describe import openness
 from humanoidgen.objects.hands import HAND_AXIS_NAMES, HAND_POINT_NAMES, hand_axes, hand_points, side_of
 from humanoidgen.objects.schema import ObjectAnnotations
 from humanoidgen.sim.layout import WRIST_BODY
@@ -55,8 +56,6 @@ def wrist_point_in_env(env, side: str, local: np.ndarray) -> np.ndarray:
 def get_openness_in_env(env, type_name: str, obj_id: int = 0, part: str | None = None) -> float:
     """How open object `type_name[obj_id]`'s moving part is now: 0 (closed) to 1 (open), as `openness=` counts
     it everywhere. `part`: another moving part by name, for an object with two (a safe's "knob")."""
-    from humanoidgen.objects.describe import openness
-
     obj, ann = _object(env, type_name, obj_id)
     if ann is None or ann.articulation is None:
         raise KeyError(f"{type_name}[{obj_id}] has no moving part, so no openness")

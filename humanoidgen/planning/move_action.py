@@ -88,8 +88,9 @@ def _held_move(env, obj_name: str, obj_id: int, side: Side, rel, point: np.ndarr
     for up in ups or [None]:
         R_goal = R_now if up is None else placing.turning(R_now[:, 2], up) @ R_now
         goal, lifted = placing.release_lift(env, obj, point, R_goal)
-        nb, nb_goal, nb_lifted = _neighbour(env, obj, point, R_goal) if symmetric else (None, goal, lifted)
-        lifted = nb_lifted if nb is not None else lifted
+        nb, nb_goal = None, goal
+        if symmetric:
+            nb, nb_goal, lifted = _neighbour(env, obj, point, R_goal, goal, lifted)
         notes += [lifted] if lifted and not notes else []
         if nb is not None:
             ways += _beside_ways(env, side, obj, nb, nb_goal, R_goal, centre, label)
@@ -180,14 +181,14 @@ def beside(env, obj: SceneObject, goal: np.ndarray, R: np.ndarray, centred: bool
     return best
 
 
-def _neighbour(env, obj: SceneObject, point: np.ndarray, R: np.ndarray
+def _neighbour(env, obj: SceneObject, point: np.ndarray, R: np.ndarray, goal: np.ndarray, lifted: str | None
                ) -> tuple[Neighbour | None, np.ndarray, str | None]:
-    """The neighbour the held cube is set down beside, the goal (`placing.release_lift`) and its note. An object
+    """The neighbour the held cube is set down beside, the goal and its note (`goal`, `lifted`: what
+    `placing.release_lift` made of `point`, kept where there is no neighbour). An object
     the cube's footprint overlaps only corner to corner (both turned 40-50 deg to the plan's line, its centre
     off the object's footprint) is a neighbour, not a support: the cube could not rest on it. Judged a support,
     the goal was raised onto its corner and the cube slid off (a pyramid's bases 6-7 cm apart where 4-5.5 cm
     are asked)."""
-    goal, lifted = placing.release_lift(env, obj, point, R)
     nb = beside(env, obj, goal, R)
     if nb is not None:
         return nb, goal, lifted

@@ -38,9 +38,9 @@ FROM_ABOVE_BELOW_M = 0.05
 DOWN = np.array([0.0, 0.0, -1.0])
 POUR_SIDE_M = 0.06
 POUR_ABOVE_RIM_M = 0.16
+SAME_WAY_MIN = 0.02  # an openness asked this far from now says which way the part is to move
 # An action the object lacks -> the operation that does the same job on it (a laptop screen's edge is pinched,
 # not grasped; a drawer handle is grasped, not pinched).
-SAME_WAY_MIN = 0.02  # an openness asked this far from now says which way the part is to move
 SIMILAR_OPERATIONS = {"grasp": ("pinch",), "pinch": ("grasp",)}
 
 
@@ -56,7 +56,8 @@ def has_task_target(targets: TaskTargets | None, obj: SceneObject, name: str, si
 
 def task_push(env, holding: dict, targets: TaskTargets | None, obj: SceneObject, action: str, side: Side,
               openness: float | None) -> Generated | None:
-    """target1/target2 on an articulated object as the task defines its push (None where it defines none)."""
+    """target1/target2 on an articulated object as the task defines its push, and push/flip with an openness
+    that push serves (None where it defines none, or the request is not that push)."""
     push = targets.push(obj.type_name, obj.obj_id) if targets is not None else None
     if push is None:
         return None

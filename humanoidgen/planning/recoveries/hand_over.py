@@ -131,7 +131,8 @@ def _hand_away(model, side: Side, body: str):
     saved = model.geom_contype.copy(), model.geom_conaffinity.copy()
     c_o = int(np.bitwise_or.reduce(model.geom_contype[obj])) if obj else 0
     a_o = int(np.bitwise_or.reduce(model.geom_conaffinity[obj])) if obj else 0
-    others = [g for g in range(model.ngeom) if g not in set(obj) | set(mine)
+    skip = set(obj) | set(mine)
+    others = [g for g in range(model.ngeom) if g not in skip
               and (model.geom_contype[g] & a_o or c_o & model.geom_conaffinity[g])]
     model.geom_conaffinity[others] |= AWAY_BIT
     model.geom_contype[obj] = AWAY_BIT
