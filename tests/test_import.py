@@ -331,6 +331,36 @@ def test_an_mjcf_whose_case_is_turned_keeps_its_drawer_inside(tmp_path, collisio
     assert drawer[:, 0].max() <= hi[0] + 0.002
 
 
+_BOX_WITH_HANDLE = """<mujoco model="handled_box"><worldbody><body name="box">
+  <geom type="box" size="0.09 0.09 0.005" pos="0 0 0.005"/>
+  <geom type="box" size="0.09 0.005 0.03" pos="0 -0.085 0.03"/><geom type="box" size="0.09 0.005 0.03" pos="0 0.085 0.03"/>
+  <geom type="box" size="0.005 0.09 0.03" pos="-0.085 0 0.03"/><geom type="box" size="0.005 0.09 0.03" pos="0.085 0 0.03"/>
+  <body name="lid" pos="0.09 0 0.06"><joint name="hinge" type="hinge" axis="0 1 0" range="0 1.7"/>
+    <geom type="box" size="0.09 0.09 0.004" pos="-0.09 0 0.004"/>
+    <geom type="box" size="0.01 0.05 0.035" pos="-0.09 0 0.043"/>
+  </body></body></worldbody></mujoco>"""
+
+
+def test_a_lid_with_a_handle_on_top_keeps_its_front_edge_on_the_lid(tmp_path, collision_cache):
+    """A box lid with a 7 cm handle standing on it (Meta-World's box): the front edge is the middle of the lid's
+    front rim and lid_top lies on its outer face, not halfway up the handle or at its top."""
+    (tmp_path / "box.xml").write_text(_BOX_WITH_HANDLE)
+    r = runner.invoke(app, ["assets", "import", str(tmp_path / "box.xml"), "--family", "box", "--name", "handled",
+                            "--out", str(tmp_path / "models"), "--no-preview"])
+    assert r.exit_code == 0, r.output
+    folder = tmp_path / "models" / "box" / "handled"
+    info = yaml.safe_load((folder / "model.yaml").read_text())
+    assert [l["joint"]["kind"] for l in info["links"] if l["joint"]] == ["hinge"]
+    v = np.load(folder / "meshes.npz")["lid_v"]  # the lid in its own frame (at the hinge), as its points are
+    slab = v[v[:, 2] <= v[:, 2].min() + 0.0081]  # the 8 mm lid, under its handle
+    ann = yaml.safe_load((folder / "annotations.yaml").read_text())
+    pts = {p["name"]: np.asarray(p["position"]) for p in ann["points"] if p.get("part") == "lid"}
+    bottom, top = slab[:, 2].min(), slab[:, 2].max()
+    assert pts["lid_front"][2] == pytest.approx((bottom + top) / 2, abs=0.001)
+    assert pts["lid_front"][0] == pytest.approx(v[:, 0].min(), abs=0.001)
+    assert pts["lid_top"][2] == pytest.approx(top, abs=0.001)
+
+
 def test_a_drawer_whose_handle_no_hand_can_hook_is_kept_but_never_drawn(tmp_path, collision_cache, monkeypatch):
     """The drawer family's `usable` rules: the test drawer (handle 12 cm up, 2.5 cm out) passes; the same drawer at
     half size (its handle 6 cm over the table) fails the height rule, with the measured value in the reason. It is

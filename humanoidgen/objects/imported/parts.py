@@ -226,11 +226,12 @@ def _points(family: str, links: list[_Link], main: _Link, pm: trimesh.Trimesh, l
         else:
             P("storage", [cx, ymid, (plo[2] + phi[2]) / 2], 0.3, "no inner bottom found", False)
     else:
-        edge = np.array([plo[0], ymid, (plo[2] + phi[2]) / 2])
+        edge = np.array([plo[0], ymid, _rim_height(s, plo, phi, ymid)])
         if family == "laptop":
             P("screen_edge", edge, rule="middle of the lid's front edge")
             P("screen_grip", edge + [0.015, 0, 0], rule="1.5 cm in from the edge")
-            P("screen_back", [plo[0] + 0.02, ymid, phi[2]], rule="lid's outer face near the edge")
+            P("screen_back", [plo[0] + 0.02, ymid, _outer_face(pm, plo[0] + 0.02, ymid, phi[2])],
+              rule="lid's outer face near the edge")
             P("screen_center", [(plo[0] + phi[0]) / 2, ymid, plo[2]], rule="under the lid's middle")
             base = trimesh.util.concatenate([l.mesh for l in links if l.parent is None and len(l.mesh.faces)])
             bl, bh = base.bounds
@@ -239,7 +240,8 @@ def _points(family: str, links: list[_Link], main: _Link, pm: trimesh.Trimesh, l
             P("lid_front", edge, rule="the lid's front edge")
             P("lid_grip", edge, rule="the lid's front edge (no tab: a grasp holds the edge itself)")
             P("lid_pinch", edge, rule="the lid's front edge (no tab: a pinch holds the edge itself)")
-            P("lid_top", [plo[0] + 0.015, ymid, phi[2]], rule="lid's outer face 1.5 cm in")
+            P("lid_top", [plo[0] + 0.015, ymid, _outer_face(pm, plo[0] + 0.015, ymid, phi[2])],
+              rule="lid's outer face 1.5 cm in")
             base = trimesh.util.concatenate([l.mesh for l in links if l.parent is None and len(l.mesh.faces)])
             bl, bh = base.bounds
             c = (bl + bh) / 2
@@ -248,6 +250,25 @@ def _points(family: str, links: list[_Link], main: _Link, pm: trimesh.Trimesh, l
             P("storage", [c[0], c[1], z], 0.9 if len(hits) else 0.3, "over the base's inner bottom", bool(len(hits)))
     P("center", np.zeros(3), 1.0, "centre")
     return pts
+
+
+def _rim_height(s: np.ndarray, plo, phi, ymid: float) -> float:
+    """Height of the middle of the lid's front rim: the surface within 4 mm of its front-most extent around the
+    middle of its width. Not the middle of the part's bounds: a lid with a handle on top (Meta-World's box) would
+    put its front edge in the air above the lid."""
+    half = (phi[1] - plo[1]) / 2
+    rim = s[(s[:, 0] < plo[0] + 0.004) & (np.abs(s[:, 1] - ymid) < 0.5 * half)]
+    if len(rim) < 5:
+        rim = s[s[:, 0] < plo[0] + 0.004]
+    if len(rim) < 5:
+        return float((plo[2] + phi[2]) / 2)
+    return float((np.percentile(rim[:, 2], 2) + np.percentile(rim[:, 2], 98)) / 2)
+
+
+def _outer_face(pm: trimesh.Trimesh, x: float, y: float, top: float) -> float:
+    """Height of the part's upper surface at (x, y), seen from above; the part's top where nothing is hit."""
+    hits = ray_hits(pm.triangles, np.array([x, y, top + 0.01]), np.array([0, 0, -1.0]))
+    return float(top + 0.01 - hits[0]) if len(hits) else float(top)
 
 
 def _annotations(family, type_id, description, results, main: _Link, links, travel, lo, hi) -> ObjectAnnotations:
