@@ -166,6 +166,9 @@ def _bad(tmp_path: Path, name: str, content) -> Path:
      "not a MuJoCo .msh file"),
     ("rigid.urdf", None, "drawer", [], "has no revolute or prismatic joint"),
     ("missing.urdf", None, "drawer", [], "mesh gone.obj is missing"),
+    # radians written in an MJCF, whose angles are degrees: a lid that would open 1.7 deg
+    ("radians.xml", None, "box", [], 'its lid turns 1.7 deg; a box\'s opens at least 45 deg (an MJCF\'s angles are '
+                                     'degrees unless <compiler angle="radian"/>)'),
 ])
 def test_a_bad_input_gets_one_line_and_leaves_nothing(tmp_path, collision_cache, name, content, family, extra,
                                                       message):
@@ -184,6 +187,8 @@ def test_a_bad_input_gets_one_line_and_leaves_nothing(tmp_path, collision_cache,
         content = ('<robot name="r"><link name="a"><visual><geometry><mesh filename="gone.obj"/></geometry>'
                    '</visual></link><link name="b"/><joint name="j" type="prismatic"><parent link="a"/>'
                    '<child link="b"/><limit lower="0" upper="0.1"/></joint></robot>')
+    elif name == "radians.xml":
+        content = _BOX_WITH_HANDLE.replace('range="0 100"', 'range="0 1.7"')
     path = _bad(tmp_path, name, content)
     out = tmp_path / "models"
     r = runner.invoke(app, ["assets", "import", str(path), "--family", family, "--out", str(out), "--no-preview",
@@ -335,7 +340,7 @@ _BOX_WITH_HANDLE = """<mujoco model="handled_box"><worldbody><body name="box">
   <geom type="box" size="0.09 0.09 0.005" pos="0 0 0.005"/>
   <geom type="box" size="0.09 0.005 0.03" pos="0 -0.085 0.03"/><geom type="box" size="0.09 0.005 0.03" pos="0 0.085 0.03"/>
   <geom type="box" size="0.005 0.09 0.03" pos="-0.085 0 0.03"/><geom type="box" size="0.005 0.09 0.03" pos="0.085 0 0.03"/>
-  <body name="lid" pos="0.09 0 0.06"><joint name="hinge" type="hinge" axis="0 1 0" range="0 1.7"/>
+  <body name="lid" pos="0.09 0 0.06"><joint name="hinge" type="hinge" axis="0 1 0" range="0 100"/>
     <geom type="box" size="0.09 0.09 0.004" pos="-0.09 0 0.004"/>
     <geom type="box" size="0.01 0.05 0.035" pos="-0.09 0 0.043"/>
   </body></body></worldbody></mujoco>"""

@@ -36,6 +36,9 @@ from humanoidgen.objects.schema import Articulation, KeyPoint, ObjectAnnotations
 
 MAIN_KIND = {"drawer": "slide", "laptop": "hinge", "box": "hinge"}
 PART = {"drawer": "drawer", "laptop": "screen", "box": "lid"}
+# A lid or screen turning less than this is a model in the wrong angle unit (an MJCF range of "0 1.7" is 1.7 deg) or
+# one whose tasks cannot open it (the family's own turn 100-110 deg)
+MIN_LID_TURN_DEG = 45.0
 
 
 @dataclass
@@ -113,6 +116,12 @@ def import_articulated(src: SourceModel, req, name: str, type_id: int, path):
         return trimesh.util.concatenate(ms) if ms else trimesh.Trimesh()
 
     main = max(movers, key=lambda l: part_mesh(l).area if len(part_mesh(l).faces) else 0.0)
+    turn = abs(main.hi - main.lo)
+    if MAIN_KIND[family] == "hinge" and turn < math.radians(MIN_LID_TURN_DEG):
+        hint = (' (an MJCF\'s angles are degrees unless <compiler angle="radian"/>)' if path.suffix.lower() in
+                (".xml", ".mjcf") else "")
+        raise ImportError_(f"{path}: joint {main.joint}: its {PART[family]} turns {math.degrees(turn):.1f} deg; a "
+                           f"{family}'s opens at least {MIN_LID_TURN_DEG:.0f} deg{hint}")
     pm = part_mesh(main)
     if len(pm.faces) == 0:
         raise ImportError_(f"{path}: the moving part of joint {main.joint} has no mesh")
