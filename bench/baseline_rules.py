@@ -13,7 +13,11 @@ whether any robot body touches that object. Then it counts the scenes each candi
 - `by the hand`: the predicates at an action before which no arm link (a robot body that is not a hand's: the
   forearm, the elbow, the shoulder) has touched the object: the paper's "the hand pushes the drawer", not the
   arm swept into it;
-- `by the hand, released`: both.
+- `by the hand, released`: both;
+- `end state`: the task's predicates that judge a state (not a process), at any action: for close_drawer, whose
+  success also asks the drawer pushed shut by the hand holding its handle (`moved_while_held`), the drawer shut;
+- `held over T`: the end state reached while a hand holds the object (thumb against a finger or the palm),
+  within one hold that moved it at least T of the way (T = 0.2, 0.3, 0.4): what `moved_while_held` judges.
 
     python bench/baseline_rules.py --tasks close_drawer,close_box_easy --episodes 20
 """
@@ -80,9 +84,9 @@ def judged_part(spec):
     raise ValueError(f"{spec.name} has no openness predicate")
 
 
-def trace(task: str, episodes: int, action_range) -> list[list[tuple[float, bool, bool, bool]]]:
+def trace(task: str, episodes: int, action_range) -> list[list[tuple[float, bool, bool, bool, bool, bool]]]:
     """Per scene, per action: (openness of what the success judges, touched, the task's verdict, an arm link
-    touched it)."""
+    touched it, the end-state predicates' verdict, a hand holds it)."""
     import torch
 
     from humanoidgen.envs.config import TaskEnvConfig
@@ -91,6 +95,7 @@ def trace(task: str, episodes: int, action_range) -> list[list[tuple[float, bool
     from humanoidgen.policies.baseline_eval import blind
     from humanoidgen.policies.registry import baseline_policy
     from humanoidgen.policies.rollout import policy_obs
+    from humanoidgen.planning.hand_ops import finger_contacts, is_held
 
     env = HumanoidTaskEnv(task, config=blind(TaskEnvConfig()))
     model = baseline_policy("random", action_range)
@@ -106,8 +111,12 @@ def trace(task: str, episodes: int, action_range) -> list[list[tuple[float, bool
                 for a in model.predict_action(policy_obs(model, [obs], "cpu"), generator=gen)["action"][0].numpy():
                     obs, _, _, _, info = env.step(a)
                     o = openness(env.sim.model, env.sim.data, obj, part)
+                    state = all(c["ok"] for c, pr in zip(info["checks"], env.spec_task.success)
+                                if not getattr(pr, "history", False))
+                    held = any(is_held(finger_contacts(env.sim.model, env.sim.data, s, obj.body))
+                               for s in ("left", "right"))
                     rows.append((float(o if o is not None else -1.0), touches(env.sim, obj.body), bool(info["success"]),
-                                 arm_touches(env.sim, obj.body)))
+                                 arm_touches(env.sim, obj.body), state, held))
                     if len(rows) >= env.max_steps:
                         break
             out.append(rows)
@@ -116,10 +125,23 @@ def trace(task: str, episodes: int, action_range) -> list[list[tuple[float, bool
     return out
 
 
-def rules(rows: list[tuple[float, bool, bool, bool]], goal: float) -> dict[str, bool]:
-    released = [ok and not touched for _, touched, ok, _ in rows]
+def held_over(rows, goal: float, travel: float) -> bool:
+    """The end state reached while held, within one hold that moved the part `travel` or more toward `goal`."""
+    start = None
+    for o, _, _, _, state, held in rows:
+        if not held:
+            start = None
+            continue
+        start = o if start is None else start
+        if state and abs(o - start) >= travel and abs(goal - o) <= abs(goal - start):
+            return True
+    return False
+
+
+def rules(rows: list[tuple[float, bool, bool, bool, bool, bool]], goal: float) -> dict[str, bool]:
+    released = [ok and not touched for _, touched, ok, *_ in rows]
     armed, by_hand = False, []
-    for _, _, ok, arm in rows:
+    for _, _, ok, arm, *_ in rows:
         armed = armed or arm
         by_hand.append(ok and not armed)
 
@@ -131,7 +153,9 @@ def rules(rows: list[tuple[float, bool, bool, bool]], goal: float) -> dict[str, 
                 return True
         return False
 
-    return {"as is": any(ok for _, _, ok, _ in rows), "released": any(released),
+    return {"as is": any(ok for _, _, ok, *_ in rows), "released": any(released),
+            "end state": any(r[4] for r in rows),
+            **{f"held over {tr}": held_over(rows, goal, tr) for tr in (0.2, 0.3, 0.4)},
             "to the end": any(r and abs(o - goal) <= 0.01 for r, (o, *_) in zip(released, rows)),
             "held 1 s": run_of(10), "held 5 s": run_of(50), "at the end": released[-1],
             "by the hand": any(by_hand), "by the hand, released": any(h and r for h, r in zip(by_hand, released))}

@@ -156,10 +156,16 @@ def test_open_drawer_handle_is_held_and_closing_it_by_the_handle_shuts_it(tmp_pa
     assert result.success, result.checks
 
 
-def test_the_suggested_close_drawer_plan_succeeds(tmp_path):
+def test_the_suggested_close_drawer_plan_shuts_the_drawer_but_not_as_the_task_asks(tmp_path):
+    # A grip that pushes part of the way, then a fingertip for the rest: every step runs and the drawer ends shut.
+    # The task asks the drawer pushed shut by the hand holding its handle (moved_while_held): one hold moved it
+    # 0.2 of the way, not the 0.4 asked, so the episode does not count.
     result = run_plan(tmp_path, "close_drawer", 0, CLOSE_DRAWER_AS_SUGGESTED)
     failed = result.failed_step
-    assert result.success, (failed.error if failed else None, result.checks)
+    assert failed is None, failed.error
+    checks = {c["predicate"]: c["ok"] for c in result.checks}
+    assert checks == {"openness_at_most": True, "moved_while_held": False}, result.checks
+    assert not result.success
 
 
 LAPTOP_FLIP_OPEN = '''def step(planner):

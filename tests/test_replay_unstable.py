@@ -37,7 +37,8 @@ def test_the_reset_would_close_the_drawer():
     """What the rule guards against is real: after MuJoCo's reset the drawer is judged shut."""
     replay = _blown_up_replay("close_drawer")
     verdict = replay.finish(settle=False)
-    assert all(c["ok"] for c in verdict.checks), verdict.checks  # the predicates alone say "closed"
+    shut = next(c for c in verdict.checks if c["predicate"] == "openness_at_most")
+    assert shut["ok"], verdict.checks  # the end state alone says "closed" (no hold pushed it: that one says no)
     assert verdict.problem is not None and verdict.problem.startswith(UNSTABLE)
     assert not verdict.ok
     assert "huge velocities" in verdict.all_checks()[-1]["detail"]

@@ -69,6 +69,7 @@ class HumanoidTaskEnv(gym.Env):
         self.max_steps = self.config.max_steps or math.ceil(self.spec_task.step_limit(self.config.control_hz)
                                                             / self.config.every)
         self.sim = None
+        self._watch = None
         self.seed_used: int | None = None
         self._observer: Observer | None = None
         self._render_rig = None
@@ -87,6 +88,9 @@ class HumanoidTaskEnv(gym.Env):
             sim = HumanoidEnv(sim.scene, control_hz=self.config.control_hz)
         self._close_renderers()
         self.sim, self.seed_used, self._steps = sim, scene_seed, 0
+        from humanoidgen.tasks.watch import Watch
+
+        self._watch = Watch(self.spec_task, sim)  # the task's predicates over time see every control step
         self._observer = Observer(sim, self.config, render_model_for(self.spec_task, scene_seed, sim, self.config,
                                                                      dressing))
         info = {"seed": scene_seed, **self._verdict()}
@@ -105,6 +109,7 @@ class HumanoidTaskEnv(gym.Env):
         action = np.asarray(action, dtype=np.float64)
         for _ in range(self.config.every):
             self.sim.step(action)
+            self._watch.observe()
         self._steps += 1
         info = {"seed": self.seed_used, "step": self._steps, **self._verdict()}
         terminated = info["success"]
@@ -137,7 +142,7 @@ class HumanoidTaskEnv(gym.Env):
     def _verdict(self) -> dict:
         from humanoidgen.tasks.judge import judge
 
-        checks = judge(self.spec_task, self.sim)
+        checks = judge(self.spec_task, self.sim, self._watch)
         return {"success": all(c["ok"] for c in checks), "checks": checks}
 
     def _close_renderers(self) -> None:

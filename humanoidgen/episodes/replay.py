@@ -32,6 +32,7 @@ from humanoidgen.sim.env import HumanoidEnv
 from humanoidgen.sim.fingerprint import changed_fields, fingerprint
 from humanoidgen.sim.rest import MAX_REST_WAIT_S, moving_objects, object_dofs
 from humanoidgen.tasks.judge import judge
+from humanoidgen.tasks.watch import Watch
 
 DIVERGED = 1e-6  # m or rad: an honest worker matches the replay bit for bit
 CHANGED = "the plan changed the simulation outside the robot's commands"
@@ -93,6 +94,7 @@ class Replay:
         self._reference: dict[str, str] | None = None
         self._last: np.ndarray | None = None  # the last action applied
         self._held = 0  # how many of the last steps repeated the last action
+        self.watch = Watch(spec, env)  # what the task's predicates over time see, step by step
 
     @classmethod
     def build(cls, spec, seed: int | None, dressing: dict | None = None, control_hz: float = 50.0,
@@ -143,6 +145,7 @@ class Replay:
         before, t = warning_counts(env.data), env.time - self.start_time
         env.step(action)
         self.steps += 1
+        self.watch.observe()
         after = warning_counts(env.data)
         if after != before and self.problem is None:  # (a reset restarted env.time: t is from before)
             why = next(text for (w, text), a, b in zip(BROKEN_WARNINGS.items(), after, before) if a != b)
@@ -195,7 +198,7 @@ class Replay:
             if edited:
                 shown = ", ".join(edited[:6]) + (" ..." if len(edited) > 6 else "")
                 self.problem += f" (it edited {shown})"
-        verdict = ReplayVerdict(judge(self.spec, env), object_states(env), env.time - self.start_time, self.steps,
+        verdict = ReplayVerdict(judge(self.spec, env, self.watch), object_states(env), env.time - self.start_time, self.steps,
                                 self.problem, events=events)
         if self.recorder is not None and self.recorder.frames:
             from humanoidgen.episodes.image_job import model_stat

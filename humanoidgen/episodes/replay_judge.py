@@ -30,6 +30,7 @@ class _Resume:
     steps: int
     held: int
     last: np.ndarray | None
+    seen: dict  # the replay's watch (tasks.watch): what its predicates over time saw up to here
 
 
 def _digest(actions: np.ndarray) -> bytes:
@@ -74,13 +75,15 @@ class ReplayJudge:
         mujoco.mj_setState(env.model, env.data, best.state, STATE)
         mujoco.mj_forward(env.model, env.data)
         r.steps, r._held, r._last, r.problem = best.steps, best.held, best.last, None
+        r.watch.restore(best.seen)
 
     def _keep(self, actions: np.ndarray) -> None:
         r, env = self.replay, self.replay.env
         state = np.empty(mujoco.mj_stateSize(env.model, STATE))
         mujoco.mj_getState(env.model, env.data, state, STATE)
         key = (len(actions), _digest(actions))
-        self._states[key] = _Resume(state, r.steps, r._held, None if r._last is None else r._last.copy())
+        self._states[key] = _Resume(state, r.steps, r._held, None if r._last is None else r._last.copy(),
+                                    r.watch.saved())
         self._states.move_to_end(key)
         while len(self._states) > CACHED_STATES:
             oldest = next(iter(self._states))

@@ -1,14 +1,18 @@
-# Reference plan: the left index fingertip pushes the open drawer shut by its front face.
-# step: bring the left fingertip to the open drawer's front
+# Reference plan (the paper's close_drawer): the left hand grasps the open drawer's handle, pushes the drawer shut
+# while holding it, and lets go. The task judges that process (moved_while_held), not only the drawer shut: a
+# fingertip or a swinging arm that knocks it shut does not do the task.
+# step: grasp the handle with the left hand
 planner.hand_pre_grasp("left")
-c = planner.generate_constraints(obj_name="drawer", obj_id=0, action="target1", hand_name="left")
+c = planner.generate_constraints(obj_name="drawer", obj_id=0, action="grasp", hand_name="left")
 _, pose = planner.generate_end_effector_pose(c, hand_name="left")
 planner.move_to_pose_with_screw(pose, "left")
-planner.hand_press("left")
-# step: push it shut
-planner.ignore_collision("drawer", 0)  # from here the fingertip pushes the front: contact is intended
-c = planner.generate_constraints(obj_name="drawer", obj_id=0, action="target1", hand_name="left", openness=0)
+planner.hand_grasp("left", grasp_object="drawer", obj_id=0)
+
+# step: push the drawer shut, holding its handle
+c = planner.generate_constraints(obj_name="drawer", obj_id=0, action="grasp", hand_name="left", openness=0)
 _, pose = planner.generate_end_effector_pose(c, hand_name="left")
-planner.move_to_pose_with_screw(pose, "left")
-planner.restore_collision("drawer", 0)
+planner.move_to_pose_with_screw(pose, "left", attach_obj=True, object_name="drawer", object_id=0)
+
+# step: let go of the handle and take the hand back
+planner.open_hand("left")
 planner.move_to_pose_with_screw(planner.left_hand_init_pose, "left")

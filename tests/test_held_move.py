@@ -1,0 +1,127 @@
+"""A task judged on a process (tasks/watch.py, predicates.MovedWhileHeld): close_drawer is done when the left hand,
+holding the handle, pushed the drawer shut, as the paper words it, not when the drawer is shut by whatever
+(random joint targets knock it shut in most scenes). The trusted replay and the gym environment watch every
+control step; a resumed replay goes back to what it had seen at the state it resumes from."""
+
+from __future__ import annotations
+
+import os
+
+os.environ.setdefault("MUJOCO_GL", "egl")
+
+from types import SimpleNamespace  # noqa: E402
+
+import pytest  # noqa: E402
+
+from humanoidgen.episodes.action_log import ActionLog, packed  # noqa: E402
+from humanoidgen.episodes.replay_judge import ReplayJudge  # noqa: E402
+from humanoidgen.tasks import predicates  # noqa: E402
+from humanoidgen.tasks.judge import judge  # noqa: E402
+from humanoidgen.tasks.registry import load_task  # noqa: E402
+from humanoidgen.tasks.scene import build_scene  # noqa: E402
+from humanoidgen.tasks.watch import Watch  # noqa: E402
+from plan_runs import task_planner  # noqa: E402
+
+TASK = "close_drawer"
+
+
+def _checks(report: dict) -> dict[str, bool]:
+    return {c["predicate"]: c["ok"] for c in report["checks"]}
+
+
+def _shut(grasp: bool, seed: int = 0):
+    """The drawer shut by the left hand holding its handle (the reference plan's way), or pushed shut by the
+    index fingertip on its front (the way the reference plan went before the task judged the process)."""
+    spec = load_task(TASK)
+    _, env = build_scene(spec, seed)
+    log = ActionLog(env.data)
+    planner = task_planner(env, seed=seed, on_step=log)
+    marks = []
+    if grasp:
+        planner.hand_pre_grasp("left")
+        c = planner.generate_constraints(obj_name="drawer", obj_id=0, action="grasp", hand_name="left")
+        planner.move_to_pose_with_screw(planner.generate_end_effector_pose(c, hand_name="left")[1], "left")
+        planner.hand_grasp("left", grasp_object="drawer", obj_id=0)
+        marks.append(len(log))
+        c = planner.generate_constraints(obj_name="drawer", obj_id=0, action="grasp", hand_name="left", openness=0)
+        planner.move_to_pose_with_screw(planner.generate_end_effector_pose(c, hand_name="left")[1], "left",
+                                        attach_obj=True, object_name="drawer", object_id=0)
+        planner.open_hand("left")
+    else:
+        planner.hand_pre_grasp("left")
+        c = planner.generate_constraints(obj_name="drawer", obj_id=0, action="target1", hand_name="left")
+        planner.move_to_pose_with_screw(planner.generate_end_effector_pose(c, hand_name="left")[1], "left")
+        planner.hand_press("left")
+        planner.ignore_collision("drawer", 0)
+        c = planner.generate_constraints(obj_name="drawer", obj_id=0, action="target1", hand_name="left", openness=0)
+        planner.move_to_pose_with_screw(planner.generate_end_effector_pose(c, hand_name="left")[1], "left")
+    return spec, log, marks
+
+
+def test_pushed_shut_holding_the_handle_is_done_and_pushed_shut_by_a_fingertip_is_not():
+    spec, log, marks = _shut(grasp=True)
+    judge_ = ReplayJudge(spec, 0)
+    full = _checks(judge_.report({"actions": packed(log.array())}))
+    assert full == {"openness_at_most": True, "moved_while_held": True}
+    # resumed from the kept state after the whole log, a shorter log (the handle grasped, not pushed yet) is
+    # judged on what it saw itself, not on what the longer one did
+    early = judge_.report({"actions": packed(log.array()[:marks[0]])})
+    assert _checks(early) == {"openness_at_most": False, "moved_while_held": False}
+    assert _checks(judge_.report({"actions": packed(log.array())})) == full  # and back again
+    spec, log, _ = _shut(grasp=False)
+    pushed = ReplayJudge(spec, 0).report({"actions": packed(log.array())})
+    assert _checks(pushed) == {"openness_at_most": True, "moved_while_held": False}
+    detail = next(c["detail"] for c in pushed["checks"] if c["predicate"] == "moved_while_held")
+    assert "not done" in detail and "0.40 wanted" in detail
+
+
+def _fake(monkeypatch, frames):
+    """Openness and the left hand's touching fingers, frame by frame, without a simulation."""
+    it = iter(frames)
+    state = {}
+    monkeypatch.setattr(predicates, "_obj", lambda env, ref: SimpleNamespace(body="drawer_0"))
+    monkeypatch.setattr(predicates, "_openness", lambda m, d, obj, part: state["o"])
+    monkeypatch.setattr(predicates, "finger_contacts", lambda m, d, side, body: state["touch"])
+
+    def step():
+        state["o"], state["touch"] = next(it)
+    return step
+
+
+HELD, TIP = {"thumb", "index", "middle"}, {"index"}
+
+
+@pytest.mark.parametrize("frames,done", [
+    ([(0.6, HELD), (0.3, HELD), (0.04, HELD), (0.02, set())], True),  # one hold, 0.56 of the way: done
+    ([(0.6, TIP), (0.3, TIP), (0.02, TIP)], False),  # pushed by a fingertip: never held
+    ([(0.6, HELD), (0.3, HELD), (0.3, set()), (0.3, HELD), (0.04, HELD)], False),  # two holds of 0.3 and 0.26
+    ([(0.6, set()), (0.2, HELD), (0.04, HELD)], False),  # knocked most of the way, then held the last 0.16
+    ([(0.6, HELD), (0.1, HELD), (0.1, HELD)], False),  # held 0.5 of the way but never at 0.05
+])
+def test_one_hold_must_move_the_part_the_whole_travel_and_reach_the_value(monkeypatch, frames, done):
+    pred = predicates.MovedWhileHeld(obj="drawer[0]", side="left", toward="closed", value=0.05, travel=0.4)
+    step = _fake(monkeypatch, frames)
+    spec = SimpleNamespace(success=[pred])
+    env = SimpleNamespace(model=None, data=None)
+    watch = Watch(spec, env)
+    for _ in frames:
+        step()
+        watch.observe()
+    assert judge(spec, env, watch)[0]["ok"] is done
+    # judged on a state alone, nothing was watched: it does not hold
+    unwatched = judge(spec, env)[0]
+    assert unwatched["ok"] is False and "none was watched" in unwatched["detail"]
+
+
+def test_the_gym_environment_watches_its_steps():
+    from humanoidgen.envs.task_env import HumanoidTaskEnv
+
+    from humanoidgen.envs.config import TaskEnvConfig
+    from humanoidgen.policies.baseline_eval import blind
+
+    env = HumanoidTaskEnv(TASK, config=blind(TaskEnvConfig()))
+    obs, info = env.reset(seed=100_000)
+    obs, _, _, _, info = env.step(obs["joint_pos"])
+    held = next(c for c in info["checks"] if c["predicate"] == "moved_while_held")
+    assert held["ok"] is False and "not done" in held["detail"]  # watched: it says what it saw
+    env.close()
