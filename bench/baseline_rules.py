@@ -138,6 +138,22 @@ def held_over(rows, goal: float, travel: float) -> bool:
     return False
 
 
+def held_sum(rows, goal: float, travel: float) -> bool:
+    """The end state reached while held, the holds together (a hand may let go and grip again) having moved the
+    part `travel` or more toward `goal` (movement counted between two held actions in a row)."""
+    moved, last = 0.0, None
+    for o, _, _, _, state, held in rows:
+        if not held:
+            last = None
+            continue
+        if last is not None:
+            moved += max(0.0, abs(goal - last) - abs(goal - o))
+        last = o
+        if state and moved >= travel:
+            return True
+    return False
+
+
 def rules(rows: list[tuple[float, bool, bool, bool, bool, bool]], goal: float) -> dict[str, bool]:
     released = [ok and not touched for _, touched, ok, *_ in rows]
     armed, by_hand = False, []
@@ -156,6 +172,7 @@ def rules(rows: list[tuple[float, bool, bool, bool, bool, bool]], goal: float) -
     return {"as is": any(ok for _, _, ok, *_ in rows), "released": any(released),
             "end state": any(r[4] for r in rows),
             **{f"held over {tr}": held_over(rows, goal, tr) for tr in (0.2, 0.3, 0.4)},
+            **{f"holds over {tr}": held_sum(rows, goal, tr) for tr in (0.3, 0.4)},
             "to the end": any(r and abs(o - goal) <= 0.01 for r, (o, *_) in zip(released, rows)),
             "held 1 s": run_of(10), "held 5 s": run_of(50), "at the end": released[-1],
             "by the hand": any(by_hand), "by the hand, released": any(h and r for h, r in zip(by_hand, released))}
