@@ -1,4 +1,4 @@
-"""A task judged on a process (tasks/watch.py, predicates.MovedWhileHeld): close_drawer is done when the left hand,
+"""A task judged on a process (tasks/watch.py, tasks/held_move.py): close_drawer is done when the left hand,
 holding the handle, pushed the drawer shut, as the paper words it, not when the drawer is shut by whatever
 (random joint targets knock it shut in most scenes). The trusted replay and the gym environment watch every
 control step; a resumed replay goes back to what it had seen at the state it resumes from."""
@@ -15,7 +15,7 @@ import pytest  # noqa: E402
 
 from humanoidgen.episodes.action_log import ActionLog, packed  # noqa: E402
 from humanoidgen.episodes.replay_judge import ReplayJudge  # noqa: E402
-from humanoidgen.tasks import predicates  # noqa: E402
+from humanoidgen.tasks import held_move  # noqa: E402
 from humanoidgen.tasks.judge import judge  # noqa: E402
 from humanoidgen.tasks.registry import load_task  # noqa: E402
 from humanoidgen.tasks.scene import build_scene  # noqa: E402
@@ -79,9 +79,9 @@ def _fake(monkeypatch, frames):
     """Openness and the left hand's touching fingers, frame by frame, without a simulation."""
     it = iter(frames)
     state = {}
-    monkeypatch.setattr(predicates, "_obj", lambda env, ref: SimpleNamespace(body="drawer_0"))
-    monkeypatch.setattr(predicates, "_openness", lambda m, d, obj, part: state["o"])
-    monkeypatch.setattr(predicates, "finger_contacts", lambda m, d, side, body: state["touch"])
+    monkeypatch.setattr(held_move, "_obj", lambda env, ref: SimpleNamespace(body="drawer_0"))
+    monkeypatch.setattr(held_move, "_openness", lambda m, d, obj, part: state["o"])
+    monkeypatch.setattr(held_move, "finger_contacts", lambda m, d, side, body: state["touch"])
 
     def step():
         state["o"], state["touch"] = next(it)
@@ -99,7 +99,7 @@ HELD, TIP = {"thumb", "index", "middle"}, {"index"}
     ([(0.6, HELD), (0.1, HELD), (0.1, HELD)], False),  # held 0.5 of the way but never at 0.05
 ])
 def test_one_hold_must_move_the_part_the_whole_travel_and_reach_the_value(monkeypatch, frames, done):
-    pred = predicates.MovedWhileHeld(obj="drawer[0]", side="left", toward="closed", value=0.05, travel=0.4)
+    pred = held_move.MovedWhileHeld(obj="drawer[0]", side="left", toward="closed", value=0.05, travel=0.4)
     step = _fake(monkeypatch, frames)
     spec = SimpleNamespace(success=[pred])
     env = SimpleNamespace(model=None, data=None)

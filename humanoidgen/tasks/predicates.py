@@ -7,62 +7,20 @@ Objects are referenced as "cube[0]" or {type: cube, id: 0} (id = order of adding
 from __future__ import annotations
 
 import math
-import re
-from typing import Annotated, Any, ClassVar, Literal
+from typing import Annotated, Literal
 
 import mujoco
 import numpy as np
-from pydantic import BaseModel, BeforeValidator, ConfigDict, Field
+from pydantic import Field
 
 from humanoidgen.objects.describe import openness as _openness
 from humanoidgen.planning.hand_ops import finger_contacts, is_held
 from humanoidgen.sim.layout import TABLE_TOP_Z, TABLE_X, TABLE_Y
 from humanoidgen.sim.scene import SceneObject
+from humanoidgen.tasks.held_move import MovedWhileHeld
+from humanoidgen.tasks.predicate_base import ObjRef, PredicateResult, Ref, _cm, _name, _obj, _Strict
 
-_REF = re.compile(r"^\s*([a-z_]+)\s*\[\s*(\d+)\s*\]\s*$")
-
-
-class _Strict(BaseModel):
-    model_config = ConfigDict(extra="forbid", frozen=True, defer_build=True)
-
-
-class ObjRef(_Strict):
-    type: str
-    id: int = Field(default=0, ge=0)
-
-    def __str__(self) -> str:
-        return f"{self.type}[{self.id}]"
-
-
-def _parse_ref(v: Any) -> Any:
-    if isinstance(v, str):
-        m = _REF.match(v)
-        if not m:
-            raise ValueError(f"object reference must look like 'cube[0]', got {v!r}")
-        return {"type": m.group(1), "id": int(m.group(2))}
-    return v
-
-
-Ref = Annotated[ObjRef, BeforeValidator(_parse_ref)]
-
-
-class PredicateResult(_Strict):
-    ok: bool
-    detail: str
-
-
-def _cm(x: float) -> str:
-    return f"{x * 100:.1f} cm"
-
-
-# -- state helpers -------------------------------------------------------------------------------------------
-def _obj(env, ref: ObjRef) -> SceneObject:
-    return env.scene.object(ref.type, ref.id)
-
-
-def _name(ref: ObjRef) -> str:
-    return f"{ref.type} {ref.id}"
-
+__all__ = ["ObjRef", "Predicate", "PredicateResult", "Ref", "MovedWhileHeld", "evaluate_all"]
 
 def _pose(env, ref: ObjRef) -> tuple[np.ndarray, np.ndarray]:
     """Centre and rotation matrix of the object's root body."""
@@ -337,69 +295,6 @@ class Held(_Strict):
         touched = finger_contacts(env.model, env.data, self.side, _obj(env, self.obj).body)
         return PredicateResult(ok=is_held(touched), detail=f"{self.side} hand touches {_name(self.obj)} with "
                                f"{', '.join(sorted(touched)) or 'nothing'} (held needs the thumb and another)")
-
-
-class HoldMemory:
-    """What a `moved_while_held` predicate has seen of an episode so far (tasks/watch.py keeps one per episode)."""
-
-    __slots__ = ("start", "done", "travelled")
-
-    def __init__(self) -> None:
-        self.start: float | None = None  # the openness when the current hold began (None: not held)
-        self.done = False  # the part reached the value within one hold that moved it `travel` or more
-        self.travelled = 0.0  # the most one hold has moved it so far (for the detail)
-
-    def copy(self) -> HoldMemory:
-        c = HoldMemory()
-        c.start, c.done, c.travelled = self.start, self.done, self.travelled
-        return c
-
-
-class MovedWhileHeld(_Strict):
-    """The `side` hand brought the part to `value` holding it: within one hold (thumb against a finger or the
-    palm, never letting go) the openness went at least `travel` toward the value and reached it (at most, or at
-    least, `value`, as `toward` says). A process, not an end state: the paper's close_drawer, "with the left hand
-    attached to the drawer handle, the left hand pushes the drawer back to an openness of 0". Judged over the
-    episode by a watch (`tasks/watch.py`: the trusted replay and the gym environment observe every control
-    step); judged on a state alone, it has seen nothing and does not hold."""
-
-    type: Literal["moved_while_held"] = "moved_while_held"
-    history: ClassVar[bool] = True
-    obj: Ref
-    side: Literal["left", "right"]
-    toward: Literal["closed", "open"]
-    value: float = Field(ge=0, le=1)
-    travel: float = Field(gt=0, le=1)
-
-    def refs(self) -> list[ObjRef]:
-        return [self.obj]
-
-    def start(self) -> HoldMemory:
-        return HoldMemory()
-
-    def observe(self, env, memory: HoldMemory) -> None:
-        obj = _obj(env, self.obj)
-        o = _openness(env.model, env.data, obj, None)
-        if o is None or memory.done:
-            return
-        if not is_held(finger_contacts(env.model, env.data, self.side, obj.body)):
-            memory.start = None
-            return
-        if memory.start is None:
-            memory.start = o
-        moved = memory.start - o if self.toward == "closed" else o - memory.start
-        memory.travelled = max(memory.travelled, moved)
-        reached = o <= self.value if self.toward == "closed" else o >= self.value
-        memory.done = reached and moved >= self.travel
-
-    def evaluate(self, env, memory: HoldMemory | None = None) -> PredicateResult:
-        what = f"{_name(self.obj)} {self.toward} to {self.value:.2f} by the {self.side} hand holding it"
-        if memory is None:
-            return PredicateResult(ok=False, detail=f"{what}: judged over an episode, and none was watched here")
-        if memory.done:
-            return PredicateResult(ok=True, detail=f"{what} (one hold moved it {memory.travelled:.2f})")
-        return PredicateResult(ok=False, detail=f"{what}: not done (the longest hold moved it {memory.travelled:.2f};"
-                                                f" at least {self.travel:.2f} wanted)")
 
 
 class Near(_Strict):

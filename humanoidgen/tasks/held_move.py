@@ -1,0 +1,75 @@
+"""A predicate over an episode's course: a part brought to an openness by the hand holding it (close_drawer as the
+paper words it). The state predicates are in predicates.py; this one needs a watch (tasks/watch.py)."""
+
+from __future__ import annotations
+
+from typing import ClassVar, Literal
+
+from pydantic import Field
+
+from humanoidgen.objects.describe import openness as _openness
+from humanoidgen.planning.hand_ops import finger_contacts, is_held
+from humanoidgen.tasks.predicate_base import ObjRef, PredicateResult, Ref, _name, _obj, _Strict
+
+
+class HoldMemory:
+    """What a `moved_while_held` predicate has seen of an episode so far (tasks/watch.py keeps one per episode)."""
+
+    __slots__ = ("start", "done", "travelled")
+
+    def __init__(self) -> None:
+        self.start: float | None = None  # the openness when the current hold began (None: not held)
+        self.done = False  # the part reached the value within one hold that moved it `travel` or more
+        self.travelled = 0.0  # the most one hold has moved it so far (for the detail)
+
+    def copy(self) -> HoldMemory:
+        c = HoldMemory()
+        c.start, c.done, c.travelled = self.start, self.done, self.travelled
+        return c
+
+
+class MovedWhileHeld(_Strict):
+    """The `side` hand brought the part to `value` holding it: within one hold (thumb against a finger or the
+    palm, never letting go) the openness went at least `travel` toward the value and reached it (at most, or at
+    least, `value`, as `toward` says). A process, not an end state: the paper's close_drawer, "with the left hand
+    attached to the drawer handle, the left hand pushes the drawer back to an openness of 0". Judged over the
+    episode by a watch (`tasks/watch.py`: the trusted replay and the gym environment observe every control
+    step); judged on a state alone, it has seen nothing and does not hold."""
+
+    type: Literal["moved_while_held"] = "moved_while_held"
+    history: ClassVar[bool] = True
+    obj: Ref
+    side: Literal["left", "right"]
+    toward: Literal["closed", "open"]
+    value: float = Field(ge=0, le=1)
+    travel: float = Field(gt=0, le=1)
+
+    def refs(self) -> list[ObjRef]:
+        return [self.obj]
+
+    def start(self) -> HoldMemory:
+        return HoldMemory()
+
+    def observe(self, env, memory: HoldMemory) -> None:
+        obj = _obj(env, self.obj)
+        o = _openness(env.model, env.data, obj, None)
+        if o is None or memory.done:
+            return
+        if not is_held(finger_contacts(env.model, env.data, self.side, obj.body)):
+            memory.start = None
+            return
+        if memory.start is None:
+            memory.start = o
+        moved = memory.start - o if self.toward == "closed" else o - memory.start
+        memory.travelled = max(memory.travelled, moved)
+        reached = o <= self.value if self.toward == "closed" else o >= self.value
+        memory.done = reached and moved >= self.travel
+
+    def evaluate(self, env, memory: HoldMemory | None = None) -> PredicateResult:
+        what = f"{_name(self.obj)} {self.toward} to {self.value:.2f} by the {self.side} hand holding it"
+        if memory is None:
+            return PredicateResult(ok=False, detail=f"{what}: judged over an episode, and none was watched here")
+        if memory.done:
+            return PredicateResult(ok=True, detail=f"{what} (one hold moved it {memory.travelled:.2f})")
+        return PredicateResult(ok=False, detail=f"{what}: not done (the longest hold moved it {memory.travelled:.2f};"
+                                                f" at least {self.travel:.2f} wanted)")
