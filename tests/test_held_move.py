@@ -79,7 +79,7 @@ def _fake(monkeypatch, frames):
     """Openness and the left hand's touching fingers, frame by frame, without a simulation."""
     it = iter(frames)
     state = {}
-    monkeypatch.setattr(held_move, "_obj", lambda env, ref: SimpleNamespace(body="drawer_0"))
+    monkeypatch.setattr(held_move, "_obj", lambda env, ref: SimpleNamespace(body="part"))
     monkeypatch.setattr(held_move, "_openness", lambda m, d, obj, part: state["o"])
     monkeypatch.setattr(held_move, "finger_contacts", lambda m, d, side, body: state["touch"])
 
@@ -125,3 +125,24 @@ def test_the_gym_environment_watches_its_steps():
     held = next(c for c in info["checks"] if c["predicate"] == "moved_while_held")
     assert held["ok"] is False and "not done" in held["detail"]  # watched: it says what it saw
     env.close()
+
+
+@pytest.mark.parametrize("frames,done", [
+    # a lid lifted in stages on a fingertip, the finger off it for a moment between stages
+    ([(0.15, TIP), (0.4, TIP), (0.4, set()), (0.4, TIP), (0.8, TIP), (1.0, TIP)], True),
+    ([(0.15, TIP), (0.3, set()), (0.97, set()), (1.0, set())], False),  # flicked: it flew on without the hand
+    ([(0.15, TIP), (0.5, TIP), (1.0, TIP), (0.9, TIP)], True),  # done once done: the watch keeps it
+    ([(0.15, TIP), (0.8, TIP), (0.8, set()), (0.97, set())], False),  # carried 0.65, then it fell over alone
+    # jiggled: up 0.5 under the hand, back down without it, up again: net 0.5 under the hand, not the 1.0 gone up
+    ([(0.15, TIP), (0.65, TIP), (0.15, set()), (0.65, TIP), (0.97, set())], False),
+])
+def test_a_part_carried_by_the_hand_on_it_counts_and_one_flicked_does_not(monkeypatch, frames, done):
+    pred = held_move.MovedWhileTouched(obj="box[0]", side="right", toward="open", value=0.95, travel=0.7)
+    step = _fake(monkeypatch, frames)
+    spec = SimpleNamespace(success=[pred])
+    env = SimpleNamespace(model=None, data=None)
+    watch = Watch(spec, env)
+    for _ in frames:
+        step()
+        watch.observe()
+    assert judge(spec, env, watch)[0]["ok"] is done
