@@ -137,9 +137,11 @@ def test_open_box_easy_now_fails_the_random_baseline_where_it_passed(tmp_path):
     rng = ActionRange.of(ranges["low"], ranges["high"], "reference plans")
     scenes = [4, 10, 13, 19]  # bench/results/baselines.json: random passed these at 0.9
     spec_dir = root / "humanoidgen" / "tasks" / "specs"
-    assert [s.value for s in load_task("open_box_easy").success] == [0.95]
+    assert [s.value for s in load_task("open_box_easy").success if s.type == "openness_at_least"] == [0.95]
     old = tmp_path / "open_box_easy.yaml"
-    old.write_text((spec_dir / "open_box_easy.yaml").read_text().replace("value: 0.95}", "value: 0.9}"))
+    # the spec as it was: the lid at 0.9, no more (since 64612a5 it must also have been carried up by the hand)
+    lines = (spec_dir / "open_box_easy.yaml").read_text().replace("value: 0.95}", "value: 0.9}").splitlines()
+    old.write_text("\n".join(line for line in lines if "moved_while_touched" not in line) + "\n")
     shutil.copy(spec_dir / "open_box_easy.py", tmp_path)
     assert _random_passes("open_box_easy", rng, scenes) == [False] * 4
     assert _random_passes(str(old), rng, scenes) == [True] * 4

@@ -34,8 +34,8 @@ class MovedWhileHeld(_Strict):
     palm, never letting go) the openness went at least `travel` toward the value and reached it (at most, or at
     least, `value`, as `toward` says). A process, not an end state: the paper's close_drawer, "with the left hand
     attached to the drawer handle, the left hand pushes the drawer back to an openness of 0". Judged over the
-    episode by a watch (`tasks/watch.py`: the trusted replay and the gym environment observe every control
-    step); judged on a state alone, it has seen nothing and does not hold."""
+    episode (the trusted replay and the gym environment watch every control step); judged on a state
+    alone, it has seen nothing and does not hold."""
 
     type: Literal["moved_while_held"] = "moved_while_held"
     history: ClassVar[bool] = True
