@@ -88,6 +88,18 @@ def _fake(monkeypatch, frames):
     return step
 
 
+def _watched(monkeypatch, pred, frames):
+    """A task of `pred` alone, its watch having seen `frames`: (spec, env, watch)."""
+    step = _fake(monkeypatch, frames)
+    spec = SimpleNamespace(success=[pred])
+    env = SimpleNamespace(model=None, data=None)
+    watch = Watch(spec, env)
+    for _ in frames:
+        step()
+        watch.observe()
+    return spec, env, watch
+
+
 HELD, TIP = {"thumb", "index", "middle"}, {"index"}
 
 
@@ -100,13 +112,7 @@ HELD, TIP = {"thumb", "index", "middle"}, {"index"}
 ])
 def test_one_hold_must_move_the_part_the_whole_travel_and_reach_the_value(monkeypatch, frames, done):
     pred = held_move.MovedWhileHeld(obj="drawer[0]", side="left", toward="closed", value=0.05, travel=0.4)
-    step = _fake(monkeypatch, frames)
-    spec = SimpleNamespace(success=[pred])
-    env = SimpleNamespace(model=None, data=None)
-    watch = Watch(spec, env)
-    for _ in frames:
-        step()
-        watch.observe()
+    spec, env, watch = _watched(monkeypatch, pred, frames)
     assert judge(spec, env, watch)[0]["ok"] is done
     # judged on a state alone, nothing was watched: it does not hold
     unwatched = judge(spec, env)[0]
@@ -114,9 +120,8 @@ def test_one_hold_must_move_the_part_the_whole_travel_and_reach_the_value(monkey
 
 
 def test_the_gym_environment_watches_its_steps():
-    from humanoidgen.envs.task_env import HumanoidTaskEnv
-
     from humanoidgen.envs.config import TaskEnvConfig
+    from humanoidgen.envs.task_env import HumanoidTaskEnv
     from humanoidgen.policies.baseline_eval import blind
 
     env = HumanoidTaskEnv(TASK, config=blind(TaskEnvConfig()))
@@ -138,11 +143,5 @@ def test_the_gym_environment_watches_its_steps():
 ])
 def test_a_part_carried_by_the_hand_on_it_counts_and_one_flicked_does_not(monkeypatch, frames, done):
     pred = held_move.MovedWhileTouched(obj="box[0]", side="right", toward="open", value=0.95, travel=0.7)
-    step = _fake(monkeypatch, frames)
-    spec = SimpleNamespace(success=[pred])
-    env = SimpleNamespace(model=None, data=None)
-    watch = Watch(spec, env)
-    for _ in frames:
-        step()
-        watch.observe()
+    spec, env, watch = _watched(monkeypatch, pred, frames)
     assert judge(spec, env, watch)[0]["ok"] is done

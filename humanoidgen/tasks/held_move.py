@@ -4,6 +4,7 @@ predicates.py; these need a watch (tasks/watch.py)."""
 
 from __future__ import annotations
 
+from dataclasses import dataclass, replace
 from typing import ClassVar, Literal
 
 from pydantic import Field
@@ -13,31 +14,25 @@ from humanoidgen.planning.hand_ops import finger_contacts, is_held
 from humanoidgen.tasks.predicate_base import ObjRef, PredicateResult, Ref, _name, _obj, _Strict
 
 
-class HoldMemory:
-    """What a `moved_while_held` predicate has seen of an episode so far (tasks/watch.py keeps one per episode)."""
+@dataclass
+class ProcessMemory:
+    """What a predicate over the episode's course has seen so far (tasks/watch.py keeps one per predicate and
+    episode): `anchor`, the openness it measures from (moved_while_held: where the current hold began, None when
+    not held; moved_while_touched: at the last control step); `moved`, how far it counts the part as moved
+    (the longest hold's way; the net way under the hand); `done`, the predicate met (kept once met)."""
 
-    __slots__ = ("start", "done", "travelled")
+    anchor: float | None = None
+    moved: float = 0.0
+    done: bool = False
 
-    def __init__(self) -> None:
-        self.start: float | None = None  # the openness when the current hold began (None: not held)
-        self.done = False  # the part reached the value within one hold that moved it `travel` or more
-        self.travelled = 0.0  # the most one hold has moved it so far (for the detail)
-
-    def copy(self) -> HoldMemory:
-        c = HoldMemory()
-        c.start, c.done, c.travelled = self.start, self.done, self.travelled
-        return c
+    def copy(self) -> ProcessMemory:
+        return replace(self)
 
 
-class MovedWhileHeld(_Strict):
-    """The `side` hand brought the part to `value` holding it: within one hold (thumb against a finger or the
-    palm, never letting go) the openness went at least `travel` toward the value and reached it (at most, or at
-    least, `value`, as `toward` says). A process, not an end state: the paper's close_drawer, "with the left hand
-    attached to the drawer handle, the left hand pushes the drawer back to an openness of 0". Judged over the
-    episode (the trusted replay and the gym environment watch every control step); judged on a state
-    alone, it has seen nothing and does not hold."""
+class _MovedByHand(_Strict):
+    """What both predicates share: the part, the hand, the way and the value it must reach, and how far the hand
+    must have moved it."""
 
-    type: Literal["moved_while_held"] = "moved_while_held"
     history: ClassVar[bool] = True
     obj: Ref
     side: Literal["left", "right"]
@@ -48,51 +43,63 @@ class MovedWhileHeld(_Strict):
     def refs(self) -> list[ObjRef]:
         return [self.obj]
 
-    def start(self) -> HoldMemory:
-        return HoldMemory()
+    def start(self) -> ProcessMemory:
+        return ProcessMemory()
 
-    def observe(self, env, memory: HoldMemory) -> None:
+    def _progress(self, before: float, after: float) -> float:
+        """How far the part went toward the value from `before` to `after` (negative: back)."""
+        return before - after if self.toward == "closed" else after - before
+
+    def _reached(self, o: float) -> bool:
+        return o <= self.value if self.toward == "closed" else o >= self.value
+
+    def _now(self, env, memory: ProcessMemory) -> tuple[float, set[str]] | None:
+        """The part's openness and the hand's fingers on it, or None when there is nothing left to watch."""
         obj = _obj(env, self.obj)
         o = _openness(env.model, env.data, obj, None)
         if o is None or memory.done:
-            return
-        if not is_held(finger_contacts(env.model, env.data, self.side, obj.body)):
-            memory.start = None
-            return
-        if memory.start is None:
-            memory.start = o
-        moved = memory.start - o if self.toward == "closed" else o - memory.start
-        memory.travelled = max(memory.travelled, moved)
-        reached = o <= self.value if self.toward == "closed" else o >= self.value
-        memory.done = reached and moved >= self.travel
+            return None
+        return o, finger_contacts(env.model, env.data, self.side, obj.body)
 
-    def evaluate(self, env, memory: HoldMemory | None = None) -> PredicateResult:
+    def _unwatched(self, what: str) -> PredicateResult:
+        return PredicateResult(ok=False, detail=f"{what}: judged over an episode, and none was watched here")
+
+
+class MovedWhileHeld(_MovedByHand):
+    """The `side` hand brought the part to `value` holding it: within one hold (thumb against a finger or the
+    palm, never letting go) the openness went at least `travel` toward the value and reached it (at most, or at
+    least, `value`, as `toward` says). A process, not an end state: the paper's close_drawer, "with the left hand
+    attached to the drawer handle, the left hand pushes the drawer back to an openness of 0". Judged over the
+    episode (the trusted replay and the gym environment watch every control step); judged on a state
+    alone, it has seen nothing and does not hold."""
+
+    type: Literal["moved_while_held"] = "moved_while_held"
+
+    def observe(self, env, memory: ProcessMemory) -> None:
+        now = self._now(env, memory)
+        if now is None:
+            return
+        o, touched = now
+        if not is_held(touched):
+            memory.anchor = None
+            return
+        if memory.anchor is None:
+            memory.anchor = o
+        moved = self._progress(memory.anchor, o)
+        memory.moved = max(memory.moved, moved)
+        memory.done = self._reached(o) and moved >= self.travel
+
+    def evaluate(self, env, memory: ProcessMemory | None = None) -> PredicateResult:
         what = f"{_name(self.obj)} {self.toward} to {self.value:.2f} by the {self.side} hand holding it"
         if memory is None:
-            return PredicateResult(ok=False, detail=f"{what}: judged over an episode, and none was watched here")
+            return self._unwatched(what)
         if memory.done:
-            return PredicateResult(ok=True, detail=f"{what} (one hold moved it {memory.travelled:.2f})")
-        return PredicateResult(ok=False, detail=f"{what}: not done (the longest hold moved it {memory.travelled:.2f};"
+            return PredicateResult(ok=True, detail=f"{what} (one hold moved it {memory.moved:.2f})")
+        return PredicateResult(ok=False, detail=f"{what}: not done (the longest hold moved it {memory.moved:.2f};"
                                                 f" at least {self.travel:.2f} wanted)")
 
 
-class TouchMemory:
-    """What a `moved_while_touched` predicate has seen so far."""
-
-    __slots__ = ("last", "moved", "done")
-
-    def __init__(self) -> None:
-        self.last: float | None = None  # the openness at the last control step seen
-        self.moved = 0.0  # the part's net way toward the value made under the hand (see MovedWhileTouched)
-        self.done = False
-
-    def copy(self) -> TouchMemory:
-        c = TouchMemory()
-        c.last, c.moved, c.done = self.last, self.moved, self.done
-        return c
-
-
-class MovedWhileTouched(_Strict):
+class MovedWhileTouched(_MovedByHand):
     """The `side` hand carried the part to `value`: the part's net way toward the value made under the hand is at
     least `travel` when it is at the value (at least, or at most, `value`, as `toward` says). From one control step
     to the next, a move with the hand (any finger or the palm) on it counts either way, and a move back without the
@@ -103,40 +110,26 @@ class MovedWhileTouched(_Strict):
     `moved_while_held`."""
 
     type: Literal["moved_while_touched"] = "moved_while_touched"
-    history: ClassVar[bool] = True
-    obj: Ref
-    side: Literal["left", "right"]
-    toward: Literal["closed", "open"]
-    value: float = Field(ge=0, le=1)
-    travel: float = Field(gt=0, le=1)
 
-    def refs(self) -> list[ObjRef]:
-        return [self.obj]
-
-    def start(self) -> TouchMemory:
-        return TouchMemory()
-
-    def observe(self, env, memory: TouchMemory) -> None:
-        obj = _obj(env, self.obj)
-        o = _openness(env.model, env.data, obj, None)
-        if o is None or memory.done:
+    def observe(self, env, memory: ProcessMemory) -> None:
+        now = self._now(env, memory)
+        if now is None:
             return
-        on = bool(finger_contacts(env.model, env.data, self.side, obj.body))
-        if memory.last is not None:
-            step = memory.last - o if self.toward == "closed" else o - memory.last
+        o, touched = now
+        on = bool(touched)
+        if memory.anchor is not None:
+            step = self._progress(memory.anchor, o)
             if on or step < 0.0:
                 memory.moved += step
-        memory.last = o
-        if not on:
-            return
-        reached = o <= self.value if self.toward == "closed" else o >= self.value
-        memory.done = reached and memory.moved >= self.travel
+        memory.anchor = o
+        if on:
+            memory.done = self._reached(o) and memory.moved >= self.travel
 
-    def evaluate(self, env, memory: TouchMemory | None = None) -> PredicateResult:
+    def evaluate(self, env, memory: ProcessMemory | None = None) -> PredicateResult:
         what = f"{_name(self.obj)} {'shut' if self.toward == 'closed' else 'opened'} to {self.value:.2f} by the " \
                f"{self.side} hand on it"
         if memory is None:
-            return PredicateResult(ok=False, detail=f"{what}: judged over an episode, and none was watched here")
+            return self._unwatched(what)
         if memory.done:
             return PredicateResult(ok=True, detail=f"{what} (it carried it {memory.moved:.2f})")
         return PredicateResult(ok=False, detail=f"{what}: not done (the hand on it carried it {memory.moved:.2f} net;"
