@@ -92,21 +92,27 @@ def _watched(monkeypatch, pred, frames):
     """A task of `pred` alone, its watch having seen `frames`: (spec, env, watch)."""
     step = _fake(monkeypatch, frames)
     spec = SimpleNamespace(success=[pred])
-    env = SimpleNamespace(model=None, data=None)
+    env = SimpleNamespace(model=None, data=SimpleNamespace(time=0.0))
     watch = Watch(spec, env)
     for _ in frames:
         step()
         watch.observe()
+        env.data.time += 0.02  # a control step at 50 Hz
     return spec, env, watch
 
 
 HELD, TIP = {"thumb", "index", "middle"}, {"index"}
+LET_GO = [(0.3, set())] * 30  # 0.6 s without the thumb against a finger: longer than a grip's flicker
 
 
 @pytest.mark.parametrize("frames,done", [
     ([(0.6, HELD), (0.3, HELD), (0.04, HELD), (0.02, set())], True),  # one hold, 0.56 of the way: done
     ([(0.6, TIP), (0.3, TIP), (0.02, TIP)], False),  # pushed by a fingertip: never held
-    ([(0.6, HELD), (0.3, HELD), (0.3, set()), (0.3, HELD), (0.04, HELD)], False),  # two holds of 0.3 and 0.26
+    ([(0.6, HELD), (0.3, HELD), *LET_GO, (0.3, HELD), (0.04, HELD)], False),  # two holds of 0.3 and 0.26
+    # one hold whose squeeze flickers (a fist pushing a handle): 0.1 s gaps do not end it
+    ([(0.6, HELD), (0.45, {"pinky"}), *[(0.3, {"pinky"})] * 5, (0.3, HELD), (0.04, HELD)], True),
+    ([(0.6, HELD), (0.45, {"pinky"}), *[(0.3, {"pinky"})] * 30, (0.3, HELD), (0.04, HELD)], False),  # 0.6 s: two
+    ([(0.6, HELD), (0.45, set()), (0.3, set()), (0.3, HELD), (0.04, HELD)], False),  # off the handle: two holds
     ([(0.6, set()), (0.2, HELD), (0.04, HELD)], False),  # knocked most of the way, then held the last 0.16
     ([(0.6, HELD), (0.1, HELD), (0.1, HELD)], False),  # held 0.5 of the way but never at 0.05
 ])
@@ -145,3 +151,38 @@ def test_a_part_carried_by_the_hand_on_it_counts_and_one_flicked_does_not(monkey
     pred = held_move.MovedWhileTouched(obj="box[0]", side="right", toward="open", value=0.95, travel=0.7)
     spec, env, watch = _watched(monkeypatch, pred, frames)
     assert judge(spec, env, watch)[0]["ok"] is done
+
+
+def test_a_part_with_a_joint_of_its_own_is_measured_on_that_joint(monkeypatch):
+    """rotate_safe_knob's knob turns on its own joint: the predicate reads that joint's openness, not the door's."""
+    parts = []
+    pred = held_move.MovedWhileHeld(obj="safe[0]", part="knob", side="right", toward="open", value=0.75, travel=0.5)
+    step = _fake(monkeypatch, [(0.0, HELD), (0.4, HELD), (0.8, HELD)])
+    real = held_move._openness
+    monkeypatch.setattr(held_move, "_openness", lambda m, d, obj, part: parts.append(part) or real(m, d, obj, part))
+    spec, env = SimpleNamespace(success=[pred]), SimpleNamespace(model=None, data=SimpleNamespace(time=0.0))
+    watch = Watch(spec, env)
+    for _ in range(3):
+        step()
+        watch.observe()
+        env.data.time += 0.02
+    check = judge(spec, env, watch)[0]
+    assert check["ok"] is True and "safe 0's knob" in check["detail"]
+    assert set(parts) == {"knob"}
+
+
+@pytest.mark.parametrize("task,kind", [
+    ("open_drawer", "moved_while_held"), ("rotate_safe_knob", "moved_while_held"),
+    ("open_safe_door", "moved_while_held"), ("close_box_hard", "moved_while_held"),
+    ("close_laptop_hard", "moved_while_held"), ("press_toaster", "moved_while_touched"),
+    ("open_laptop_easy", "moved_while_touched"), ("open_box_hard", "moved_while_touched"),
+])
+def test_tasks_the_paper_words_as_a_process_judge_it(task, kind):
+    """Each of these tasks' success also asks how the part got there (the paper's wording; a flail passed over 10%
+    of scenes on the end state alone: docs/results/baselines.md), and judged on a state alone it does not hold."""
+    spec = load_task(task)
+    assert kind in [p.type for p in spec.success]
+    _, env = build_scene(spec, 0)
+    checks = judge(spec, env)
+    assert not all(c["ok"] for c in checks)
+    assert any(c["predicate"] == kind and "none was watched" in c["detail"] for c in checks)

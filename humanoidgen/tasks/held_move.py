@@ -19,11 +19,13 @@ class ProcessMemory:
     """What a predicate over the episode's course has seen so far (tasks/watch.py keeps one per predicate and
     episode): `anchor`, the openness it measures from (moved_while_held: where the current hold began, None when
     not held; moved_while_touched: at the last control step); `moved`, how far it counts the part as moved
-    (the longest hold's way; the net way under the hand); `done`, the predicate met (kept once met)."""
+    (the longest hold's way; the net way under the hand); `done`, the predicate met (kept once met); `squeezed`,
+    the simulation time the hand last squeezed the part (moved_while_held's grip, which survives short gaps)."""
 
     anchor: float | None = None
     moved: float = 0.0
     done: bool = False
+    squeezed: float = 0.0
 
     def copy(self) -> ProcessMemory:
         return replace(self)
@@ -35,6 +37,7 @@ class _MovedByHand(_Strict):
 
     history: ClassVar[bool] = True
     obj: Ref
+    part: str | None = None  # a part with a joint of its own (a safe's knob); None: the object's openness
     side: Literal["left", "right"]
     toward: Literal["closed", "open"]
     value: float = Field(ge=0, le=1)
@@ -56,10 +59,13 @@ class _MovedByHand(_Strict):
     def _now(self, env, memory: ProcessMemory) -> tuple[float, set[str]] | None:
         """The part's openness and the hand's fingers on it, or None when there is nothing left to watch."""
         obj = _obj(env, self.obj)
-        o = _openness(env.model, env.data, obj, None)
+        o = _openness(env.model, env.data, obj, self.part)
         if o is None or memory.done:
             return None
         return o, finger_contacts(env.model, env.data, self.side, obj.body)
+
+    def _what(self) -> str:
+        return _name(self.obj) if self.part is None else f"{_name(self.obj)}'s {self.part}"
 
     def _unwatched(self, what: str) -> PredicateResult:
         return PredicateResult(ok=False, detail=f"{what}: judged over an episode, and none was watched here")
@@ -71,18 +77,29 @@ class MovedWhileHeld(_MovedByHand):
     least, `value`, as `toward` says). A process, not an end state: the paper's close_drawer, "with the left hand
     attached to the drawer handle, the left hand pushes the drawer back to an openness of 0". Judged over the
     episode (the trusted replay and the gym environment watch every control step); judged on a state
-    alone, it has seen nothing and does not hold."""
+    alone, it has seen nothing and does not hold.
+
+    A hold lasts through gaps in the squeeze of up to `grip_gap_s` while the hand stays on the part: a closed
+    hand pushing a handle loses and regains the thumb's contact for a few control steps at a time, the other
+    fingers still on it (a DP3 policy's fist around the drawer handle, 0.02-0.22 s gaps while it pushed the drawer
+    0.6 of the way), while letting go and gripping again takes the hand longer than half a second (opening and
+    closing the Inspire hand takes about 1 s). A hand off the part ends the hold at once: with gaps off the part
+    allowed too, random joint targets closing the hand near the box lid passed close_box_hard in 3 of 20 scenes."""
 
     type: Literal["moved_while_held"] = "moved_while_held"
+    grip_gap_s: float = Field(default=0.5, ge=0)
 
     def observe(self, env, memory: ProcessMemory) -> None:
         now = self._now(env, memory)
         if now is None:
             return
         o, touched = now
+        t = float(env.data.time)
         if not is_held(touched):
-            memory.anchor = None
+            if memory.anchor is not None and (not touched or t - memory.squeezed > self.grip_gap_s):
+                memory.anchor = None
             return
+        memory.squeezed = t
         if memory.anchor is None:
             memory.anchor = o
         moved = self._progress(memory.anchor, o)
@@ -90,7 +107,7 @@ class MovedWhileHeld(_MovedByHand):
         memory.done = self._reached(o) and moved >= self.travel
 
     def evaluate(self, env, memory: ProcessMemory | None = None) -> PredicateResult:
-        what = f"{_name(self.obj)} {self.toward} to {self.value:.2f} by the {self.side} hand holding it"
+        what = f"{self._what()} {self.toward} to {self.value:.2f} by the {self.side} hand holding it"
         if memory is None:
             return self._unwatched(what)
         if memory.done:
@@ -126,7 +143,7 @@ class MovedWhileTouched(_MovedByHand):
             memory.done = self._reached(o) and memory.moved >= self.travel
 
     def evaluate(self, env, memory: ProcessMemory | None = None) -> PredicateResult:
-        what = f"{_name(self.obj)} {'shut' if self.toward == 'closed' else 'opened'} to {self.value:.2f} by the " \
+        what = f"{self._what()} {'shut' if self.toward == 'closed' else 'opened'} to {self.value:.2f} by the " \
                f"{self.side} hand on it"
         if memory is None:
             return self._unwatched(what)

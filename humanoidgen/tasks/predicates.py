@@ -17,10 +17,12 @@ from humanoidgen.objects.describe import openness as _openness
 from humanoidgen.planning.hand_ops import finger_contacts, is_held
 from humanoidgen.sim.layout import TABLE_TOP_Z, TABLE_X, TABLE_Y
 from humanoidgen.sim.scene import SceneObject
+from humanoidgen.tasks.gentle import MovedGently
 from humanoidgen.tasks.held_move import MovedWhileHeld, MovedWhileTouched
 from humanoidgen.tasks.predicate_base import ObjRef, PredicateResult, Ref, _cm, _name, _obj, _Strict
 
-__all__ = ["ObjRef", "Predicate", "PredicateResult", "Ref", "MovedWhileHeld", "MovedWhileTouched", "evaluate_all"]
+__all__ = ["ObjRef", "Predicate", "PredicateResult", "Ref", "MovedWhileHeld", "MovedWhileTouched", "MovedGently",
+           "evaluate_all"]
 
 def _pose(env, ref: ObjRef) -> tuple[np.ndarray, np.ndarray]:
     """Centre and rotation matrix of the object's root body."""
@@ -316,7 +318,7 @@ class Near(_Strict):
 
 Predicate = Annotated[
     OnTop | OnTable | Stacked | Pyramid | Inside | AllInside | Lifted | OpennessAtLeast | OpennessAtMost | Upright | Held
-    | MovedWhileHeld | MovedWhileTouched | Near,
+    | MovedWhileHeld | MovedWhileTouched | MovedGently | Near,
     Field(discriminator="type"),
 ]
 
