@@ -66,12 +66,19 @@ def test_whether_a_part_stays_where_it_is_let_go():
 
 
 @pytest.mark.slow
-def test_a_lid_beyond_one_grasp_is_gripped_again_and_closed(tmp_path):
+def test_a_lid_beyond_one_grasp_is_gripped_again_and_closed_but_not_in_one_hold(tmp_path):
     # Letting go and gripping again takes time: this plan needs 27-29 s, past the task's 25 s but within the plan's
     # budget (episodes.replay.PLAN_TIME_FACTOR times it).
     result = _run(tmp_path, "close_box_hard", "box", 1)
     assert any("grips it again" in e for e in result.events), result.events
-    assert result.success, result.checks
+    shut = next(c for c in result.checks if c["predicate"] == "openness_at_most")
+    assert shut["ok"], result.checks  # the lid closed
+    # The task asks more than the lid shut: lowered to 0.35 within one hold, as the paper words it ("while
+    # maintaining its grasp"). Gripped again twice on the way (at 0.63 and 0.52), no one hold did that: the
+    # episode is not a success, and the check says how far the longest hold went.
+    held = next(c for c in result.checks if c["predicate"] == "moved_while_held")
+    assert not held["ok"] and "longest hold moved it" in held["detail"], held
+    assert not result.success
 
 
 def test_a_screen_that_stays_is_gripped_again_or_left_where_the_arm_ends(tmp_path):

@@ -170,10 +170,12 @@ def test_safe_task_specs_match_the_paper(task):
     assert plan_path(spec).is_file()
 
 
-def test_rotate_safe_knob_asks_for_a_90_degree_turn():
-    (pred,) = load_task("rotate_safe_knob").success
-    knob = library.annotations("safe", 0).articulation_for(pred.part)
-    assert pred.part == "knob" and np.degrees(knob.joint_position(pred.value)) == pytest.approx(90.0)
+def test_rotate_safe_knob_asks_for_a_90_degree_turn_by_the_hand_holding_it():
+    turned, held = load_task("rotate_safe_knob").success
+    knob = library.annotations("safe", 0).articulation_for(turned.part)
+    assert turned.part == "knob" and np.degrees(knob.joint_position(turned.value)) == pytest.approx(90.0)
+    # the paper: "the robot precisely pinches and rotates a knob": turned by the right hand holding it
+    assert (held.type, held.part, held.side, held.value) == ("moved_while_held", "knob", "right", turned.value)
 
 
 def test_open_safe_door_reference_plan_succeeds(tmp_path):

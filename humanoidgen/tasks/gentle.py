@@ -31,8 +31,8 @@ class MovedGently(_Strict):
     make rapid and random movements, occasionally closing the box lid by chance ... this behavior is unstable and
     unsafe". Its stiff-hinged lids move only while something pushes them, so a hand that presses one down is as
     fast as its arm: close_box_easy's reference plan brings the lid down at most 1.05 of its range a second (50
-    seeds), random joint targets that shut it slam it at 1.3-4.4 (docs/results/baselines.md). Judged over the
-    episode by a watch; on a state alone it has seen nothing and does not hold."""
+    seeds); random joint targets that shut it, or close_laptop_easy's screen, slam it at 1.3-4.4 (30 scenes
+    each). Judged over the episode by a watch; on a state alone it has seen nothing and does not hold."""
 
     history: ClassVar[bool] = True
     type: Literal["moved_gently"] = "moved_gently"
