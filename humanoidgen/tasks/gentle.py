@@ -10,7 +10,7 @@ from typing import ClassVar, Literal
 from pydantic import Field
 
 from humanoidgen.objects.describe import openness as _openness
-from humanoidgen.tasks.predicate_base import ObjRef, PredicateResult, Ref, _name, _obj, _Strict
+from humanoidgen.tasks.predicate_base import ObjRef, PredicateResult, Ref, _obj, _part_name, _Strict
 
 
 @dataclass
@@ -61,7 +61,7 @@ class MovedGently(_Strict):
             memory.fastest = max(memory.fastest, abs(o - o0) / (t - t0))
 
     def evaluate(self, env, memory: SpeedMemory | None = None) -> PredicateResult:
-        what = _name(self.obj) if self.part is None else f"{_name(self.obj)}'s {self.part}"
+        what = _part_name(self.obj, self.part)
         if memory is None:
             return PredicateResult(ok=False, detail=f"{what} moved gently: judged over an episode, and none was "
                                                     f"watched here")

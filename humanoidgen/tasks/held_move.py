@@ -11,7 +11,7 @@ from pydantic import Field
 
 from humanoidgen.objects.describe import openness as _openness
 from humanoidgen.planning.hand_ops import finger_contacts, is_held
-from humanoidgen.tasks.predicate_base import ObjRef, PredicateResult, Ref, _name, _obj, _Strict
+from humanoidgen.tasks.predicate_base import ObjRef, PredicateResult, Ref, _obj, _part_name, _Strict
 
 
 @dataclass
@@ -64,9 +64,6 @@ class _MovedByHand(_Strict):
             return None
         return o, finger_contacts(env.model, env.data, self.side, obj.body)
 
-    def _what(self) -> str:
-        return _name(self.obj) if self.part is None else f"{_name(self.obj)}'s {self.part}"
-
     def _unwatched(self, what: str) -> PredicateResult:
         return PredicateResult(ok=False, detail=f"{what}: judged over an episode, and none was watched here")
 
@@ -107,7 +104,8 @@ class MovedWhileHeld(_MovedByHand):
         memory.done = self._reached(o) and moved >= self.travel
 
     def evaluate(self, env, memory: ProcessMemory | None = None) -> PredicateResult:
-        what = f"{self._what()} {self.toward} to {self.value:.2f} by the {self.side} hand holding it"
+        part = _part_name(self.obj, self.part)
+        what = f"{part} {self.toward} to {self.value:.2f} by the {self.side} hand holding it"
         if memory is None:
             return self._unwatched(what)
         if memory.done:
@@ -143,8 +141,9 @@ class MovedWhileTouched(_MovedByHand):
             memory.done = self._reached(o) and memory.moved >= self.travel
 
     def evaluate(self, env, memory: ProcessMemory | None = None) -> PredicateResult:
-        what = f"{self._what()} {'shut' if self.toward == 'closed' else 'opened'} to {self.value:.2f} by the " \
-               f"{self.side} hand on it"
+        part = _part_name(self.obj, self.part)
+        way = "shut" if self.toward == "closed" else "opened"
+        what = f"{part} {way} to {self.value:.2f} by the {self.side} hand on it"
         if memory is None:
             return self._unwatched(what)
         if memory.done:

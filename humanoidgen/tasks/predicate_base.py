@@ -54,3 +54,8 @@ def _name(ref: ObjRef) -> str:
     return f"{ref.type} {ref.id}"
 
 
+def _part_name(ref: ObjRef, part: str | None) -> str:
+    """The object, or its part with a joint of its own ("safe 0's knob")."""
+    return _name(ref) if part is None else f"{_name(ref)}'s {part}"
+
+

@@ -19,7 +19,7 @@ from humanoidgen.sim.layout import TABLE_TOP_Z, TABLE_X, TABLE_Y
 from humanoidgen.sim.scene import SceneObject
 from humanoidgen.tasks.gentle import MovedGently
 from humanoidgen.tasks.held_move import MovedWhileHeld, MovedWhileTouched
-from humanoidgen.tasks.predicate_base import ObjRef, PredicateResult, Ref, _cm, _name, _obj, _Strict
+from humanoidgen.tasks.predicate_base import ObjRef, PredicateResult, Ref, _cm, _name, _obj, _part_name, _Strict
 
 __all__ = ["ObjRef", "Predicate", "PredicateResult", "Ref", "MovedWhileHeld", "MovedWhileTouched", "MovedGently",
            "evaluate_all"]
@@ -227,7 +227,7 @@ def _openness_check(env, ref: ObjRef, part: str | None, value: float, bound: str
     o = _openness(env.model, env.data, obj, part)
     if o is None:
         return PredicateResult(ok=False, detail=f"{_name(ref)} has no moving part")
-    what = _name(ref) if part is None else f"{_name(ref)}'s {part}"
+    what = _part_name(ref, part)
     if part is not None:
         art = obj.annotations.articulation_for(part)
         if art.part != part:
