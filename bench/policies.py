@@ -14,6 +14,10 @@ Data missing under --data-root is collected first (about 10 s per close_drawer e
     python bench/policies.py --paper --device cuda        # the paper's recipe and study, on a GPU
     python bench/policies.py --recipe fast --tasks close_drawer --policies dp3 --epochs 40 --name cpu_fast
 
+A run trained and evaluated by hand joins a table: its saved report into rows (how it was trained said here),
+then --combine with others:
+    python bench/policies.py --from-eval eval.json --recipe fast --epochs 40 --train-scenes randomized --name mine
+
 Clean-trained against randomized-trained (issue 37), each evaluated on clean and on randomized scenes (the
 randomized data is collected as `hgen collect --room random --randomize-visuals` records it):
     python bench/policies.py --recipe fast --tasks open_box_easy --policies dp3 --epochs 40 \
@@ -69,9 +73,14 @@ def main() -> int:
     p.add_argument("--eval-scenes", default="clean", help="clean, randomized or both: each run evaluated on each")
     p.add_argument("--combine", help="comma list of earlier --name runs: their rows into one JSON and plot "
                                      "(--name), e.g. a clean-trained and a randomized-trained run made side by side")
+    p.add_argument("--from-eval", type=Path, help="a saved `hgen policy eval --out` report: its rows (with --demos, "
+                                                 "--recipe, --epochs, --train-scenes saying how the run was trained) "
+                                                 "into policies_<name>.json and a plot, for --combine")
     args = p.parse_args()
     if args.combine:
         return combine(_names(args.combine), args.name)
+    if args.from_eval:
+        return from_eval(args)
 
     import torch
 
@@ -125,6 +134,34 @@ def combine(names: tuple[str, ...], name: str) -> int:
                                                                         parts.items()}}, "rows": rows}, indent=2))
     plot(rows, out.with_suffix(".png"))
     print(f"wrote {out} and {out.with_suffix('.png')} ({len(rows)} rows)")
+    return 0
+
+
+def from_eval(args) -> int:
+    """policies_<name>.json (and its plot) from a saved evaluation report of a run trained by hand."""
+    from humanoidgen.policies.bench import plot, rows_from_eval
+
+    if args.train_scenes not in ("clean", "randomized"):
+        print(f"error: --train-scenes with --from-eval is one of clean, randomized (got {args.train_scenes!r})",
+              file=sys.stderr)
+        return 2
+    if not args.from_eval.exists():
+        print(f"error: no evaluation report at {args.from_eval}", file=sys.stderr)
+        return 2
+    try:
+        rows = rows_from_eval(json.loads(args.from_eval.read_text()), int(args.demos.split(",")[0]), args.recipe,
+                              args.epochs, args.train_scenes)
+    except (ValueError, KeyError) as exc:
+        print(f"error: {args.from_eval} is not a `hgen policy eval --out` report ({exc})", file=sys.stderr)
+        return 2
+    out = ROOT / "results" / f"policies_{args.name}.json"
+    out.write_text(json.dumps({"settings": {"from_eval": str(args.from_eval), "recipe": args.recipe,
+                                            "epochs": args.epochs, "train_scenes": args.train_scenes},
+                               "rows": rows}, indent=2))
+    plot(rows, out.with_suffix(".png"))
+    print("\n".join(f"{r['task']} {r['policy']} trained {r['train_scenes']}, {r['scenes']} scenes: "
+                    f"{100 * r['success_mean']:.1f}% +- {100 * r['success_std']:.1f}" for r in rows))
+    print(f"wrote {out} and {out.with_suffix('.png')}")
     return 0
 
 

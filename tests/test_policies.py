@@ -268,6 +268,48 @@ def test_randomized_evaluation_reports_its_scenes_and_the_study_rows_say_which(d
     assert plot(rows, tmp_path / "study.png") and (tmp_path / "study.png").stat().st_size > 0
 
 
+def test_a_saved_evaluation_becomes_study_rows_for_a_table_and_plot(demos_zarr, tmp_path, monkeypatch):
+    """A run trained and evaluated by hand (`hgen policy eval --randomize --out`) joins the study's table:
+    `rows_from_eval` makes one row per scenes with its baselines, `bench/policies.py --from-eval` writes them."""
+    import importlib.util
+    import sys
+
+    from humanoidgen.policies.bench import rows_from_eval
+
+    run = tmp_path / "dp3"
+    train("dp3", demos_zarr, run, _with(TINY_DP3, epochs=1), device="cpu", progress=False)
+    reports = [evaluate(run, "close_drawer", episodes=1, seeds=(0,), device="cpu", progress=False, max_steps=2,
+                        randomize=r) for r in (False, True)]
+    saved = {r.scenes: r.to_dict() for r in reports}  # the file `policy eval --randomize --out` writes
+    rows = rows_from_eval(json.loads(json.dumps(saved)), demos=2, recipe="fast", epochs=1, train_scenes="randomized")
+    assert [(r["scenes"], r["train_scenes"], r["demos"], r["epochs"]) for r in rows] == [
+        ("clean", "randomized", 2, 1), ("randomized", "randomized", 2, 1)]
+    for row, report in zip(rows, reports):
+        assert row["success_mean"] == report.success_mean and row["checkpoint"] == report.to_dict()["checkpoints"][0]
+        assert set(row["baselines"]) == {"random", "noop"} and row["baseline_noop"] == 0.0
+        assert [e["scene_seed"] for e in row["episodes"]] == [100_000] and len(row["success_ci95"]) == 2
+    assert rows_from_eval(saved["clean"], 2, "fast", 1)[0]["train_scenes"] == "clean"  # one scenes' report
+    with pytest.raises(ValueError, match="not an evaluation report"):
+        rows_from_eval({"rows": []}, 2, "fast", 1)
+
+    spec = importlib.util.spec_from_file_location("policies_bench", Path(__file__).resolve().parents[1] / "bench" / "policies.py")
+    bench = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(bench)
+    monkeypatch.setattr(bench, "ROOT", tmp_path)
+    (tmp_path / "results").mkdir()
+    report_file = tmp_path / "eval.json"
+    report_file.write_text(json.dumps(saved))
+    argv = ["policies.py", "--from-eval", str(report_file), "--recipe", "fast", "--epochs", "1", "--demos", "2",
+            "--train-scenes", "randomized", "--name", "hand"]
+    monkeypatch.setattr(sys, "argv", argv)
+    assert bench.main() == 0
+    written = json.loads((tmp_path / "results" / "policies_hand.json").read_text())
+    assert [r["scenes"] for r in written["rows"]] == ["clean", "randomized"]
+    assert (tmp_path / "results" / "policies_hand.png").stat().st_size > 0
+    monkeypatch.setattr(sys, "argv", argv[:-4] + ["--train-scenes", "clean,randomized", "--name", "bad"])
+    assert bench.main() == 2  # one training per report
+
+
 def test_randomized_training_data_is_drawn_as_randomized_evaluation_draws_its_scenes():
     """The study's randomized demonstrations are dressed from each episode's seed exactly as `randomize`d
     evaluation dresses a scene of that seed: a room (background, clutter, the table's height) and a look

@@ -206,6 +206,34 @@ def baseline_columns(report) -> dict:
     return out
 
 
+def rows_from_eval(report: dict, demos: int, recipe: str | None, epochs: int | None,
+                   train_scenes: str = "clean") -> list[dict]:
+    """Study rows from a saved `hgen policy eval --out` report (one scenes' report, or `--randomize`'s clean and
+    randomized pair), so that a run trained and evaluated by hand joins a study's table and plot (`--combine`).
+    What the report does not hold (demonstrations, recipe, epochs, the training data's scenes) is passed in."""
+    parts = [report] if "task" in report else [report[k] for k in SCENES if k in report]
+    if not parts:
+        raise ValueError("not an evaluation report: no task, and neither clean nor randomized results")
+    rows = []
+    for part in parts:
+        if len(part["checkpoints"]) != 1:
+            raise ValueError(f"the report evaluates {len(part['checkpoints'])} checkpoints; a row is one")
+        outcomes = part["outcomes"]
+        row = {"task": part["task"], "policy": part["policy"], "demos": demos, "scenes": part["scenes"],
+               "recipe": recipe, "train_scenes": train_scenes, "epochs": epochs,
+               "success_mean": part["success_mean"], "success_std": part["success_std"],
+               "rates": [r["success"] for r in part["rates"]], "checkpoint": part["checkpoints"][0],
+               "episodes": [{k: o[k] for k in ("seed", "scene_seed", "success", "steps", "final")} for o in outcomes]}
+        for name, b in (part.get("baselines") or {}).items():
+            row[f"baseline_{name}"] = b["success_mean"]
+            row.setdefault("baselines", {})[name] = {
+                "success_mean": b["success_mean"], "success_std": b["success_std"],
+                "rates": [r["success"] for r in b["rates"]], **b.get("info", {}),
+                "successes": [o["scene_seed"] for o in b["outcomes"] if o["success"]]}
+        rows.append(with_intervals(row))
+    return rows
+
+
 def with_intervals(row: dict) -> dict:
     """The row with `success_ci95` (95% Wilson, episodes pooled) for the policy and each baseline, from its
     episodes where a row written before the column lacks it (a baseline's episodes are the policy's scenes)."""
