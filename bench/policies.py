@@ -74,8 +74,9 @@ def main() -> int:
     p.add_argument("--combine", help="comma list of earlier --name runs: their rows into one JSON and plot "
                                      "(--name), e.g. a clean-trained and a randomized-trained run made side by side")
     p.add_argument("--from-eval", type=Path, help="a saved `hgen policy eval --out` report: its rows (with --demos, "
-                                                 "--recipe, --epochs, --train-scenes saying how the run was trained) "
-                                                 "into policies_<name>.json and a plot, for --combine")
+                                                 "--recipe, --train-scenes saying how the run was trained; the "
+                                                 "epochs read from the checkpoint, else --epochs) into "
+                                                 "policies_<name>.json and a plot, for --combine")
     args = p.parse_args()
     if args.combine:
         return combine(_names(args.combine), args.name)
@@ -125,7 +126,8 @@ def combine(names: tuple[str, ...], name: str) -> int:
     """The rows of bench/results/policies_<n>.json for each n, into policies_<name>.json and .png (each row with
     its 95% Wilson intervals, `success_ci95`, for the policy and the baselines; rows of one checkpoint on the same
     scenes from other evaluation seeds pooled into one: `pool_rows`)."""
-    from humanoidgen.policies.bench import plot, pool_rows, with_intervals
+    from humanoidgen.policies.bench import plot
+    from humanoidgen.policies.study_rows import pool_rows, with_intervals
 
     parts = {n: json.loads((ROOT / "results" / f"policies_{n}.json").read_text()) for n in names}
     rows = pool_rows([with_intervals(r) for part in parts.values() for r in part["rows"]])
@@ -139,7 +141,8 @@ def combine(names: tuple[str, ...], name: str) -> int:
 
 def from_eval(args) -> int:
     """policies_<name>.json (and its plot) from a saved evaluation report of a run trained by hand."""
-    from humanoidgen.policies.bench import plot, rows_from_eval
+    from humanoidgen.policies.bench import plot
+    from humanoidgen.policies.study_rows import rows_from_eval
 
     if args.train_scenes not in ("clean", "randomized"):
         print(f"error: --train-scenes with --from-eval is one of clean, randomized (got {args.train_scenes!r})",
@@ -154,6 +157,12 @@ def from_eval(args) -> int:
     except (ValueError, KeyError) as exc:
         print(f"error: {args.from_eval} is not a `hgen policy eval --out` report ({exc})", file=sys.stderr)
         return 2
+    from humanoidgen.policies import checkpoint as ck
+
+    for row in rows:  # the epochs the checkpoint was trained, where it is still there to say
+        if Path(row["checkpoint"]).is_file():
+            state = ck.read(Path(row["checkpoint"]))
+            row["epochs"] = int(state.get("epoch", state.get("meta", {}).get("epoch", row["epochs"])))
     out = ROOT / "results" / f"policies_{args.name}.json"
     out.write_text(json.dumps({"settings": {"from_eval": str(args.from_eval), "recipe": args.recipe,
                                             "epochs": args.epochs, "train_scenes": args.train_scenes},

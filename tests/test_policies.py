@@ -274,7 +274,7 @@ def test_a_saved_evaluation_becomes_study_rows_for_a_table_and_plot(demos_zarr, 
     import importlib.util
     import sys
 
-    from humanoidgen.policies.bench import rows_from_eval
+    from humanoidgen.policies.study_rows import rows_from_eval
 
     run = tmp_path / "dp3"
     train("dp3", demos_zarr, run, _with(TINY_DP3, epochs=1), device="cpu", progress=False)
@@ -299,12 +299,12 @@ def test_a_saved_evaluation_becomes_study_rows_for_a_table_and_plot(demos_zarr, 
     (tmp_path / "results").mkdir()
     report_file = tmp_path / "eval.json"
     report_file.write_text(json.dumps(saved))
-    argv = ["policies.py", "--from-eval", str(report_file), "--recipe", "fast", "--epochs", "1", "--demos", "2",
+    argv = ["policies.py", "--from-eval", str(report_file), "--recipe", "fast", "--epochs", "7", "--demos", "2",
             "--train-scenes", "randomized", "--name", "hand"]
     monkeypatch.setattr(sys, "argv", argv)
     assert bench.main() == 0
     written = json.loads((tmp_path / "results" / "policies_hand.json").read_text())
-    assert [r["scenes"] for r in written["rows"]] == ["clean", "randomized"]
+    assert [(r["scenes"], r["epochs"]) for r in written["rows"]] == [("clean", 1), ("randomized", 1)]  # its own
     assert (tmp_path / "results" / "policies_hand.png").stat().st_size > 0
     monkeypatch.setattr(sys, "argv", argv[:-4] + ["--train-scenes", "clean,randomized", "--name", "bad"])
     assert bench.main() == 2  # one training per report
@@ -409,7 +409,7 @@ def test_an_interrupted_study_does_not_evaluate_a_row_again(demos_zarr, tmp_path
 def test_rows_carry_a_wilson_interval_for_the_policy_and_each_baseline():
     """With 10-20 episodes a cell the spread over seeds says little; each row carries the 95% Wilson interval of
     its pooled episodes (an older row gets it from its episodes), for the policy and the baselines beside it."""
-    from humanoidgen.policies.bench import with_intervals
+    from humanoidgen.policies.study_rows import with_intervals
     from humanoidgen.policies.report import wilson_interval
 
     lo, hi = wilson_interval(0, 20)
@@ -432,7 +432,7 @@ def test_rows_of_one_checkpoint_on_other_seeds_are_pooled():
     """A study run again on another evaluation seed (`--seeds 2` beside `--seeds 0,1`) gives rows that `--combine`
     pools with the first: every seed's rate, the mean and spread over them, the baselines likewise, intervals over
     all the episodes; rows that share a seed are refused, rows of other scenes or checkpoints stay apart."""
-    from humanoidgen.policies.bench import pool_rows
+    from humanoidgen.policies.study_rows import pool_rows
     from humanoidgen.policies.report import wilson_interval
 
     def row(seeds, passed, scenes="clean", ckpt="c.pt"):
