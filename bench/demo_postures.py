@@ -59,33 +59,31 @@ def families(postures: np.ndarray, tol: float) -> np.ndarray:
 def folder_rows(folder: Path, tol: float) -> list[dict]:
     from humanoidgen.episodes.dataset import EpisodeStore
     from humanoidgen.robots import load_robot
+    from humanoidgen.robots.schema import SIDE_NAMES
 
     store = EpisodeStore(folder)
     meta = store.meta()
     names = list(meta["action_names"])
     robot = load_robot(meta["robot"])
+    kept = store.kept()
+    actions = [np.asarray(store.load(record["episode"])["action"]) for record in kept]  # each episode read once
     rows = []
-    for side in ("left", "right"):
+    for side in SIDE_NAMES:
         arm = [names.index(j) for j in robot.arm_joints[side]]
         hand = [names.index(j) for j in robot.hand_joints[side]]
-        postures, episodes = [], []
-        for record in store.kept():
-            action = np.asarray(store.load(record["episode"])["action"])
-            k = closing_index(action[:, hand])
-            if k is not None:
-                postures.append(action[k, arm])
-                episodes.append(record["episode"])
-        if not postures:
+        closing = [(a, closing_index(a[:, hand])) for a in actions]
+        postures = np.array([a[k, arm] for a, k in closing if k is not None])
+        if not len(postures):
             continue
-        labels = families(np.array(postures), tol)
+        labels = families(postures, tol)
         counts = np.bincount(labels)
         sizes = sorted((int(c) for c in counts[1:] if c), reverse=True)
         # Single linkage chains: a family may itself be wide where scenes' postures drift joint by joint.
-        largest = np.array(postures)[labels == int(np.argmax(counts))]
+        largest = postures[labels == int(np.argmax(counts))]
         rows.append({"task": meta["task"], "data": str(folder), "side": side, "robot": meta["robot"],
-                     "episodes": len(store.kept()), "closing": len(postures), "tol_rad": tol,
+                     "episodes": len(kept), "closing": len(postures), "tol_rad": tol,
                      "families": len(sizes), "largest_share": sizes[0] / len(postures), "family_sizes": sizes,
-                     "spread_rad": np.round(np.ptp(np.array(postures), axis=0), 2).tolist(),
+                     "spread_rad": np.round(np.ptp(postures, axis=0), 2).tolist(),
                      "largest_family_spread_rad": np.round(np.ptp(largest, axis=0), 2).tolist(),
                      "arm_joints": list(robot.arm_joints[side])})
     return rows

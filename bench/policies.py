@@ -142,10 +142,10 @@ def combine(names: tuple[str, ...], name: str) -> int:
 def from_eval(args) -> int:
     """policies_<name>.json (and its plot) from a saved evaluation report of a run trained by hand."""
     from humanoidgen.policies.bench import plot
-    from humanoidgen.policies.study_rows import rows_from_eval
+    from humanoidgen.policies.study_rows import SCENES, rows_from_eval
 
-    if args.train_scenes not in ("clean", "randomized"):
-        print(f"error: --train-scenes with --from-eval is one of clean, randomized (got {args.train_scenes!r})",
+    if args.train_scenes not in SCENES:
+        print(f"error: --train-scenes with --from-eval is one of {', '.join(SCENES)} (got {args.train_scenes!r})",
               file=sys.stderr)
         return 2
     if not args.from_eval.exists():

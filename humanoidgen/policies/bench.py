@@ -19,7 +19,7 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 
 from humanoidgen.policies import checkpoint as ck
-from humanoidgen.policies.study_rows import SCENES, baseline_columns
+from humanoidgen.policies.study_rows import SCENES, rows_from_eval
 
 PAPER_TASKS = ("block_handover", "blocks_stack_easy", "close_box_easy", "close_drawer", "close_laptop_easy",
                "cup_pour_easy", "dual_bottles_pick_easy", "open_box_easy", "open_drawer", "open_laptop_easy",
@@ -49,8 +49,6 @@ class StudyConfig:
             bad = [s for s in getattr(self, name) if s not in SCENES]
             if bad or not getattr(self, name):
                 raise ValueError(f"{name} must be a non-empty list of {', '.join(SCENES)}; got {getattr(self, name)}")
-
-
 
 
 def collect_dressing(scenes: str) -> dict:
@@ -131,7 +129,7 @@ def run_study(cfg: StudyConfig, progress: bool = True) -> list[dict]:
                         key = _eval_key(cfg, last, scenes)
                         row = _stored_row(run, key)
                         if row is None:
-                            row = _evaluated_row(cfg, task, policy, n, run, last, result, scenes, progress)
+                            row = _evaluated_row(cfg, task, n, run, last, result, scenes, trained_on, progress)
                             _store_row(run, key, row)
                         rows.append({**row, "train_scenes": trained_on})
                         if progress:
@@ -139,9 +137,10 @@ def run_study(cfg: StudyConfig, progress: bool = True) -> list[dict]:
     return rows
 
 
-def _evaluated_row(cfg: StudyConfig, task: str, policy: str, n: int, run: Path, last: Path, result,
-                   scenes: str, progress: bool = True) -> dict:
-    """One row of the study: the run's last checkpoint evaluated on `scenes` (clean or randomized)."""
+def _evaluated_row(cfg: StudyConfig, task: str, n: int, run: Path, last: Path, result, scenes: str,
+                   trained_on: str, progress: bool = True) -> dict:
+    """One row of the study: the run's last checkpoint evaluated on `scenes` (clean or randomized), built as a
+    saved report's rows are (`study_rows.rows_from_eval`), with the training's figures beside it."""
     from humanoidgen.policies.eval import evaluate
 
     t0 = time.perf_counter()
@@ -149,18 +148,11 @@ def _evaluated_row(cfg: StudyConfig, task: str, policy: str, n: int, run: Path, 
                       progress=progress, baselines=cfg.baselines, randomize=scenes == "randomized",
                       max_steps=cfg.eval_max_steps)
     state = ck.read(run / ck.LATEST)
-    return {"task": task, "policy": policy, "demos": n, "scenes": scenes,
-            "recipe": cfg.recipe,
-            "success_mean": report.success_mean,
-            "success_std": report.success_std, "success_ci95": list(report.interval()),
-            "rates": [r["success"] for r in report.to_dict()["rates"]],
-            "epochs": int(state["epoch"]), "final_loss": float(state["losses"][-1]),
+    (row,) = rows_from_eval(report.to_dict(), n, cfg.recipe, int(state["epoch"]), trained_on)
+    return {**row, "final_loss": float(state["losses"][-1]),
             "train_seconds": result.seconds if result else None,
             "seconds_per_epoch": result.seconds_per_epoch if result else None,
-            "eval_seconds": time.perf_counter() - t0, "checkpoint": str(last),
-            "episodes": [{"seed": o.seed, "scene_seed": o.scene_seed, "success": o.success,
-                          "steps": o.steps, "final": o.final} for o in report.outcomes],
-            **baseline_columns(report)}
+            "eval_seconds": time.perf_counter() - t0}
 
 
 EVALUATED = "study_rows.jsonl"  # in each run: the rows evaluated so far, each under the key that made it

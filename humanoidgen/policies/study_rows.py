@@ -8,13 +8,9 @@ from __future__ import annotations
 SCENES = ("clean", "randomized")
 
 
-def baseline_columns(report) -> dict:
-    """A row's baseline columns: baseline_<name> (success mean on the row's scenes) and their details."""
-    return _baseline_columns(report.to_dict().get("baselines") or {})
-
-
 def _baseline_columns(baselines: dict) -> dict:
-    """The same from the baselines as a report's dict holds them (`EvalReport.to_dict`, a saved report)."""
+    """A row's baseline columns: baseline_<name> (success mean on the row's scenes) and their details, from the
+    baselines as a report's dict holds them (`EvalReport.to_dict`, a saved report)."""
     from humanoidgen.policies.report import wilson_interval
 
     out: dict = {f"baseline_{name}": b["success_mean"] for name, b in baselines.items()}
