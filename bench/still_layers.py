@@ -39,7 +39,8 @@ def render(job, model, layered: bool) -> tuple[dict, float, float]:
     r = job.recorder
     cpu, wall = time.process_time(), time.perf_counter()
     out = render_recording(model, job.configurations, r.cameras, r.width, r.height, r.depth,
-                           r.point_cloud_cameras if r.point_cloud else (), r.num_points, still_layers=layered)
+                           r.point_cloud_cameras if r.point_cloud else (), r.num_points, still_layers=layered,
+                           cloud_floor=r.point_cloud_floor)
     return out, time.process_time() - cpu, time.perf_counter() - wall
 
 

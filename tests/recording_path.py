@@ -13,12 +13,14 @@ import numpy as np  # noqa: E402
 
 from humanoidgen.episodes.recorder import RecorderConfig  # noqa: E402
 from humanoidgen.sim.action import ARM_SLICE, HAND_SLICE  # noqa: E402
+from humanoidgen.sim.pointcloud import TABLE_CLOUD_FLOOR  # noqa: E402
 
 STEPS = 60
 SETTLE_STEPS = 15
 REFERENCE_FRAMES = (0, 6, 11)
+# The reference's clouds were recorded with the table's surface in them (before `point_cloud_floor`).
 CONFIG = dict(every=5, cameras=("head", "front", "left_wrist"), width=64, height=48, point_cloud=True,
-              num_points=256)
+              num_points=256, point_cloud_floor=TABLE_CLOUD_FLOOR)
 
 
 def recorder_config(**kw) -> RecorderConfig:

@@ -202,9 +202,23 @@ def test_rendering_threads_do_not_change_the_recording(full_detail):
     rec, env = record(visual_faces=DEFAULT_MAX_FACES)
     cfg = rec.config
     one = render_recording(env.model, rec.configurations, cfg.cameras, cfg.width, cfg.height, cfg.depth,
-                           cfg.point_cloud_cameras, cfg.num_points, threads=1)
+                           cfg.point_cloud_cameras, cfg.num_points, threads=1, cloud_floor=cfg.point_cloud_floor)
     three = render_recording(env.model, rec.configurations, cfg.cameras, cfg.width, cfg.height, cfg.depth,
-                             cfg.point_cloud_cameras, cfg.num_points, threads=3)
+                             cfg.point_cloud_cameras, cfg.num_points, threads=3,
+                             cloud_floor=cfg.point_cloud_floor)
     for key in one:
         assert np.array_equal(one[key], three[key]), key
         assert np.array_equal(one[key], full_detail[key]), key
+
+
+def test_the_cloud_floor_is_checked_and_recorded_in_meta():
+    """The recorder's cloud floor is a validated setting (a typo of 5 for 0.005 would crop every object away)
+    that meta.json keeps (`asdict`), so an env built from a dataset observes what it recorded."""
+    from dataclasses import asdict
+
+    from humanoidgen.episodes.recorder import RecorderConfig
+    from humanoidgen.sim.pointcloud import CLOUD_FLOOR
+
+    assert asdict(RecorderConfig())["point_cloud_floor"] == CLOUD_FLOOR
+    with pytest.raises(ValueError, match="point_cloud_floor"):
+        RecorderConfig(point_cloud_floor=5.0)

@@ -10,6 +10,7 @@ import humanoidgen.envs as envs  # noqa: E402
 from humanoidgen.envs import EVAL_SEED_BASE, HumanoidTaskEnv, TaskEnvConfig  # noqa: E402
 from humanoidgen.episodes.recorder import RecorderConfig  # noqa: E402
 from humanoidgen.episodes.task_episode import EpisodeRequest, run_task_episode  # noqa: E402
+from humanoidgen.sim.pointcloud import CLOUD_FLOOR, TABLE_CLOUD_FLOOR  # noqa: E402
 
 EVERY = 5
 NO_CAMERAS = TaskEnvConfig(every=EVERY, cameras=(), point_cloud=False)
@@ -87,6 +88,19 @@ def test_observations_are_what_the_recording_holds(recorded):
     env.close()
 
 
+def test_clouds_leave_the_table_out_unless_recorded_with_it(recorded):
+    """The recorded cloud (and the env's) has no point on the table's surface: all above CLOUD_FLOOR; an env
+    configured as recordings before the floor (TABLE_CLOUD_FLOOR) sees the table: most of its points at z = 0."""
+    cloud = recorded["pictures"]["point_cloud"]
+    assert cloud[..., 2].min() > CLOUD_FLOOR
+    env = HumanoidTaskEnv("close_drawer", config=TaskEnvConfig(**SMALL, point_cloud_floor=TABLE_CLOUD_FLOOR))
+    env.reset(seed=2)
+    env.sim.step(recorded["pictures"]["action"][0])
+    with_table = env._observer()["point_cloud"]
+    env.close()
+    assert (np.abs(with_table[:, 2]) < 1e-3).mean() > 0.3
+
+
 @pytest.mark.parametrize("key", [("close_drawer", 0), ("close_drawer", 1), ("block_stack_single", 0)])
 def test_replaying_recorded_actions_redoes_the_task(recorded, key):
     arrays = recorded[key]
@@ -115,6 +129,9 @@ def test_config_from_recorder_and_bad_values():
                                        "depth": True, "point_cloud": True, "num_points": 1024,
                                        "point_cloud_cameras": ["head", "front", "left", "right"], "new": 1})
     assert cfg.cameras == ("head", "front") and cfg.action_hz == 10.0 and cfg.extra == {"new": 1}
+    # Recorded before the cloud's floor was a setting: observed as recorded, with the table.
+    assert cfg.point_cloud_floor == TABLE_CLOUD_FLOOR
+    assert TaskEnvConfig.from_recorder({"every": 5, "point_cloud_floor": 0.02}).point_cloud_floor == 0.02
     with pytest.raises(ValueError, match="unknown camera"):
         TaskEnvConfig(cameras=("nose",))
     with pytest.raises(ValueError, match="every"):

@@ -11,6 +11,7 @@ from typing import Any
 
 from humanoidgen.sim.cameras import CAMERA_NAMES
 from humanoidgen.sim.env import DEFAULT_CONTROL_HZ, MAX_CONTROL_HZ
+from humanoidgen.sim.pointcloud import CLOUD_FLOOR, TABLE_CLOUD_FLOOR
 
 # Seeds at or above this are never used by collection's defaults (seeds 0, 1, 2, ... count up from --seed 0),
 # so an evaluation never meets a scene a policy was trained on unless asked to.
@@ -28,6 +29,7 @@ class TaskEnvConfig:
     point_cloud: bool = True
     point_cloud_cameras: tuple[str, ...] = ("head", "front", "left", "right")
     num_points: int = 1024
+    point_cloud_floor: float = CLOUD_FLOOR  # m above the table top; the recorder's (`RecorderConfig`)
     visual_faces: int | None = None  # robot visual mesh detail in pictures; None: the recording's for the size
     max_steps: int | None = None  # actions per episode; None: the task's time limit at this rate
     render_camera: str = "front"
@@ -65,6 +67,8 @@ class TaskEnvConfig:
             from humanoidgen.sim.meshes import DEFAULT_MAX_FACES
 
             kw["visual_faces"] = DEFAULT_MAX_FACES
+        if "point_cloud_floor" not in recorder:  # recorded before the floor was a setting: clouds with the table
+            kw["point_cloud_floor"] = TABLE_CLOUD_FLOOR
         kw["extra"] = {k: v for k, v in recorder.items() if k not in known}
         kw.update(overrides)
         return cls(**kw)

@@ -19,7 +19,7 @@ from humanoidgen.episodes.render_replay import render_configuration
 from humanoidgen.sim.action import ACTION_DIM
 from humanoidgen.sim.cameras import CameraRig
 from humanoidgen.sim.env import HumanoidEnv
-from humanoidgen.sim.pointcloud import PointCloudConfig
+from humanoidgen.sim.pointcloud import workspace_cloud
 
 
 def observation_space(cfg: TaskEnvConfig) -> spaces.Dict:
@@ -47,7 +47,7 @@ class Observer:
         self._model = render_model if render_model is not None else sim.model
         self._data = mujoco.MjData(self._model) if cams else None
         self._rig = CameraRig(self._model, cfg.width, cfg.height) if cams else None
-        self._pc = PointCloudConfig(num_points=cfg.num_points)
+        self._pc = workspace_cloud(cfg.num_points, cfg.point_cloud_floor)
 
     def close(self) -> None:
         if self._rig is not None:

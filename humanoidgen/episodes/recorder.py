@@ -20,6 +20,7 @@ import numpy as np
 from humanoidgen.sim.cameras import CAMERA_NAMES
 from humanoidgen.sim.env import HumanoidEnv
 from humanoidgen.sim.meshes import DEFAULT_MAX_FACES, recording_faces
+from humanoidgen.sim.pointcloud import CLOUD_FLOOR
 
 
 @dataclass
@@ -32,6 +33,9 @@ class RecorderConfig:
     point_cloud: bool = False
     point_cloud_cameras: tuple[str, ...] = ("head", "front", "left", "right")
     num_points: int = 1024
+    # Height (m above the table top) below which cloud points are dropped: the table's surface is left out
+    # (sim.pointcloud.CLOUD_FLOOR says why); meta.json records it, and datasets without it kept the table.
+    point_cloud_floor: float = CLOUD_FLOOR
     # Faces per robot visual mesh in the images; None: chosen for the resolution (sim.meshes.recording_faces).
     visual_faces: int | None = None
 
@@ -41,6 +45,9 @@ class RecorderConfig:
             raise ValueError(f"unknown cameras {sorted(unknown)}; cameras: {', '.join(CAMERA_NAMES)}")
         if self.every < 1:
             raise ValueError("every must be >= 1")
+        if not -0.05 <= self.point_cloud_floor <= 0.3:
+            raise ValueError(f"point_cloud_floor must be in [-0.05, 0.3] m above the table top, got "
+                             f"{self.point_cloud_floor}")
         if self.visual_faces is not None and not 4 <= self.visual_faces <= DEFAULT_MAX_FACES:
             raise ValueError(f"visual_faces must be in [4, {DEFAULT_MAX_FACES}], got {self.visual_faces}")
 
@@ -96,7 +103,8 @@ class EpisodeRecorder:
             cfg = self.config
             out.update(render_recording(model if model is not None else self.env.model, self.configurations,
                                         cfg.cameras, cfg.width, cfg.height, cfg.depth,
-                                        cfg.point_cloud_cameras if cfg.point_cloud else (), cfg.num_points))
+                                        cfg.point_cloud_cameras if cfg.point_cloud else (), cfg.num_points,
+                                        cloud_floor=cfg.point_cloud_floor))
         return out
 
 

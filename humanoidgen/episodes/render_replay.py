@@ -21,7 +21,7 @@ import numpy as np
 
 from humanoidgen.episodes.depth_units import encode_depth
 from humanoidgen.sim.cameras import CameraRig, pose_data
-from humanoidgen.sim.pointcloud import PointCloudConfig, fuse_point_cloud
+from humanoidgen.sim.pointcloud import CLOUD_FLOOR, PointCloudConfig, fuse_point_cloud, workspace_cloud
 from humanoidgen.sim.still_layer import STILL_GROUP, StillLayer, StillParts, layered_model, moving_groups, still_parts
 
 # Frames each renderer draws per turn: two turns of two renderers held at once are 32 frames, about 75 MB for
@@ -32,16 +32,17 @@ _CONTEXT_LOCK = threading.Lock()
 
 def render_recording(model: mujoco.MjModel, configurations: Sequence[np.ndarray], cameras: tuple[str, ...],
                      width: int, height: int, depth: bool = True, point_cloud_cameras: tuple[str, ...] = (),
-                     num_points: int = 1024, threads: int | None = None, still_layers: bool = True
-                     ) -> dict[str, np.ndarray]:
+                     num_points: int = 1024, threads: int | None = None, still_layers: bool = True,
+                     cloud_floor: float = CLOUD_FLOOR) -> dict[str, np.ndarray]:
     """rgb/<camera> (T, H, W, 3) uint8 and depth/<camera> (T, H, W) uint16 mm for `cameras`, and, when
     `point_cloud_cameras` are given, point_cloud (T, num_points, 3) float32 fused from their depth; all in
-    memory (`iter_frames` hands them over frame by frame)."""
+    memory (`iter_frames` hands them over frame by frame); the cloud's points above `cloud_floor` (m over the
+    table top: `sim.pointcloud.workspace_cloud`)."""
     n = len(configurations)
     out = {key: np.empty((n, *shape), dtype) for key, (shape, dtype) in
            frame_layout(cameras, width, height, depth, bool(point_cloud_cameras), num_points).items()}
     for t, frame in iter_frames(model, configurations, cameras, width, height, depth, point_cloud_cameras,
-                                num_points, threads, still_layers=still_layers):
+                                num_points, threads, still_layers=still_layers, cloud_floor=cloud_floor):
         for key, value in frame.items():
             out[key][t] = value
     return out
@@ -63,7 +64,8 @@ def frame_layout(cameras: tuple[str, ...], width: int, height: int, depth: bool,
 def iter_frames(model: mujoco.MjModel, configurations: Sequence[np.ndarray], cameras: tuple[str, ...],
                 width: int, height: int, depth: bool = True, point_cloud_cameras: tuple[str, ...] = (),
                 num_points: int = 1024, threads: int | None = None, chunk: int = CHUNK_FRAMES,
-                still_layers: bool = True) -> Iterator[tuple[int, dict[str, np.ndarray]]]:
+                still_layers: bool = True, cloud_floor: float = CLOUD_FLOOR
+                ) -> Iterator[tuple[int, dict[str, np.ndarray]]]:
     """(t, arrays of frame t) in time order, rendered `chunk` frames per renderer at a time: the caller
     (compressing, writing) works on one chunk while the renderers draw the next, and only two chunks are
     ever held.
@@ -82,7 +84,7 @@ def iter_frames(model: mujoco.MjModel, configurations: Sequence[np.ndarray], cam
     else:
         still = None
     renderers = [_Renderer(model, width, height, still) for _ in range(threads)]
-    job = (configurations, cameras, depth, point_cloud_cameras, PointCloudConfig(num_points=num_points))
+    job = (configurations, cameras, depth, point_cloud_cameras, workspace_cloud(num_points, cloud_floor))
     try:
         pending = _submit(renderers, job, 0, min(n, chunk * threads))
         done = 0
