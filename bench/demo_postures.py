@@ -32,6 +32,7 @@ import numpy as np
 RESULTS = Path(__file__).resolve().parent / "results"
 CLOSED = 0.5  # share of the hand's travel in the episode past which it counts as closed
 TOL_RAD = 1.0  # default: postures this near on every joint (a chain of them) are one family
+AT_LIMIT_RAD = 0.02  # a joint this near an end of its range counts as at its limit
 
 
 def closing_index(hand: np.ndarray) -> int | None:
@@ -56,6 +57,15 @@ def families(postures: np.ndarray, tol: float) -> np.ndarray:
     return fcluster(linkage(postures, method="single", metric="chebyshev"), t=tol, criterion="distance")
 
 
+def joint_ranges(robot) -> dict[str, tuple[float, float]]:
+    """Each joint's range (rad) in the robot's compiled model."""
+    from humanoidgen.assets.robot_files import resolve_assets_root
+    from humanoidgen.sim.robot import build_robot_spec
+
+    model = build_robot_spec(resolve_assets_root(), robot=robot).compile()
+    return {model.joint(j).name: tuple(float(x) for x in model.joint(j).range) for j in range(model.njnt)}
+
+
 def folder_rows(folder: Path, tol: float) -> list[dict]:
     from humanoidgen.episodes.dataset import EpisodeStore
     from humanoidgen.robots import load_robot
@@ -65,6 +75,7 @@ def folder_rows(folder: Path, tol: float) -> list[dict]:
     meta = store.meta()
     names = list(meta["action_names"])
     robot = load_robot(meta["robot"])
+    ranges = joint_ranges(robot)
     kept = store.kept()
     actions = [np.asarray(store.load(record["episode"])["action"]) for record in kept]  # each episode read once
     rows = []
@@ -80,11 +91,16 @@ def folder_rows(folder: Path, tol: float) -> list[dict]:
         sizes = sorted((int(c) for c in counts[1:] if c), reverse=True)
         # Single linkage chains: a family may itself be wide where scenes' postures drift joint by joint.
         largest = postures[labels == int(np.argmax(counts))]
+        # Where grips sit at a joint's end, the solver's postures for nearby scenes need not be near each other.
+        lo, hi = (np.array([ranges[j][k] for j in robot.arm_joints[side]]) for k in (0, 1))
+        at = (postures - lo < AT_LIMIT_RAD) | (hi - postures < AT_LIMIT_RAD)
         rows.append({"task": meta["task"], "data": str(folder), "side": side, "robot": meta["robot"],
                      "episodes": len(kept), "closing": len(postures), "tol_rad": tol,
                      "families": len(sizes), "largest_share": sizes[0] / len(postures), "family_sizes": sizes,
                      "spread_rad": np.round(np.ptp(postures, axis=0), 2).tolist(),
                      "largest_family_spread_rad": np.round(np.ptp(largest, axis=0), 2).tolist(),
+                     "at_limit_share": round(float(at.any(axis=1).mean()), 3),
+                     "at_limit_by_joint": at.sum(axis=0).astype(int).tolist(),
                      "arm_joints": list(robot.arm_joints[side])})
     return rows
 
@@ -130,7 +146,8 @@ def main(argv: list[str] | None = None) -> int:
         return 1
     for r in rows:
         print(f"{r['task']:<26} {r['side']:<5} {r['closing']:>3} grips in {r['families']:>2} posture families "
-              f"(largest {100 * r['largest_share']:.0f}%: {r['family_sizes']})")
+              f"(largest {100 * r['largest_share']:.0f}%: {r['family_sizes']}); {100 * r['at_limit_share']:.0f}% with "
+              f"a joint at its limit")
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True,
                             cwd=Path(__file__).parent).stdout.strip()
     args.results.mkdir(parents=True, exist_ok=True)

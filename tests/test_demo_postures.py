@@ -73,3 +73,24 @@ def test_families_counts_the_postures_apart(tmp_path):
 def test_a_folder_that_is_not_episodes_is_one_line_and_exit_2(tmp_path, capsys):
     assert _bench().main([str(tmp_path), "--results", str(tmp_path / "r")]) == 2
     assert "not an episode folder" in capsys.readouterr().err
+
+
+def test_grips_at_a_joint_limit_are_counted(tmp_path):
+    """Three of five grips with the wrist's yaw at the end of its range (as close_drawer's are): share 0.6, all
+    on that joint; the robot's ranges are read from its compiled model."""
+    bench = _bench()
+    robot = default_robot()
+    ranges = bench.joint_ranges(robot)
+    yaw = robot.arm_joints["left"][6]
+    lo, hi = ranges[yaw]
+    assert lo < 0 < hi
+    free = np.array([-1.5, 0.3, 0.2, 0.8, 0.5, 0.0, 0.3])
+    postures = [free.copy() for _ in range(5)]
+    for q in postures[:3]:
+        q[6] = hi - 0.005
+    _store(tmp_path / "demos", postures)
+    out = tmp_path / "results"
+    assert bench.main([str(tmp_path / "demos"), "--name", "t", "--results", str(out)]) == 0
+    (row,) = json.loads((out / "demo_postures_t.json").read_text())["rows"]
+    assert row["at_limit_share"] == 0.6
+    assert row["at_limit_by_joint"] == [0, 0, 0, 0, 0, 0, 3]
