@@ -32,6 +32,8 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import platform
+import subprocess
 import sys
 import time
 from pathlib import Path
@@ -105,7 +107,7 @@ def main() -> int:
 
         for q in policies:  # a bad setting is refused here, before any data is collected
             policy_type(q).config(recipe[q])
-    rows, t0 = [], time.perf_counter()
+    rows, t0, commit = [], time.perf_counter(), _commit()  # the code that runs, read before it does
     for task, policy in pairs:
         cfg = StudyConfig(tasks=(task,), demos=demos, policies=(policy,), data_root=args.data_root,
                           runs_root=args.runs_root, overrides=recipe, eval_episodes=args.episodes, eval_seeds=seeds,
@@ -116,10 +118,20 @@ def main() -> int:
     out = ROOT / "results" / f"policies_{args.name}.json"
     settings = {"recipe": "paper" if args.paper else args.recipe, "overrides": recipe, "pairs": pairs,
                 "torch_threads": args.threads, "torch": torch.__version__, "cpu_count": os.cpu_count(),
+                "commit": commit, "machine": f"{platform.machine()}, Python {platform.python_version()}",
                 "total_minutes": round((time.perf_counter() - t0) / 60, 1)}
     write_results(rows, cfg, out, out.with_suffix(".png"), settings)
     print(f"wrote {out} and {out.with_suffix('.png')}")
     return 0
+
+
+def _commit() -> str:
+    """The checkout's short commit, with "+changes" when tracked files differ from it."""
+    def git(*a: str) -> str:
+        return subprocess.run(["git", *a], capture_output=True, text=True, cwd=ROOT).stdout.strip()
+
+    head = git("rev-parse", "--short", "HEAD") or "unknown"
+    return head + ("+changes" if git("status", "--porcelain", "--untracked-files=no") else "")
 
 
 def combine(names: tuple[str, ...], name: str) -> int:
