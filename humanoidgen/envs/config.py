@@ -11,7 +11,7 @@ from typing import Any
 
 from humanoidgen.sim.cameras import CAMERA_NAMES
 from humanoidgen.sim.env import DEFAULT_CONTROL_HZ, MAX_CONTROL_HZ
-from humanoidgen.sim.pointcloud import CLOUD_FLOOR, TABLE_CLOUD_FLOOR
+from humanoidgen.sim.cloud_floor import CLOUD_FLOOR, TABLE_CLOUD_FLOOR
 
 # Seeds at or above this are never used by collection's defaults (seeds 0, 1, 2, ... count up from --seed 0),
 # so an evaluation never meets a scene a policy was trained on unless asked to.

@@ -20,7 +20,7 @@ import numpy as np
 from humanoidgen.sim.cameras import CAMERA_NAMES
 from humanoidgen.sim.env import HumanoidEnv
 from humanoidgen.sim.meshes import DEFAULT_MAX_FACES, recording_faces
-from humanoidgen.sim.pointcloud import CLOUD_FLOOR
+from humanoidgen.sim.cloud_floor import CLOUD_FLOOR
 
 
 @dataclass
