@@ -21,7 +21,7 @@ import argparse
 import json
 import math
 import platform
-import subprocess
+import sys
 import time
 from pathlib import Path
 
@@ -34,6 +34,9 @@ from humanoidgen.objects.imported.importer import ImportRequest, upright_mesh
 from humanoidgen.objects.imported.template import ray_hits, template_mesh
 from humanoidgen.objects.imported.transfer import SYMMETRIC, transfer
 from humanoidgen.objects.rigid import RIGID_FAMILIES
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from provenance import commit  # noqa: E402
 
 FAMILIES = ["cup", "bowl", "bottle", "can", "plate", "pot", "cube"]
 SCALED = {"cup": ["radius", "height", "handle_reach"], "pot": ["radius", "height", "handle_reach", "handle_width"],
@@ -195,8 +198,7 @@ def main() -> None:
     ap.add_argument("--seed", type=int, default=7)
     ap.add_argument("--out", type=Path, default=Path("bench/results"))
     args = ap.parse_args()
-    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
-    result = {"commit": commit, "machine": f"{platform.machine()}, {platform.processor() or 'cpu'}, shared 2 cores",
+    result = {"commit": commit(), "machine": f"{platform.machine()}, {platform.processor() or 'cpu'}, shared 2 cores",
               "variants": run_variants(args.variants, args.seed), "library": run_library()}
     args.out.mkdir(parents=True, exist_ok=True)
     (args.out / "annotation_transfer.json").write_text(json.dumps(result, indent=1))

@@ -36,6 +36,7 @@ os.environ.setdefault("MUJOCO_GL", "egl")
 
 ROOT = Path(__file__).resolve().parent
 sys.path.insert(0, str(ROOT))
+from provenance import commit  # noqa: E402
 
 
 def touches(sim, body: str) -> bool:
@@ -204,10 +205,7 @@ def main() -> int:
         per_scene = [rules(rows, goal) for rows in trace(task, args.episodes, ActionRange.of(r["low"], r["high"], "plans"))]
         result[task] = {k: sum(s[k] for s in per_scene) for k in per_scene[0]}
         print(task, result[task], flush=True)
-    import subprocess
-
-    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True, cwd=ROOT).stdout
-    args.out.write_text(json.dumps({"settings": {"episodes": args.episodes, "seeds": [0], "commit": commit.strip(),
+    args.out.write_text(json.dumps({"settings": {"episodes": args.episodes, "seeds": [0], "commit": commit(),
                                                  "cpu_count": os.cpu_count(),
                                                  "minutes": round((time.perf_counter() - t0) / 60, 1)},
                                     "scenes_passed": result}, indent=1))

@@ -18,7 +18,6 @@ import argparse
 import json
 import os
 import platform
-import subprocess
 import sys
 import time
 from pathlib import Path
@@ -27,6 +26,9 @@ os.environ.setdefault("OMP_NUM_THREADS", "1")
 os.environ.setdefault("MUJOCO_GL", "egl")
 
 ROOT = Path(__file__).resolve().parent
+sys.path.insert(0, str(ROOT))
+from provenance import commit  # noqa: E402
+
 PASS_LIMIT = 0.10  # a baseline above this share of scenes: the task does not measure a policy
 
 
@@ -134,9 +136,8 @@ def main() -> int:
         rows += measure(task, args.episodes, seeds, args.demos, args.data_root / "ranges.json")
     stem = "baselines" + (f"_{args.name}" if args.name else "")
     out = ROOT / "results" / f"{stem}.json"
-    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True, cwd=ROOT).stdout
     settings = {"episodes": args.episodes, "seeds": list(seeds), "demos": args.demos, "hold_actions": RANDOM_HOLD_ACTIONS,
-                "action_hz": 10, "commit": commit.strip(), "cpu_count": os.cpu_count(), "machine": platform.machine(),
+                "action_hz": 10, "commit": commit(), "cpu_count": os.cpu_count(), "machine": platform.machine(),
                 "minutes": round((time.perf_counter() - t0) / 60, 1)}
     out.parent.mkdir(parents=True, exist_ok=True)
     cache = args.data_root / "ranges.json"

@@ -17,7 +17,6 @@ import argparse
 import json
 import os
 import re
-import subprocess
 import sys
 import time
 from pathlib import Path
@@ -25,6 +24,9 @@ from pathlib import Path
 os.environ.setdefault("MUJOCO_GL", "egl")
 
 ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "bench"))
+from provenance import commit  # noqa: E402
+
 CHEATS = ROOT / "tests" / "cheats"
 _HEADER = re.compile(r"^#\s*(task|cheat):\s*(.*?)\s*$")
 
@@ -85,9 +87,8 @@ def main(argv: list[str] | None = None) -> int:
             print(f"{'SUCCESS' if rec['success'] else 'failed '} {rec['cheat']:45s} seed {seed} "
                   f"({rec['seconds']:.0f} s): {rec['reason'][:150]}", flush=True)
     judged = sum(r["success"] for r in records)
-    commit = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "HEAD"], capture_output=True, text=True).stdout.strip()
-    report = {"commit": commit, "episodes": len(records), "judged_success": judged, "cheats": len(cheats), "seeds": seeds,
-              "records": records}
+    report = {"commit": commit(ROOT, full=True), "episodes": len(records), "judged_success": judged,
+              "cheats": len(cheats), "seeds": seeds, "records": records}
     Path(args.out).parent.mkdir(parents=True, exist_ok=True)
     Path(args.out).write_text(json.dumps(report, indent=1) + "\n")
     print(f"{judged} of {len(records)} cheating episodes judged a success -> {args.out}")

@@ -23,11 +23,13 @@ from __future__ import annotations
 import argparse
 import json
 import platform
-import subprocess
 import sys
 from pathlib import Path
 
 import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from provenance import commit  # noqa: E402
 
 RESULTS = Path(__file__).resolve().parent / "results"
 CLOSED = 0.5  # share of the hand's travel in the episode past which it counts as closed
@@ -148,11 +150,9 @@ def main(argv: list[str] | None = None) -> int:
         print(f"{r['task']:<26} {r['side']:<5} {r['closing']:>3} grips in {r['families']:>2} posture families "
               f"(largest {100 * r['largest_share']:.0f}%: {r['family_sizes']}); {100 * r['at_limit_share']:.0f}% with "
               f"a joint at its limit")
-    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True,
-                            cwd=Path(__file__).parent).stdout.strip()
     args.results.mkdir(parents=True, exist_ok=True)
     out = args.results / f"demo_postures_{args.name}.json"
-    out.write_text(json.dumps({"commit": commit, "machine": f"{platform.machine()}, {platform.python_version()}",
+    out.write_text(json.dumps({"commit": commit(), "machine": f"{platform.machine()}, {platform.python_version()}",
                                "rows": rows}, indent=1))
     plot(rows, out.with_suffix(".png"))
     print(f"wrote {out} and {out.with_suffix('.png').name}")

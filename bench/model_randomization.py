@@ -15,22 +15,17 @@ from __future__ import annotations
 import argparse
 import json
 import platform
-import subprocess
+import sys
 import time
 from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from provenance import commit  # noqa: E402
 
 TASKS = ("empty_cup_place", "cup_pour_easy", "dual_bottles_pick_easy", "dual_bottles_pick_hard", "open_drawer",
          "close_laptop_easy", "open_box_easy")
 COLUMNS = ("primitive", "library")
 TARGET_POINTS = 10  # the issue's target: library success within this many points of the primitive models'
-
-
-def _commit() -> str:
-    try:
-        return subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True,
-                              check=True).stdout.strip()
-    except (OSError, subprocess.CalledProcessError):
-        return "unknown"
 
 
 def run_column(task: str, column: str, seeds: range) -> list[dict]:
@@ -137,12 +132,12 @@ def main() -> None:
                 t0 = time.perf_counter()
                 new = run_column(task, col, seeds)
                 rows = [r for r in rows if not (r["task"] == task and r["column"] == col)] + new
-                meta.setdefault("columns", {})[f"{task}/{col}"] = {"commit": args.commit or _commit(),
+                meta.setdefault("columns", {})[f"{task}/{col}"] = {"commit": args.commit or commit(),
                                                                     "seconds": round(time.perf_counter() - t0)}
                 print(f"{task} {col}: {sum(bool(r['success']) for r in new)}/{len(new)}", flush=True)
                 order = {t: k for k, t in enumerate(TASKS)}
                 rows.sort(key=lambda r: (order.get(r["task"], 99), r["task"], COLUMNS.index(r["column"]), r["seed"]))
-                meta.update(commit=args.commit or _commit(), seeds=args.seeds,
+                meta.update(commit=args.commit or commit(), seeds=args.seeds,
                             machine=f"{platform.machine()}, {__import__('os').cpu_count()} cores (shared)")
                 args.out.write_text(json.dumps({"meta": meta, "summary": summary(rows), "rows": rows}, indent=1))
     data = {"meta": meta, "summary": summary(rows), "rows": rows}

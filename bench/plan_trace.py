@@ -33,6 +33,7 @@ HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
 from foreign_plans import discover, parse_seeds  # noqa: E402
+from provenance import commit, machine  # noqa: E402
 
 
 def _digest(arrays: dict | None) -> str | None:
@@ -116,11 +117,7 @@ def main(argv: list[str] | None = None) -> int:
             print(f"[{k}/{len(jobs)}] {rows[-1]['task']} {Path(rows[-1]['plan']).name} seed {rows[-1]['seed']}: "
                   f"{'ok' if rows[-1]['success'] else 'FAIL'}", flush=True)
     rows.sort(key=lambda r: (r["task"], r["plan"], r["seed"]))
-    import subprocess
-
-    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True,
-                            cwd=HERE).stdout.strip()
-    report = {"commit": commit, "machine": f"{os.uname().machine}, {os.cpu_count()} CPUs",
+    report = {"commit": commit(), "machine": machine(),
               "wall_s": round(time.monotonic() - t0, 1), "successes": sum(r["success"] for r in rows),
               "episodes": rows}
     print(f"{report['successes']} of {len(rows)} episodes succeeded in {report['wall_s']} s")

@@ -13,7 +13,6 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import platform
 import statistics
 import subprocess
 import sys
@@ -24,6 +23,7 @@ HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
 from foreign_plans import parse_seeds  # noqa: E402
+from provenance import commit, machine  # noqa: E402
 
 RUN = r"""
 import json, sys
@@ -76,12 +76,10 @@ def main(argv: list[str] | None = None) -> int:
     summary["wall_ratio"] = round(summary["after"]["mean_wall_s"] / summary["before"]["mean_wall_s"], 3)
     print(json.dumps(summary, indent=1))
     if args.json:
-        commit = lambda p: subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True,  # noqa: E731
-                                          text=True, cwd=p).stdout.strip()
         args.json.write_text(json.dumps({
             "what": "reference episodes' motion-planning and wall time, two checkouts taking turns",
             "before": commit(args.before), "after": commit(args.after),
-            "machine": f"{platform.machine()}, {os.cpu_count()} CPUs", "tasks": args.tasks, "seeds": args.seeds,
+            "machine": machine(), "tasks": args.tasks, "seeds": args.seeds,
             "summary": summary, "episodes": rows}, indent=1))
     return 0
 

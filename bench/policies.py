@@ -33,7 +33,6 @@ import argparse
 import json
 import os
 import platform
-import subprocess
 import sys
 import time
 from pathlib import Path
@@ -44,6 +43,8 @@ os.environ.setdefault("MUJOCO_GL", "egl")
 
 ROOT = Path(__file__).resolve().parent
 sys.path.insert(0, str(ROOT.parent))
+sys.path.insert(0, str(ROOT))
+from provenance import commit  # noqa: E402 (bench/provenance.py: the commit, "+changes" where tracked files differ)
 from humanoidgen.policies.recipes import RECIPES, merge  # noqa: E402 (the recipes: humanoidgen/policies/recipes.py)
 
 # (task, policy) pairs of the reduced study, as the issue sizes it.
@@ -107,7 +108,7 @@ def main() -> int:
 
         for q in policies:  # a bad setting is refused here, before any data is collected
             policy_type(q).config(recipe[q])
-    rows, t0, commit = [], time.perf_counter(), _commit()  # the code that runs, read before it does
+    rows, t0, head = [], time.perf_counter(), commit()  # the code that runs, read before it does
     for task, policy in pairs:
         cfg = StudyConfig(tasks=(task,), demos=demos, policies=(policy,), data_root=args.data_root,
                           runs_root=args.runs_root, overrides=recipe, eval_episodes=args.episodes, eval_seeds=seeds,
@@ -118,20 +119,11 @@ def main() -> int:
     out = ROOT / "results" / f"policies_{args.name}.json"
     settings = {"recipe": "paper" if args.paper else args.recipe, "overrides": recipe, "pairs": pairs,
                 "torch_threads": args.threads, "torch": torch.__version__, "cpu_count": os.cpu_count(),
-                "commit": commit, "machine": f"{platform.machine()}, Python {platform.python_version()}",
+                "commit": head, "machine": f"{platform.machine()}, Python {platform.python_version()}",
                 "total_minutes": round((time.perf_counter() - t0) / 60, 1)}
     write_results(rows, cfg, out, out.with_suffix(".png"), settings)
     print(f"wrote {out} and {out.with_suffix('.png')}")
     return 0
-
-
-def _commit() -> str:
-    """The checkout's short commit, with "+changes" when tracked files differ from it."""
-    def git(*a: str) -> str:
-        return subprocess.run(["git", *a], capture_output=True, text=True, cwd=ROOT).stdout.strip()
-
-    head = git("rev-parse", "--short", "HEAD") or "unknown"
-    return head + ("+changes" if git("status", "--porcelain", "--untracked-files=no") else "")
 
 
 def combine(names: tuple[str, ...], name: str) -> int:

@@ -18,7 +18,6 @@ from __future__ import annotations
 import argparse
 import json
 import os
-import subprocess
 import sys
 import time
 from concurrent.futures import ThreadPoolExecutor
@@ -29,6 +28,7 @@ HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
 from foreign_plans import failure_message  # noqa: E402
+from provenance import commit, machine  # noqa: E402
 
 
 def lost(report: Path, match: str, remap: dict[str, str]) -> list[dict]:
@@ -85,11 +85,9 @@ def main() -> None:
             rows.append(row)
             print(f"{'PASS' if row['success'] else 'FAIL'} {row['task']}/{row['plan']} seed {row['seed']}: "
                   f"{row['sim_s']} s simulated (limit {row['time_limit_s']:g} s) {row['message'][:160]}", flush=True)
-    commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=HERE, capture_output=True,
-                            text=True).stdout.strip()
     result = {"what": f"the episodes of {', '.join(r.name for r in args.reports)} lost with {args.match!r} in "
-                      "their message, run again", "commit": commit,
-              "machine": f"{os.uname().machine}, {os.cpu_count()} CPUs", "workers": args.workers,
+                      "their message, run again", "commit": commit(),
+              "machine": machine(), "workers": args.workers,
               "generated": time.strftime("%Y-%m-%d %H:%M:%S"), "wall_s": round(time.monotonic() - t0, 1),
               "passed": sum(r["success"] for r in rows), "of": len(rows), "episodes": rows}
     args.json_out.write_text(json.dumps(result, indent=2) + "\n")

@@ -41,6 +41,9 @@ import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "bench"))
+from provenance import commit  # noqa: E402
+
 PROBE = r"""
 import json, os, sys, time
 t0 = time.perf_counter()
@@ -149,17 +152,12 @@ def _machine() -> str:
     return f"{os.uname().machine}, {os.cpu_count()} CPUs" + (f" ({model})" if model else "")
 
 
-def _commit(code: Path) -> str:
-    return subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=code, capture_output=True,
-                          text=True).stdout.strip()
-
-
 def _summary(task: str, seed: int, code: Path, rows: list[dict], turns: str | None, no_bytecode: bool) -> dict:
-    commit = _commit(code)
+    head = commit(code)
     beyond = [r["cli"]["beyond_episode_s"] for r in rows]
     result = {"what": f"hgen run {task} --seed {seed}: wall time from start to exit minus the episode's "
                       "own wall time, and the phases of the same path timed one by one",
-              "commit": commit, "machine": _machine()}
+              "commit": head, "machine": _machine()}
     if turns:
         result["taking_turns_with"] = turns
     result["bytecode"] = "as the environment has it" if no_bytecode else "compiled first (compileall)"
@@ -195,7 +193,7 @@ def main() -> None:
             rows[code].append(_rounds(args.task, args.seed, code, k))
     outs = [(args.code, args.json)] + ([(args.against, args.before_json)] if args.against is not None else [])
     for code, path in outs:
-        other = next((f"{_commit(c)} (round by round, it first)" if c == args.against else f"{_commit(c)}"
+        other = next((f"{commit(c)} (round by round, it first)" if c == args.against else f"{commit(c)}"
                       for c in codes if c != code), None)
         result = _summary(args.task, args.seed, code, rows[code], other, args.no_bytecode)
         path.write_text(json.dumps(result, indent=2) + "\n")

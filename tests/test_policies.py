@@ -148,7 +148,7 @@ def test_bench_recipes_are_valid_configs():
     # Results say which code produced them: the checkout's commit, marked when tracked files differ from it.
     import re
 
-    assert re.fullmatch(r"[0-9a-f]{7,}(\+changes)?", bench._commit())
+    assert re.fullmatch(r"[0-9a-f]{7,}(\+changes)?", bench.commit())
 
 
 def test_bad_input_is_one_line_and_exit_1(demos_zarr, tmp_path):
