@@ -16,8 +16,8 @@ The transit to the pre-pose is a screw motion, else RRT-Connect (`motion.plan_ar
 
 A movable part (a drawer's handle, a box lid) gives way when pushed, so an approach may touch the part it
 comes to by at most PART_TOUCH. Where the fingers as they are would push it (the pre-grasp thumb stands 10 cm
-out of the palm, in front of a handle) but open fingers would not, the hand comes in open and the grasp then
-closes around the handle; it opens before the transit where it can (`change_early`), else at the pre-pose. Not where the fingers would strike something as they open there:
+out of the palm, in front of a handle) but open fingers would not, the hand opens at the pre-pose and comes in
+open; the grasp then closes around the handle. Not where the fingers would strike something as they open there:
 a pre-pinch's tucked fingers, unfolding at a safe's knob, stuck on the door beside it and the hand slid in
 dragging them, 4 cm short; they come in as they are.
 """
@@ -75,7 +75,6 @@ class ApproachPlan:
     posture: str | None  # see ComeIn.posture
     label: str
     axis: np.ndarray | None = None  # see ComeIn.axis
-    early: bool = False  # the fingers take `posture` before the transit, where the hand is, not at the pre-pose
 
 
 
@@ -100,9 +99,7 @@ def plan_approach(ctx: PlanningContext, side: Side, q0: np.ndarray, target: Pose
         if joined is None:
             first = False
             continue
-        early = joined.posture is not None and change_early(ctx, side, transit, joined.posture)
-        return ApproachPlan([transit, JointPath(joined.path, "screw")], joined.posture, joined.label, joined.axis,
-                            early)
+        return ApproachPlan([transit, JointPath(joined.path, "screw")], joined.posture, joined.label, joined.axis)
     advice = approach_advice(side, reasons, target.p, target.approach_axis)
     raise MotionError("no straight approach to the target (" + "; ".join(reasons) + ")"
                       + (f". Suggestion: {advice}" if advice else ""))
@@ -238,32 +235,6 @@ def check_way_in(ctx: PlanningContext, side: Side, path: np.ndarray, body: str |
             return "open", ""
         # Neither fits without pushing the part; come in as before (a part at its end stop does not move).
     return None, ""
-
-def change_early(ctx: PlanningContext, side: Side, transit: JointPath, posture: str) -> bool:
-    """Whether the fingers can take `posture` where the hand is, before the transit, and keep it on the way: they
-    change there clear of everything and the transit stays collision-free with them. Where so, the hand carries
-    the fingers it comes in with all the way from afar. Changed at the pre-pose instead, 8 cm from a drawer's
-    handle, the pre-grasp thumb stood 10 cm out of the palm up to there, and the demonstrations stopped twice
-    near the handle to move the fingers: DP3 policies trained on them struck the handle with the thumb before
-    the grip (3 of 7 failed close_drawer rollouts probed) or closed the hand while still pushing in (the other
-    4)."""
-    q0 = transit.waypoints[0]
-    goal = np.array(HAND_POSTURES[posture])
-    base, saved = ctx.kin.data.qpos.copy(), ctx.kin.hand_q(side)
-    try:
-        ctx.kin.set_arm(side, q0)
-        ctx.kin.forward()
-        clearance, _ = finger_sweep_clearance(ctx.kin, ctx.collisions, side, saved, goal,
-                                              ctx.collisions.obstacles(side))
-        if clearance <= 0.0:
-            return False
-        ctx.kin.set_hand(side, goal)
-        ctx.kin.forward()
-        return first_collision(ctx.kin, ctx.collisions, side, transit.waypoints) is None
-    finally:
-        ctx.kin.data.qpos[:] = base
-        ctx.kin.forward()
-
 
 def room_to_change(ctx: PlanningContext, side: Side, q: np.ndarray, posture: str, part: str | None) -> bool:
     """Whether the fingers can go from how they are to `posture` with the arm at `q` and come no nearer than

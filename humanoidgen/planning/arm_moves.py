@@ -178,7 +178,7 @@ def plan_side_timed(ctx: PlanningContext, side: Side, target: Pose, path_constra
     hand = ctx.action[HAND_SLICE[side]].copy()
     try:
         legs: list[JointPath] = []
-        posture, change_at = None, 0  # the finger posture to come in with, and before which leg it is taken
+        posture = None
         if target.follow is None and turns_standing_object(ctx, side, target):
             try:
                 p_now, R_now = ctx.kin.ee_pose(side)
@@ -201,7 +201,7 @@ def plan_side_timed(ctx: PlanningContext, side: Side, target: Pose, path_constra
             # Come in straight along the approach axis from a pre-pose reached any collision-free way.
             plan = approach.plan_approach(ctx, side, q0, target)
             # after the lift before a turn, if there was one: the approach starts where the lift ends
-            legs, posture, change_at = legs + plan.legs, plan.posture, len(legs) + (0 if plan.early else 1)
+            legs, posture = legs + plan.legs, plan.posture
             if plan.axis is not None:
                 ctx.hands[side].approach_used = plan.axis  # the way back out after the grip
             if "solved" in plan.label or posture is not None or plan.axis is not None:  # not the way asked
@@ -226,9 +226,8 @@ def plan_side_timed(ctx: PlanningContext, side: Side, target: Pose, path_constra
         else:
             v, a = (CARRY_LIMITS["v_max"], CARRY_LIMITS["a_max"]) if carrying else (1.0, 3.0)
             samples = time_dense_path(leg.waypoints, dt, v_max=v, a_max=a)
-        if k == change_at and posture is not None and len(legs) > 1:
-            # Change the fingers, arm still: before the transit where they fit there (approach.change_early),
-            # else at the pre-pose, before the last (straight) leg.
+        if k == len(legs) - 1 and posture is not None and len(legs) > 1:
+            # Change the fingers at the pre-pose, arm still, before the last (straight) leg.
             goal = np.array(HAND_POSTURES[posture])
             n = max(1, int(round(HAND_MOTION_TIME * ctx.env.control_hz)))
             hold = np.repeat(out[-1][-1:, :7], n, 0) if out else np.repeat(samples[:1], n, 0)
