@@ -1,0 +1,53 @@
+"""bench/replay_tolerance.py: a collected close_drawer episode replayed in the gym env passes as recorded and fails
+with a large offset on the left arm's joint targets (the hand then misses the handle), while an offset on the right
+arm, which does nothing in this task, changes nothing."""
+
+from __future__ import annotations
+
+import importlib.util
+import json
+from pathlib import Path
+
+import pytest
+
+from humanoidgen.episodes.collect import collect
+from humanoidgen.episodes.recorder import RecorderConfig
+
+BENCH = Path(__file__).resolve().parents[1] / "bench" / "replay_tolerance.py"
+
+
+def _bench():
+    spec = importlib.util.spec_from_file_location("replay_tolerance_bench", BENCH)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+@pytest.fixture(scope="module")
+def one_demo(tmp_path_factory):
+    out = tmp_path_factory.mktemp("tolerance") / "close_drawer"
+    stats = collect("close_drawer", 1, out, recorder=RecorderConfig(cameras=(), point_cloud=False))
+    assert stats.kept == 1
+    return out
+
+
+def test_a_recorded_episode_passes_and_a_large_offset_on_the_acting_arm_fails(one_demo):
+    bench = _bench()
+    left = bench.tolerance(one_demo, "left", [0.0, 0.3], episodes=1)
+    assert left["task"] == "close_drawer" and left["episodes"] == 1
+    assert left["passed"] == {0.0: 1, 0.3: 0}
+    right = bench.tolerance(one_demo, "right", [0.3], episodes=1)
+    assert right["passed"] == {0.3: 1}
+
+
+def test_the_script_writes_its_results_with_their_provenance(one_demo, monkeypatch, tmp_path):
+    bench = _bench()
+    monkeypatch.setattr(bench, "ROOT", tmp_path)
+    (tmp_path / "results").mkdir()
+    monkeypatch.setattr("sys.argv", ["replay_tolerance.py", str(one_demo), "--side", "left", "--sigmas", "0",
+                                     "--episodes", "1", "--name", "t"])
+    assert bench.main() == 0
+    report = json.loads((tmp_path / "results" / "t.json").read_text())
+    assert report["rows"][0]["passed"] == {"0.0": 1} and report["commit"] and "CPUs" in report["machine"]
+    monkeypatch.setattr("sys.argv", ["replay_tolerance.py", str(one_demo), "--side", "up"])
+    assert bench.main() == 2
