@@ -178,6 +178,22 @@ def test_zarr_export_has_the_shapes_dp3_expects(collected, tmp_path):
     assert root["data/img"].shape == (n, 48, 64, 3)
     ends = root["meta/episode_ends"][:]
     assert ends[-1] == n and len(ends) == 2
+    # written an episode and a column at a time, the columns hold the episodes' arrays end to end
+    store = EpisodeStore(one)
+    episodes = [store.load(k["episode"]) for k in store.kept()]
+    for name, key in (("action", "action"), ("point_cloud", "point_cloud"), ("img", "rgb/head")):
+        assert np.array_equal(root[f"data/{name}"][:], np.concatenate([e[key] for e in episodes]))
+    if "depth" in root["data"]:
+        assert np.array_equal(root["data/depth"][ends[0]:], episodes[1]["depth/head"])
+
+
+def test_an_episode_loads_only_the_arrays_asked_for(collected):
+    one, *_ = collected
+    store = EpisodeStore(one)
+    whole = store.load(0)
+    part = store.load(0, ("action", "rgb/head"))
+    assert set(part) == {"action", "rgb/head"} and len(whole) > 2
+    assert all(np.array_equal(part[k], whole[k]) for k in part)
 
 
 def test_cli_run_tasks_and_dataset_commands(collected, tmp_path):

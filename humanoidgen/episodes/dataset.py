@@ -29,6 +29,7 @@ import logging
 import os
 import re
 import shutil
+from collections.abc import Collection
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -164,12 +165,13 @@ class EpisodeStore:
     def kept(self) -> list[dict]:
         return [a for a in self.attempts() if a.get("episode") is not None]
 
-    def load(self, i: int) -> dict[str, np.ndarray]:
+    def load(self, i: int, keys: Collection[str] | None = None) -> dict[str, np.ndarray]:
+        """Episode i's arrays (depth in metres), or only those named in `keys` (the others are not read)."""
         path = self.episode_path(i)
         if not path.exists():
             raise DatasetError(f"episode {i} not found ({path.name} missing; {len(self.kept())} episodes "
                                f"in {self.root})")
-        return {k: decode_depth(v) if _is_stored_depth(k, v) else v for k, v in _read_episode(path).items()}
+        return {k: decode_depth(v) if _is_stored_depth(k, v) else v for k, v in _read_episode(path, keys).items()}
 
     # -- checking and repairing -----------------------------------------------------------------------
     def corrupt(self) -> dict[int, str]:
@@ -282,11 +284,14 @@ def export_zarr(store: EpisodeStore, out: Path, image_camera: str = "head") -> d
     root attributes task, control_hz, camera (the one in data/img) and recorder (the recording settings)."""
     import zarr
 
-    kept = store.kept()
+    kept = [k["episode"] for k in store.kept()]
     if not kept:
         raise DatasetError(f"{store.root} has no episodes to export")
-    episodes = [store.load(k["episode"]) for k in kept]
-    ends = np.cumsum([len(e["action"]) for e in episodes]).astype(np.int64)
+    # One column of one episode in memory at a time: 200 close_drawer episodes with the head camera's pictures
+    # and depth loaded whole took more than 23 GB and were killed for memory.
+    ends = np.cumsum([len(store.load(i, ("action",))["action"]) for i in kept]).astype(np.int64)
+    starts = np.concatenate([[0], ends[:-1]])
+    first = store.load(kept[0])
     columns = {"state": "joint_pos", "action": "action", "point_cloud": "point_cloud",
                "img": f"rgb/{image_camera}", "depth": f"depth/{image_camera}", "ee_pose": "ee_pose"}
     root = zarr.open_group(str(out), mode="w")
@@ -297,12 +302,13 @@ def export_zarr(store: EpisodeStore, out: Path, image_camera: str = "head") -> d
     data = root.create_group("data")
     shapes = {}
     for name, key in columns.items():
-        if key not in episodes[0]:
+        if key not in first:
             continue
-        arr = np.concatenate([e[key] for e in episodes])
-        chunks = (min(len(arr), 100),) + arr.shape[1:]
-        data.create_array(name, shape=arr.shape, dtype=arr.dtype, chunks=chunks)[:] = arr
-        shapes[name] = arr.shape
+        shape = (int(ends[-1]),) + first[key].shape[1:]
+        column = data.create_array(name, shape=shape, dtype=first[key].dtype, chunks=(min(shape[0], 100),) + shape[1:])
+        for i, a, b in zip(kept, starts, ends):
+            column[a:b] = first[key] if i == kept[0] else store.load(i, (key,))[key]
+        shapes[name] = shape
     meta = root.create_group("meta")
     meta.create_array("episode_ends", shape=ends.shape, dtype=ends.dtype)[:] = ends
     shapes["episode_ends"] = ends.shape

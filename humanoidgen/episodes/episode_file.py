@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import os
 import zipfile
+from collections.abc import Collection
 from pathlib import Path
 from typing import Any
 
@@ -88,29 +89,31 @@ def _is_stored_depth(key: str, value: np.ndarray) -> bool:
     return key.startswith("depth/") and value.dtype == np.uint16
 
 
-def _read_episode(path: Path) -> dict[str, np.ndarray]:
+def _read_episode(path: Path, keys: Collection[str] | None = None) -> dict[str, np.ndarray]:
     try:
-        return read_episode(path)
+        return read_episode(path, keys)
     except Exception as exc:  # noqa: BLE001 - any failure to decode the bytes means the file is damaged
         raise DatasetError(f"{path} is damaged ({_reason(exc)}); continue the collection with --resume "
                            "to collect it again") from None
 
 
-def read_episode(path: Path) -> dict[str, np.ndarray]:
-    """Every array of an episode file as stored (depth in uint16 millimetres): `.npy` members (format 1 and
-    2 files hold only those) and Zstandard-compressed `.npy.zst` image stacks. Reading a member checks its
-    CRC (and a stack's zstd checksum)."""
+def read_episode(path: Path, keys: Collection[str] | None = None) -> dict[str, np.ndarray]:
+    """Every array of an episode file as stored (depth in uint16 millimetres), or only those named in `keys`:
+    `.npy` members (format 1 and 2 files hold only those) and Zstandard-compressed `.npy.zst` image stacks.
+    Reading a member checks its CRC (and a stack's zstd checksum)."""
     out = {}
     with zipfile.ZipFile(path) as zf:
         for name in zf.namelist():
+            if name.endswith(ZSTD_SUFFIX):
+                key, zstd = name[: -len(ZSTD_SUFFIX)].replace("__", "/"), True
+            elif name.endswith(".npy"):
+                key, zstd = name[: -len(".npy")].replace("__", "/"), False
+            else:
+                raise ValueError(f"unexpected member {name}")
+            if keys is not None and key not in keys:
+                continue
             with zf.open(name) as member:
-                if name.endswith(ZSTD_SUFFIX):
-                    out[name[: -len(ZSTD_SUFFIX)].replace("__", "/")] = read_member(member)
-                elif name.endswith(".npy"):
-                    out[name[: -len(".npy")].replace("__", "/")] = np.lib.format.read_array(member,
-                                                                                        allow_pickle=False)
-                else:
-                    raise ValueError(f"unexpected member {name}")
+                out[key] = read_member(member) if zstd else np.lib.format.read_array(member, allow_pickle=False)
     return out
 
 
