@@ -9,7 +9,6 @@ os.environ.setdefault("MUJOCO_GL", "egl")
 
 from types import SimpleNamespace  # noqa: E402
 
-import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 import yaml  # noqa: E402
 

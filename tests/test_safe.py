@@ -206,7 +206,6 @@ def test_rotate_safe_knob_reference_plan_succeeds(tmp_path):
 def test_a_grip_on_the_knob_follows_the_knobs_own_joint(safe_env):
     """The planner's follow records: a pinch of the knob turned to an openness follows the knob's joint (and its
     grip does not roll about the knob's own axis); a grasp of the handle follows the door's."""
-    from humanoidgen.planning import constraint_gen
     from humanoidgen.planning.part_joint import follow_articulation, follow_openness, point_articulation, \
         rolls_about_joint
 
