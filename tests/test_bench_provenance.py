@@ -3,22 +3,17 @@ from it (untracked ones do not count), "unknown" outside a checkout; and the mac
 
 from __future__ import annotations
 
-import importlib.util
 import os
 import re
 import subprocess
 from pathlib import Path
 
 import pytest
-
-BENCH = Path(__file__).resolve().parents[1] / "bench" / "provenance.py"
+from bench_scripts import load_bench
 
 
 def _provenance():
-    spec = importlib.util.spec_from_file_location("provenance_bench", BENCH)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    return load_bench("provenance")
 
 
 @pytest.fixture(autouse=True)

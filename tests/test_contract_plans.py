@@ -7,23 +7,18 @@ checker accepts every plan: some plans probe the prompt's rules (imports, while,
 
 from __future__ import annotations
 
-import importlib.util
-import sys
 from pathlib import Path
 
 from humanoidgen.episodes.plans import load_plan
 from humanoidgen.tasks.registry import load_task, task_names
+from bench_scripts import load_bench
 
 ROOT = Path(__file__).resolve().parents[1]
 CONTRACT = ROOT / "bench" / "contract_plans"
 
 
 def _bench():
-    spec = importlib.util.spec_from_file_location("foreign_plans_bench_contract", ROOT / "bench" / "foreign_plans.py")
-    mod = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = mod
-    spec.loader.exec_module(mod)
-    return mod
+    return load_bench("foreign_plans", "foreign_plans_bench_contract")
 
 
 bench = _bench()

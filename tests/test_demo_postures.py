@@ -3,7 +3,6 @@ whose families are known (two for the left arm; the right hand never closes and 
 
 from __future__ import annotations
 
-import importlib.util
 import json
 from pathlib import Path
 
@@ -11,15 +10,11 @@ import numpy as np
 
 from humanoidgen.episodes.dataset import EpisodeStore
 from humanoidgen.robots import default_robot
-
-BENCH = Path(__file__).resolve().parents[1] / "bench" / "demo_postures.py"
+from bench_scripts import load_bench
 
 
 def _bench():
-    spec = importlib.util.spec_from_file_location("demo_postures_bench", BENCH)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    return load_bench("demo_postures")
 
 
 def _store(root: Path, postures: list[np.ndarray]) -> EpisodeStore:

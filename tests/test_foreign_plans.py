@@ -6,9 +6,6 @@ Success is not asserted: the planner is improved in parallel and `bench/foreign_
 
 from __future__ import annotations
 
-import importlib.util
-import sys
-from pathlib import Path
 
 import pytest
 
@@ -16,17 +13,11 @@ from humanoidgen.episodes.plans import PlanFormatError, load_plan
 from humanoidgen.episodes.runner import step_namespace
 from humanoidgen.sandbox.checker import CodeRejected, check_code
 from humanoidgen.tasks.registry import task_names
-
-ROOT = Path(__file__).resolve().parents[1]
-BENCH = ROOT / "bench" / "foreign_plans.py"
+from bench_scripts import load_bench
 
 
 def _bench():
-    spec = importlib.util.spec_from_file_location("foreign_plans_bench", BENCH)
-    mod = importlib.util.module_from_spec(spec)
-    sys.modules[spec.name] = mod
-    spec.loader.exec_module(mod)
-    return mod
+    return load_bench("foreign_plans", "foreign_plans_bench")
 
 
 bench = _bench()
@@ -121,9 +112,7 @@ def test_sample_plans_succeed(key):
 
 
 def test_upstream_corpus_lays_out_only_numbered_step_files(tmp_path):
-    spec = importlib.util.spec_from_file_location("upstream_corpus", ROOT / "bench" / "upstream_corpus.py")
-    up = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(up)
+    up = load_bench("upstream_corpus")
     src = tmp_path / "clone" / up.GENERATED / "open_drawer"
     src.mkdir(parents=True)
     for name in ("step0.py", "step1.py", "step1 copy.py", "step10.py"):

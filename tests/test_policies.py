@@ -22,6 +22,7 @@ from humanoidgen.policies.data import DataError, read_demos, sequence_index  # n
 from humanoidgen.policies.eval import EvalError, evaluate, with_action_steps  # noqa: E402
 from humanoidgen.policies.registry import policy_type  # noqa: E402
 from humanoidgen.policies.train import train  # noqa: E402
+from bench_scripts import load_bench  # noqa: E402
 
 SMALL_REC = dict(every=5, cameras=("head",), width=64, height=48, point_cloud=True, num_points=128)
 TINY = {"unet": {"down_dims": [32, 64], "diffusion_step_embed_dim": 32}, "horizon": 8,
@@ -136,12 +137,7 @@ def test_dp_trains_and_eval_runs_episodes_judged_by_the_predicates(demos_zarr, t
 
 
 def test_bench_recipes_are_valid_configs():
-    import importlib.util
-    from pathlib import Path
-
-    spec = importlib.util.spec_from_file_location("bench_policies", Path(__file__).parents[1] / "bench" / "policies.py")
-    bench = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(bench)
+    bench = load_bench("policies")
     for recipe in bench.RECIPES.values():
         for name, over in recipe.items():
             policy_type(name).config(over)
@@ -275,7 +271,6 @@ def test_randomized_evaluation_reports_its_scenes_and_the_study_rows_say_which(d
 def test_a_saved_evaluation_becomes_study_rows_for_a_table_and_plot(demos_zarr, tmp_path, monkeypatch):
     """A run trained and evaluated by hand (`hgen policy eval --randomize --out`) joins the study's table:
     `rows_from_eval` makes one row per scenes with its baselines, `bench/policies.py --from-eval` writes them."""
-    import importlib.util
     import sys
 
     from humanoidgen.policies.study_rows import rows_from_eval
@@ -296,9 +291,7 @@ def test_a_saved_evaluation_becomes_study_rows_for_a_table_and_plot(demos_zarr, 
     with pytest.raises(ValueError, match="not an evaluation report"):
         rows_from_eval({"rows": []}, 2, "fast", 1)
 
-    spec = importlib.util.spec_from_file_location("policies_bench", Path(__file__).resolve().parents[1] / "bench" / "policies.py")
-    bench = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(bench)
+    bench = load_bench("policies")
     monkeypatch.setattr(bench, "ROOT", tmp_path)
     (tmp_path / "results").mkdir()
     report_file = tmp_path / "eval.json"

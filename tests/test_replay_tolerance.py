@@ -4,23 +4,17 @@ arm, which does nothing in this task, changes nothing."""
 
 from __future__ import annotations
 
-import importlib.util
 import json
-from pathlib import Path
 
 import pytest
 
 from humanoidgen.episodes.collect import collect
 from humanoidgen.episodes.recorder import RecorderConfig
-
-BENCH = Path(__file__).resolve().parents[1] / "bench" / "replay_tolerance.py"
+from bench_scripts import load_bench
 
 
 def _bench():
-    spec = importlib.util.spec_from_file_location("replay_tolerance_bench", BENCH)
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
+    return load_bench("replay_tolerance")
 
 
 @pytest.fixture(scope="module")
