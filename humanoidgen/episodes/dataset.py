@@ -291,7 +291,6 @@ def export_zarr(store: EpisodeStore, out: Path, image_camera: str = "head") -> d
     # and depth loaded whole took more than 23 GB and were killed for memory.
     ends = np.cumsum([len(store.load(i, ("action",))["action"]) for i in kept]).astype(np.int64)
     starts = np.concatenate([[0], ends[:-1]])
-    first = store.load(kept[0])
     columns = {"state": "joint_pos", "action": "action", "point_cloud": "point_cloud",
                "img": f"rgb/{image_camera}", "depth": f"depth/{image_camera}", "ee_pose": "ee_pose"}
     root = zarr.open_group(str(out), mode="w")
@@ -302,12 +301,13 @@ def export_zarr(store: EpisodeStore, out: Path, image_camera: str = "head") -> d
     data = root.create_group("data")
     shapes = {}
     for name, key in columns.items():
-        if key not in first:
+        head = store.load(kept[0], (key,)).get(key)  # the first episode's: the column's frame shape and type
+        if head is None:
             continue
-        shape = (int(ends[-1]),) + first[key].shape[1:]
-        column = data.create_array(name, shape=shape, dtype=first[key].dtype, chunks=(min(shape[0], 100),) + shape[1:])
+        shape = (int(ends[-1]),) + head.shape[1:]
+        column = data.create_array(name, shape=shape, dtype=head.dtype, chunks=(min(shape[0], 100),) + shape[1:])
         for i, a, b in zip(kept, starts, ends):
-            column[a:b] = first[key] if i == kept[0] else store.load(i, (key,))[key]
+            column[a:b] = store.load(i, (key,))[key]
         shapes[name] = shape
     meta = root.create_group("meta")
     meta.create_array("episode_ends", shape=ends.shape, dtype=ends.dtype)[:] = ends
