@@ -22,6 +22,7 @@ from humanoidgen.policies.data import DataError, read_demos, sequence_index  # n
 from humanoidgen.policies.eval import EvalError, evaluate, with_action_steps  # noqa: E402
 from humanoidgen.policies.registry import policy_type  # noqa: E402
 from humanoidgen.policies.train import train  # noqa: E402
+from humanoidgen.sim.action import ARM_SLICE  # noqa: E402
 from bench_scripts import load_bench  # noqa: E402
 
 SMALL_REC = dict(every=5, cameras=("head",), width=64, height=48, point_cloud=True, num_points=128)
@@ -98,6 +99,39 @@ def test_dp3_tiny_training_lowers_the_loss_and_reloads_to_identical_actions(demo
     assert torch.equal(fewer, out_a[:, :3])
     with pytest.raises(EvalError, match="action-steps must be in 1..6"):
         with_action_steps(b, 7)
+
+
+def test_relative_actions_are_denoised_about_the_state_and_executed_as_joint_targets(demos_zarr, tmp_path):
+    run = tmp_path / "dp3_rel"
+    result = train("dp3", demos_zarr, run, {**_with(TINY_DP3, epochs=6), "action_frame": "relative"}, device="cpu",
+                   progress=False)
+    assert np.mean(result.losses[-2:]) < np.mean(result.losses[:2]), result.losses
+    model, _ = ck.load_policy(ck.run_checkpoints(run)[-1])
+    demos = read_demos(demos_zarr, ("state", "point_cloud"))
+    action, state = demos.arrays["action"], demos.arrays["state"]
+    # The random baseline still draws within the recorded targets' range; the U-Net's range is the smaller one
+    # of the targets less the state (the arm's motion within a horizon).
+    from humanoidgen.policies.baseline_eval import demo_range
+
+    rng = demo_range(model, "demos")
+    np.testing.assert_allclose(rng.low, action.min(axis=0), atol=1e-5)
+    np.testing.assert_allclose(rng.high, action.max(axis=0), atol=1e-5)
+    span = lambda key: 2.0 / model.normalizer.__getattr__(f"{key}__scale").numpy()  # noqa: E731
+    arm = ARM_SLICE["left"]  # close_drawer's acting arm (the fingers' targets lead their state by up to a closing)
+    assert (span("action")[arm] < 0.7 * span("target")[arm]).all(), (span("action")[arm], span("target")[arm])
+    # Executed targets are the denoised offsets plus the last observed state: shifting the observed state by d
+    # (the denoiser made blind to it) shifts every target by d.
+    n = model.cfg.n_obs_steps
+    model.global_cond = lambda obs: torch.zeros(1, model.feature_dim() * n)
+    obs = {"state": torch.as_tensor(state[None, 10:10 + n]),
+           "point_cloud": torch.as_tensor(demos.arrays["point_cloud"][None, 10:10 + n])}
+    d = torch.linspace(-0.1, 0.1, state.shape[1])
+    moved = {**obs, "state": obs["state"] + d}
+    a = model.predict_action(obs, generator=torch.Generator().manual_seed(3))["action"]
+    b = model.predict_action(moved, generator=torch.Generator().manual_seed(3))["action"]
+    torch.testing.assert_close(b - a, d.expand_as(a), atol=1e-5, rtol=0)
+    with pytest.raises(ValueError, match="one joint state per action"):
+        policy_type("dp3").config({"action_frame": "relative", "state_dim": 20})
 
 
 def test_interrupted_training_resumes_where_it_stopped(demos_zarr, tmp_path):

@@ -36,8 +36,9 @@ def demo_range(model, source: str) -> ActionRange:
     (y - offset) / scale at y = -1 and 1; a feature that never changed (scale 1, offset -value) is its value.
     A feature spanning exactly 2.0 has scale 1 too and would read as constant; measured actions never do."""
     norm = model.normalizer
-    scale = getattr(norm, "action__scale").detach().cpu().double().numpy()
-    offset = getattr(norm, "action__offset").detach().cpu().double().numpy()
+    key = "target" if "target" in norm.keys else "action"  # a relative-frame policy's "action" is target - state
+    scale = getattr(norm, f"{key}__scale").detach().cpu().double().numpy()
+    offset = getattr(norm, f"{key}__offset").detach().cpu().double().numpy()
     flat = scale == 1.0
     low = np.where(flat, -offset, (-1.0 - offset) / scale)
     high = np.where(flat, -offset, (1.0 - offset) / scale)

@@ -73,9 +73,20 @@ class PolicyConfig(_Strict):
     unet: UnetConfig = UnetConfig()
     noise: NoiseConfig = NoiseConfig()
     train: TrainConfig = TrainConfig()
+    # What the U-Net denoises: the joint targets as recorded ("absolute", DP's and DP3's), or each target minus
+    # the last observed joint state ("relative", UMI's relative trajectories). The actions are normalized to
+    # [-1, 1] over their range in the data, so the U-Net's error in radians scales with that range: close_drawer's
+    # left-arm targets span 3.6-5.8 rad a joint (its grips are made in postures far apart), open_box_easy's
+    # 0.2-1.0, and a DP3 that fits both about as well in [-1, 1] missed close_drawer's targets by 0.035-0.058 rad
+    # a joint against open_box_easy's 0.002-0.017, where a steady 0.04 rad already loses most grips
+    # (bench/replay_tolerance.py). Relative targets span the motion of one horizon instead.
+    action_frame: Literal["absolute", "relative"] = "absolute"
 
     @model_validator(mode="after")
     def _actions_fit(self) -> PolicyConfig:
+        if self.action_frame == "relative" and self.state_dim != self.action_dim:
+            raise ValueError(f"action_frame 'relative' needs one joint state per action (state_dim {self.state_dim}, "
+                             f"action_dim {self.action_dim})")
         if self.n_obs_steps - 1 + self.n_action_steps > self.horizon:
             raise ValueError(f"n_obs_steps - 1 + n_action_steps = {self.n_obs_steps - 1 + self.n_action_steps} "
                              f"exceeds horizon {self.horizon}: the executed actions must lie in the predicted ones")

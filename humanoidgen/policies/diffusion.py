@@ -24,6 +24,8 @@ class DiffusionPolicy(nn.Module):
     def __init__(self, cfg: PolicyConfig, norm_dims: dict[str, int]) -> None:
         super().__init__()
         self.cfg = cfg
+        if cfg.action_frame == "relative":  # the recorded targets' range too: what the random baseline draws in
+            norm_dims = {**norm_dims, "target": cfg.action_dim}
         self.normalizer = MinMaxNormalizer(norm_dims)
         self.unet = ConditionalUnet1D(cfg.action_dim, self.feature_dim() * cfg.n_obs_steps, cfg.unet)
         n = cfg.noise
@@ -51,8 +53,23 @@ class DiffusionPolicy(nn.Module):
         flat = {k: v.reshape(-1, *v.shape[2:]) for k, v in self.normalize_obs(obs).items()}
         return self.encode_steps(flat).reshape(b, -1)
 
+    def framed(self, action: torch.Tensor, state: torch.Tensor) -> torch.Tensor:
+        """Actions (B, T, action_dim) in the frame the U-Net denoises (`PolicyConfig.action_frame`): as recorded,
+        or minus the last observed joint state of `state` (B, n_obs_steps, state_dim)."""
+        if self.cfg.action_frame == "absolute":
+            return action
+        last = self.cfg.n_obs_steps - 1
+        return action - state[:, last:last + 1].to(action.dtype)
+
+    def unframed(self, action: torch.Tensor, state: torch.Tensor) -> torch.Tensor:
+        """The inverse of `framed`: joint targets to execute."""
+        if self.cfg.action_frame == "absolute":
+            return action
+        last = self.cfg.n_obs_steps - 1
+        return action + state[:, last:last + 1].to(action.dtype)
+
     def compute_loss(self, batch: dict[str, torch.Tensor]) -> torch.Tensor:
-        action = self.normalizer.normalize("action", batch["action"].float())
+        action = self.normalizer.normalize("action", self.framed(batch["action"].float(), batch["state"]))
         cond = self.global_cond(batch)
         noise = torch.randn_like(action)
         t = torch.randint(0, self.train_scheduler.config.num_train_timesteps, (action.shape[0],),
@@ -74,6 +91,6 @@ class DiffusionPolicy(nn.Module):
         for t in sched.timesteps:
             out = self.unet(x, t.to(cond.device), cond)
             x = sched.step(out, t, x, generator=generator).prev_sample
-        seq = self.normalizer.unnormalize("action", x)
+        seq = self.unframed(self.normalizer.unnormalize("action", x), obs["state"])
         start = cfg.n_obs_steps - 1
         return {"action_pred": seq, "action": seq[:, start: start + cfg.n_action_steps]}

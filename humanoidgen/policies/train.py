@@ -118,10 +118,14 @@ def train(policy: str, data: Path, out: Path, overrides: dict | None = None, dev
     torch.manual_seed(cfg.train.seed)
     model = ptype.model_cls()(cfg)
     inputs = policy_inputs(model, demos)
-    model.normalizer.fit({k: v.numpy() for k, v in inputs.items() if k in model.normalizer.keys})
+    index = torch.as_tensor(sequence_index(demos.episode_ends, cfg.horizon, cfg.n_obs_steps, cfg.n_action_steps))
+    fit = {k: v.numpy() for k, v in inputs.items() if k in model.normalizer.keys}
+    if cfg.action_frame == "relative":  # the range of what the U-Net denoises: every sample's actions, framed
+        fit["target"] = fit["action"]
+        fit["action"] = model.framed(inputs["action"][index], inputs["state"][index[:, : cfg.n_obs_steps]]).numpy()
+    model.normalizer.fit(fit)
     model.to(device)
     ema = EmaWeights(model, cfg.train)
-    index = torch.as_tensor(sequence_index(demos.episode_ends, cfg.horizon, cfg.n_obs_steps, cfg.n_action_steps))
     tc = cfg.train
     steps_per_epoch = max(1, math.ceil(len(index) / tc.batch_size))
     opt = torch.optim.AdamW(model.parameters(), lr=tc.lr, betas=tc.betas, weight_decay=tc.weight_decay)
