@@ -44,7 +44,7 @@ os.environ.setdefault("MUJOCO_GL", "egl")
 ROOT = Path(__file__).resolve().parent
 sys.path.insert(0, str(ROOT.parent))
 sys.path.insert(0, str(ROOT))
-from provenance import commit  # noqa: E402 (bench/provenance.py: the commit, "+changes" where tracked files differ)
+from provenance import commit, machine  # noqa: E402 (bench/provenance.py: the commit, "+changes" where tracked files differ)
 from humanoidgen.policies.recipes import RECIPES, merge  # noqa: E402 (the recipes: humanoidgen/policies/recipes.py)
 
 # (task, policy) pairs of the reduced study, as the issue sizes it.
@@ -167,9 +167,11 @@ def from_eval(args) -> int:
         if Path(row["checkpoint"]).is_file():
             state = ck.read(Path(row["checkpoint"]))
             row["epochs"] = int(state.get("epoch", state.get("meta", {}).get("epoch", row["epochs"])))
+            row["action_frame"] = state.get("config", {}).get("action_frame", "absolute")
     out = ROOT / "results" / f"policies_{args.name}.json"
     out.write_text(json.dumps({"settings": {"from_eval": str(args.from_eval), "recipe": args.recipe,
-                                            "epochs": args.epochs, "train_scenes": args.train_scenes},
+                                            "epochs": args.epochs, "train_scenes": args.train_scenes,
+                                            "commit": commit(), "machine": machine()},
                                "rows": rows}, indent=2))
     plot(rows, out.with_suffix(".png"))
     print("\n".join(f"{r['task']} {r['policy']} trained {r['train_scenes']}, {r['scenes']} scenes: "

@@ -336,6 +336,8 @@ def test_a_saved_evaluation_becomes_study_rows_for_a_table_and_plot(demos_zarr, 
     assert bench.main() == 0
     written = json.loads((tmp_path / "results" / "policies_hand.json").read_text())
     assert [(r["scenes"], r["epochs"]) for r in written["rows"]] == [("clean", 1), ("randomized", 1)]  # its own
+    assert {r["action_frame"] for r in written["rows"]} == {"absolute"}  # as the checkpoint was trained
+    assert written["settings"]["commit"] and written["settings"]["machine"]
     assert (tmp_path / "results" / "policies_hand.png").stat().st_size > 0
     monkeypatch.setattr(sys, "argv", argv[:-4] + ["--train-scenes", "clean,randomized", "--name", "bad"])
     assert bench.main() == 2  # one training per report
