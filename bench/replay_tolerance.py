@@ -27,16 +27,20 @@ ROOT = Path(__file__).resolve().parent
 SETTLE_ACTIONS = 20  # the last action held this long more: a drawer still sliding shut may yet pass
 
 
-def replay(env, actions: np.ndarray, seed: int) -> bool:
-    """One episode's actions, then the last held SETTLE_ACTIONS more; whether the task's predicates passed."""
+def replay(env, actions: np.ndarray, seed: int) -> tuple[bool, str]:
+    """One episode's actions, then the last held SETTLE_ACTIONS more: whether the task's predicates passed, and
+    what they said at the end (how a failed replay failed: for close_drawer, how far the drawer got and how far
+    one hold of the handle moved it)."""
+    from humanoidgen.policies.rollout import final_detail
+
     _, info = env.reset(seed=seed)
     if info.get("success"):
-        return True
+        return True, final_detail(info)
     for a in [*actions, *[actions[-1]] * SETTLE_ACTIONS]:
         _, _, terminated, _, info = env.step(a)
         if terminated:
-            return True
-    return bool(info.get("success"))
+            return True, final_detail(info)
+    return bool(info.get("success")), final_detail(info)
 
 
 def tolerance(folder: Path, side: str, sigmas: list[float], episodes: int, draw_seed: int = 1000) -> dict:
@@ -57,20 +61,23 @@ def tolerance(folder: Path, side: str, sigmas: list[float], episodes: int, draw_
     arm = ARM_SLICE[side]
     # each episode's actions read once (and nothing else of it: its pictures are most of the file)
     recorded = [np.asarray(store.load(rec["episode"], ("action",))["action"], dtype=np.float64) for rec in kept]
-    passed = {}
+    passed, failed = {}, {}
     try:
         for sigma in sigmas:
-            n = 0
+            n, failed[sigma] = 0, []
             for k, (rec, action) in enumerate(zip(kept, recorded)):
                 actions = action.copy()
                 actions[:, arm] += np.random.default_rng(draw_seed + k).normal(0.0, sigma, arm.stop - arm.start)
-                n += replay(env, actions, int(rec["seed"]))
+                ok, detail = replay(env, actions, int(rec["seed"]))
+                n += ok
+                if not ok:
+                    failed[sigma].append({"seed": int(rec["seed"]), "final": detail})
             passed[sigma] = n
             print(f"{meta['task']}: sigma {sigma:g} rad on the {side} arm, {n} of {len(kept)} replays passed",
                   flush=True)
     finally:
         env.close()
-    return {"task": meta["task"], "side": side, "episodes": len(kept), "passed": passed}
+    return {"task": meta["task"], "side": side, "episodes": len(kept), "passed": passed, "failed": failed}
 
 
 def main() -> int:

@@ -30,6 +30,8 @@ def test_a_recorded_episode_passes_and_a_large_offset_on_the_acting_arm_fails(on
     left = bench.tolerance(one_demo, "left", [0.0, 0.3], episodes=1)
     assert left["task"] == "close_drawer" and left["episodes"] == 1
     assert left["passed"] == {0.0: 1, 0.3: 0}
+    assert left["failed"][0.0] == [] and len(left["failed"][0.3]) == 1  # how it failed: the task's own words
+    assert "drawer 0" in left["failed"][0.3][0]["final"]
     right = bench.tolerance(one_demo, "right", [0.3], episodes=1)
     assert right["passed"] == {0.3: 1}
 
