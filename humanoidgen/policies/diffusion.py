@@ -53,20 +53,23 @@ class DiffusionPolicy(nn.Module):
         flat = {k: v.reshape(-1, *v.shape[2:]) for k, v in self.normalize_obs(obs).items()}
         return self.encode_steps(flat).reshape(b, -1)
 
-    def framed(self, action: torch.Tensor, state: torch.Tensor) -> torch.Tensor:
-        """Actions (B, T, action_dim) in the frame the U-Net denoises (`PolicyConfig.action_frame`): as recorded,
-        or minus the last observed joint state of `state` (B, n_obs_steps, state_dim)."""
+    def _origin(self, state: torch.Tensor) -> torch.Tensor | None:
+        """Where the denoised actions are measured from (`PolicyConfig.action_frame`): None (as recorded), or the
+        last observed joint state of `state` (B, n_obs_steps, state_dim), as (B, 1, state_dim)."""
         if self.cfg.action_frame == "absolute":
-            return action
+            return None
         last = self.cfg.n_obs_steps - 1
-        return action - state[:, last:last + 1].to(action.dtype)
+        return state[:, last:last + 1]
+
+    def framed(self, action: torch.Tensor, state: torch.Tensor) -> torch.Tensor:
+        """Actions (B, T, action_dim) in the frame the U-Net denoises."""
+        origin = self._origin(state)
+        return action if origin is None else action - origin.to(action.dtype)
 
     def unframed(self, action: torch.Tensor, state: torch.Tensor) -> torch.Tensor:
         """The inverse of `framed`: joint targets to execute."""
-        if self.cfg.action_frame == "absolute":
-            return action
-        last = self.cfg.n_obs_steps - 1
-        return action + state[:, last:last + 1].to(action.dtype)
+        origin = self._origin(state)
+        return action if origin is None else action + origin.to(action.dtype)
 
     def compute_loss(self, batch: dict[str, torch.Tensor]) -> torch.Tensor:
         action = self.normalizer.normalize("action", self.framed(batch["action"].float(), batch["state"]))
