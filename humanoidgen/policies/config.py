@@ -80,8 +80,9 @@ class PolicyConfig(_Strict):
     # 0.2-1.0, and a DP3 that fits both about as well in [-1, 1] missed close_drawer's targets by 0.035-0.058 rad
     # a joint against open_box_easy's 0.002-0.017, where a steady 0.04 rad already loses most grips
     # (bench/replay_tolerance.py). Relative targets span the motion of one horizon instead. Measured there: the
-    # relative frame cut that miss 2-3.5 times, but close_drawer's success only from 15% to 23%
-    # (docs/results/policies.md), so the recipes keep the absolute frame.
+    # relative frame cut that miss 2-3.5 times, but close_drawer's success only from 15% to 23%, and open_box_easy
+    # scored 100% with either (docs/results/policies.md); the recipes keep the absolute frame until the whole
+    # study is measured with it.
     action_frame: Literal["absolute", "relative"] = "absolute"
 
     @model_validator(mode="after")
