@@ -76,10 +76,11 @@ def main() -> int:
     p.add_argument("--eval-scenes", default="clean", help="clean, randomized or both: each run evaluated on each")
     p.add_argument("--combine", help="comma list of earlier --name runs: their rows into one JSON and plot "
                                      "(--name), e.g. a clean-trained and a randomized-trained run made side by side")
-    p.add_argument("--from-eval", type=Path, help="a saved `hgen policy eval --out` report: its rows (with --demos, "
-                                                 "--recipe, --train-scenes saying how the run was trained; the "
-                                                 "epochs read from the checkpoint, else --epochs) into "
-                                                 "policies_<name>.json and a plot, for --combine")
+    p.add_argument("--from-eval", help="a saved `hgen policy eval --out` report, or a comma list of reports of one "
+                                      "checkpoint on other seeds (evaluations run side by side: pooled into one "
+                                      "row per scenes): its rows (with --demos, --recipe, --train-scenes saying how "
+                                      "the run was trained; the epochs read from the checkpoint, else --epochs) "
+                                      "into policies_<name>.json and a plot, for --combine")
     args = p.parse_args()
     if args.combine:
         return combine(_names(args.combine), args.name)
@@ -146,20 +147,29 @@ def combine(names: tuple[str, ...], name: str) -> int:
 def from_eval(args) -> int:
     """policies_<name>.json (and its plot) from a saved evaluation report of a run trained by hand."""
     from humanoidgen.policies.bench import plot
-    from humanoidgen.policies.study_rows import SCENES, rows_from_eval
+    from humanoidgen.policies.study_rows import SCENES, pool_rows, rows_from_eval
 
     if args.train_scenes not in SCENES:
         print(f"error: --train-scenes with --from-eval is one of {', '.join(SCENES)} (got {args.train_scenes!r})",
               file=sys.stderr)
         return 2
-    if not args.from_eval.exists():
-        print(f"error: no evaluation report at {args.from_eval}", file=sys.stderr)
-        return 2
+    reports = [Path(x) for x in args.from_eval.split(",") if x.strip()]
+    for report in reports:
+        if not report.exists():
+            print(f"error: no evaluation report at {report}", file=sys.stderr)
+            return 2
+    rows = []
+    for report in reports:
+        try:
+            rows += rows_from_eval(json.loads(report.read_text()), int(args.demos.split(",")[0]), args.recipe,
+                                   args.epochs, args.train_scenes)
+        except (ValueError, KeyError) as exc:
+            print(f"error: {report} is not a `hgen policy eval --out` report ({exc})", file=sys.stderr)
+            return 2
     try:
-        rows = rows_from_eval(json.loads(args.from_eval.read_text()), int(args.demos.split(",")[0]), args.recipe,
-                              args.epochs, args.train_scenes)
-    except (ValueError, KeyError) as exc:
-        print(f"error: {args.from_eval} is not a `hgen policy eval --out` report ({exc})", file=sys.stderr)
+        rows = pool_rows(rows)
+    except ValueError as exc:  # reports that share seeds: the same episodes twice
+        print(f"error: {exc}", file=sys.stderr)
         return 2
     from humanoidgen.policies import checkpoint as ck
 
@@ -169,7 +179,7 @@ def from_eval(args) -> int:
             row["epochs"] = int(state.get("epoch", state.get("meta", {}).get("epoch", row["epochs"])))
             row["action_frame"] = state.get("config", {}).get("action_frame", "absolute")
     out = ROOT / "results" / f"policies_{args.name}.json"
-    out.write_text(json.dumps({"settings": {"from_eval": str(args.from_eval), "recipe": args.recipe,
+    out.write_text(json.dumps({"settings": {"from_eval": [str(r) for r in reports], "recipe": args.recipe,
                                             "epochs": args.epochs, "train_scenes": args.train_scenes,
                                             "commit": commit(), "machine": machine()},
                                "rows": rows}, indent=2))

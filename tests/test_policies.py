@@ -341,6 +341,19 @@ def test_a_saved_evaluation_becomes_study_rows_for_a_table_and_plot(demos_zarr, 
     assert (tmp_path / "results" / "policies_hand.png").stat().st_size > 0
     monkeypatch.setattr(sys, "argv", argv[:-4] + ["--train-scenes", "clean,randomized", "--name", "bad"])
     assert bench.main() == 2  # one training per report
+    # The same checkpoint evaluated on another seed beside it (a second process): the reports pool into one row
+    # per scenes; the same seeds twice are refused.
+    other = tmp_path / "eval_seed1.json"
+    other.write_text(json.dumps(evaluate(run, "close_drawer", episodes=1, seeds=(1,), device="cpu", progress=False,
+                                         max_steps=2).to_dict()))
+    monkeypatch.setattr(sys, "argv", ["policies.py", "--from-eval", f"{report_file},{other}", *argv[3:-1], "pooled"])
+    assert bench.main() == 0
+    pooled = json.loads((tmp_path / "results" / "policies_pooled.json").read_text())["rows"]
+    clean = next(r for r in pooled if r["scenes"] == "clean")
+    assert [e["scene_seed"] for e in clean["episodes"]] == [100_000, 101_000] and len(clean["rates"]) == 2
+    assert len(clean["baselines"]["random"]["rates"]) == 2 and len(pooled) == 2
+    monkeypatch.setattr(sys, "argv", ["policies.py", "--from-eval", f"{report_file},{report_file}", *argv[3:-1], "x"])
+    assert bench.main() == 2
 
 
 def test_randomized_training_data_is_drawn_as_randomized_evaluation_draws_its_scenes():
