@@ -116,7 +116,7 @@ def test_relative_actions_are_denoised_about_the_state_and_executed_as_joint_tar
     rng = demo_range(model, "demos")
     np.testing.assert_allclose(rng.low, action.min(axis=0), atol=1e-5)
     np.testing.assert_allclose(rng.high, action.max(axis=0), atol=1e-5)
-    span = lambda key: 2.0 / model.normalizer.__getattr__(f"{key}__scale").numpy()  # noqa: E731
+    span = lambda key: 2.0 / getattr(model.normalizer, f"{key}__scale").numpy()  # noqa: E731
     arm = ARM_SLICE["left"]  # close_drawer's acting arm (the fingers' targets lead their state by up to a closing)
     assert (span("action")[arm] < 0.7 * span("target")[arm]).all(), (span("action")[arm], span("target")[arm])
     # Executed targets are the denoised offsets plus the last observed state: shifting the observed state by d
