@@ -32,6 +32,14 @@ def test_a_recorded_episode_passes_and_a_large_offset_on_the_acting_arm_fails(on
     assert left["passed"] == {0.0: 1, 0.3: 0}
     assert left["failed"][0.0] == [] and len(left["failed"][0.3]) == 1  # how it failed: the task's own words
     assert "drawer 0" in left["failed"][0.3][0]["final"]
+    # what the hand rested on: as recorded, the thumb on the handle (a geom of the drawer) for part of the push;
+    # with the hand off the handle, less of it or none
+    held, missed = left["grips"][0.0][0], left["grips"][0.3][0]
+    assert held["passed"] and not missed["passed"]
+    assert held["thumb"] and all(g.startswith("drawer_0_") for g in held["thumb"]) and held["fingers"]
+    assert sum(missed["thumb"].values()) < sum(held["thumb"].values())
+    where = max(held["thumb"], key=held["thumb"].get)
+    assert bench.thumb_summary([held, held, missed]).startswith(f"{where} (passed 2")
     right = bench.tolerance(one_demo, "right", [0.3], episodes=1)
     assert right["passed"] == {0.3: 1}
 
@@ -44,6 +52,7 @@ def test_the_script_writes_its_results_with_their_provenance(one_demo, monkeypat
                                      "--episodes", "1", "--name", "t"])
     assert bench.main() == 0
     report = json.loads((tmp_path / "results" / "t.json").read_text())
+    assert report["rows"][0]["grips"]["0.0"][0]["thumb"]
     assert report["rows"][0]["passed"] == {"0.0": 1} and report["commit"] and "CPUs" in report["machine"]
     monkeypatch.setattr("sys.argv", ["replay_tolerance.py", str(one_demo), "--side", "up"])
     assert bench.main() == 2
