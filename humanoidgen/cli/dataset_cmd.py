@@ -157,3 +157,50 @@ def replay(
     finally:
         writer.close()
     console.print(f"wrote {video} ({len(frames['qpos'])} frames at {fps:.0f} fps)")
+
+
+@app.command()
+def perturb(
+    path: Path = typer.Argument(..., help="A dataset folder (hgen collect --out)."),
+    out: Path = typer.Option(..., help="Where to write the perturbed dataset (a new folder)."),
+    sigma: float = typer.Option(0.03, help="The offset's standard deviation per arm joint, rad."),
+    side: str = typer.Option("left", help="The arm perturbed: left, right or both."),
+    tau: float = typer.Option(1.0, help="The offset's correlation time, s (it drifts, as a policy's error does)."),
+    draws: int = typer.Option(1, help="Perturbed replays kept per episode."),
+    tries: int = typer.Option(3, help="Draws tried per replay before the episode is left out."),
+    episodes: int | None = typer.Option(None, help="Perturb only the first N kept episodes."),
+    seed: int = typer.Option(0, help="Seed of the offsets."),
+) -> None:
+    """Re-record demonstrations under a drifting arm error, labelled with the plan's targets (DART).
+
+    Each kept episode's actions are replayed in the task's gym env with a slowly drifting offset on one arm's
+    joint targets; the observations come from that replay, the actions are the plan's. A replay that no longer
+    passes the task is drawn again (--tries), then left out. The result trains a policy that has seen the way
+    back to the path (`hgen dataset export OUT --zarr ...`, then `hgen policy train`). No pictures are re-rendered:
+    it holds joint_pos, ee_pose, point_cloud (DP3) and qpos.
+
+    Example: hgen dataset perturb data/close_drawer --out data/close_drawer_dart --sigma 0.03 --side left
+    """
+    from tqdm import tqdm
+
+    from humanoidgen.episodes.dataset import DatasetError
+    from humanoidgen.policies.perturb import Perturbation, describe, perturb_store
+
+    store = _store(path)
+    try:
+        how = Perturbation(sigma=sigma, side=side, tau_s=tau, draws=draws, tries=tries, seed=seed)  # type: ignore[arg-type]
+    except ValueError as exc:
+        _fail(f"error: {exc}")
+    if episodes is not None and episodes < 1:
+        _fail("error: --episodes must be at least 1")
+    total = min(len(store.kept()), episodes or len(store.kept())) * how.draws
+    bar = tqdm(total=total, unit="episode", desc=f"perturb {store.meta()['task']}")
+    try:
+        stats = perturb_store(path, out, how, episodes=episodes, progress=lambda _: bar.update(1))
+    except DatasetError as exc:
+        _fail(f"error: {exc}")
+    finally:
+        bar.close()
+    console.print(f"{describe(stats, how)}; wrote {out}")
+    if stats.kept == 0:
+        _fail(f"error: no perturbed replay passed the task at sigma {sigma:g} rad; try a smaller --sigma")

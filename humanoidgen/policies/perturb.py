@@ -1,0 +1,177 @@
+"""Demonstrations re-recorded under a drifting arm error, labelled with the plan's own targets (DART, Laskey et al.,
+"DART: Noise Injection for Robust Imitation Learning", CoRL 2017).
+
+A policy trained on perfect executions has never seen the hand a centimetre off its path, so the first error it
+makes puts it where its data says nothing, and closed-loop errors compound: close_drawer's DP3 failed in its own
+training scenes as often as in new ones (docs/results/policies.md). Here each kept episode's recorded actions are
+replayed in the task's gym environment (the policy's env, a simulation the plan never ran in) with a slowly
+drifting offset added to one arm's joint targets. The observations are recorded from that perturbed run, and each
+frame is labelled with the target the plan gave (the action as recorded): "from here, the plan's target", which
+teaches the way back. A replay that no longer passes the task's predicates (judged in the same env, as the
+evaluation judges a policy) is drawn again, up to `tries` times; then the episode is left out.
+
+The offset per joint is an Ornstein-Uhlenbeck walk at the data's action rate: stationary standard deviation
+`sigma` (rad), correlation time `tau_s`, started from its stationary law (a policy's error is of this kind, a few
+hundredths of a radian, steady over a move: bench/replay_tolerance.py). The new store records what the env
+observes (joint_pos, ee_pose, point_cloud, and qpos for `hgen dataset replay`; no images: the cameras' pictures
+are not re-rendered) and says in its
+meta.json where it came from and how it was perturbed."""
+
+from __future__ import annotations
+
+import json
+import math
+from collections.abc import Callable
+from dataclasses import asdict, dataclass
+from pathlib import Path
+from typing import Literal
+
+import numpy as np
+
+from humanoidgen.episodes.dataset import DatasetError, EpisodeStore
+from humanoidgen.sim.action import ARM_SLICE
+
+SETTLE_ACTIONS = 20  # the last target held this long more (unrecorded): a drawer still sliding shut may yet pass
+RECORDED = ("joint_pos", "ee_pose", "point_cloud")
+
+
+@dataclass(frozen=True)
+class Perturbation:
+    """How the replays are perturbed: `sigma` rad (stationary standard deviation per joint of `side`'s arm),
+    `tau_s` seconds of correlation, `draws` perturbed replays per source episode, `tries` draws for each before
+    it is left out, `seed` for the draws (each drawn from (seed, the scene's seed, draw, try))."""
+
+    sigma: float
+    side: Literal["left", "right", "both"] = "left"
+    tau_s: float = 1.0
+    draws: int = 1
+    tries: int = 3
+    seed: int = 0
+
+    def __post_init__(self) -> None:
+        if not (math.isfinite(self.sigma) and self.sigma >= 0):
+            raise ValueError(f"sigma must be a finite number >= 0 (rad), not {self.sigma!r}")
+        if not (math.isfinite(self.tau_s) and self.tau_s > 0):
+            raise ValueError(f"tau_s must be a positive number of seconds, not {self.tau_s!r}")
+        if self.side not in ("left", "right", "both"):
+            raise ValueError(f"side must be left, right or both, not {self.side!r}")
+        if self.draws < 1 or self.tries < 1:
+            raise ValueError("draws and tries must be at least 1")
+
+    def joints(self) -> list[int]:
+        """The action indices the offset moves."""
+        sides = ("left", "right") if self.side == "both" else (self.side,)
+        return [j for s in sides for j in range(ARM_SLICE[s].start, ARM_SLICE[s].stop)]
+
+    def offsets(self, steps: int, rate_hz: float, rng: np.random.Generator) -> np.ndarray:
+        """(steps, joints) the Ornstein-Uhlenbeck walk: x0 ~ N(0, sigma), x' = a x + sqrt(1 - a^2) sigma e."""
+        n = len(self.joints())
+        a = math.exp(-1.0 / (self.tau_s * rate_hz))
+        out = np.empty((steps, n))
+        x = rng.normal(0.0, self.sigma, n)
+        for t in range(steps):
+            out[t] = x
+            x = a * x + math.sqrt(1.0 - a * a) * self.sigma * rng.normal(0.0, 1.0, n)
+        return out
+
+
+@dataclass
+class PerturbStats:
+    source_episodes: int = 0
+    kept: int = 0
+    left_out: int = 0
+    tries: int = 0
+
+
+def perturbed_replay(env, actions: np.ndarray, seed: int, offsets: np.ndarray, joints: list[int]
+                     ) -> tuple[bool, dict[str, np.ndarray], str]:
+    """Replay `actions` in `env` (a HumanoidTaskEnv) for scene `seed`, executing each with `offsets` added on
+    `joints`; the frames it observed labelled with the actions as given. Returns (passed, arrays, the task's last
+    words). The whole sequence is run (a success midway is kept: the predicates remember it), then the last
+    target held SETTLE_ACTIONS more, unrecorded."""
+    from humanoidgen.policies.rollout import final_detail
+
+    obs, info = env.reset(seed=seed)
+    ok = bool(info.get("success"))
+    frames: dict[str, list[np.ndarray]] = {k: [] for k in RECORDED if k in obs}
+    executed = actions.copy()
+    executed[:, joints] += offsets
+    qpos = []  # the configurations seen, so that `hgen dataset replay` can draw the episode
+    for t in range(len(actions)):
+        for k in frames:
+            frames[k].append(obs[k])
+        qpos.append(env.sim.data.qpos.copy())
+        obs, _, _, _, info = env.step(executed[t])
+        ok = ok or bool(info.get("success"))
+    for _ in range(SETTLE_ACTIONS):
+        if ok:
+            break
+        obs, _, _, _, info = env.step(executed[-1])
+        ok = ok or bool(info.get("success"))
+    arrays = {k: np.stack(v) for k, v in frames.items()}
+    arrays["action"] = np.asarray(actions, dtype=np.float32)
+    arrays["qpos"] = np.stack(qpos)
+    return ok, arrays, final_detail(info)
+
+
+def perturb_store(source: Path, out: Path, how: Perturbation, episodes: int | None = None,
+                  progress: Callable[[str], None] | None = None) -> PerturbStats:
+    """Write to `out` a store of `how.draws` perturbed replays of each of the first `episodes` (all: None) kept
+    episodes of the store at `source`. Each attempt is an index line (a left-out draw too, with the task's words)."""
+    from humanoidgen.envs.config import TaskEnvConfig
+    from humanoidgen.envs.task_env import HumanoidTaskEnv
+
+    src = EpisodeStore(Path(source))
+    meta = src.meta()
+    kept = src.kept()[:episodes] if episodes else src.kept()
+    if not kept:
+        raise DatasetError(f"{source} has no kept episodes to perturb")
+    recorder = dict(meta.get("recorder") or {})
+    rate_hz = float(meta.get("control_hz", 50.0)) / int(recorder.get("every", 1))
+    cfg = TaskEnvConfig.from_recorder(recorder, meta.get("control_hz", 50.0), cameras=(), depth=False,
+                                      point_cloud=bool(recorder.get("point_cloud", True)))
+    dst = EpisodeStore(Path(out))
+    new_meta = {k: v for k, v in meta.items() if k != "format_version"}
+    new_meta["recorder"] = {**recorder, "cameras": [], "depth": False}
+    new_meta["cameras"] = []
+    new_meta["perturbation"] = {**asdict(how), "source": str(Path(source).resolve()), "method": "DART: "
+                                "observations from the perturbed replay, actions as the plan gave them"}
+    dst.create(new_meta)
+    env = HumanoidTaskEnv(meta["task"], config=cfg)
+    stats = PerturbStats(source_episodes=len(kept))
+    joints = how.joints()
+    try:
+        for k, rec in enumerate(kept):
+            actions = np.asarray(src.load(rec["episode"], ("action",))["action"], dtype=np.float64)
+            for d in range(how.draws):
+                words = ""
+                for attempt in range(how.tries):
+                    rng = np.random.default_rng([how.seed, int(rec["seed"]), d, attempt])
+                    ok, arrays, words = perturbed_replay(env, actions, int(rec["seed"]),
+                                                         how.offsets(len(actions), rate_hz, rng), joints)
+                    stats.tries += 1
+                    record = {"seed": int(rec["seed"]), "success": ok, "source_episode": int(rec["episode"]),
+                              "draw": d, "try": attempt, "error": "" if ok else words}
+                    dst.add(record, arrays if ok else None)
+                    if ok:
+                        stats.kept += 1
+                        break
+                else:
+                    stats.left_out += 1
+                if progress is not None:
+                    progress(f"episode {k + 1}/{len(kept)} draw {d + 1}: "
+                             + ("kept" if ok else f"left out after {how.tries} tries ({words})"))
+    finally:
+        env.close()
+    return stats
+
+
+def describe(stats: PerturbStats, how: Perturbation) -> str:
+    return (f"{stats.kept} perturbed episodes kept of {stats.source_episodes * how.draws} wanted "
+            f"({stats.left_out} left out after {how.tries} tries each; {stats.tries} replays; sigma {how.sigma:g} rad "
+            f"on the {how.side} arm, tau {how.tau_s:g} s)")
+
+
+def read_perturbation(store: EpisodeStore) -> dict | None:
+    """The perturbation a store was made with (None: recorded as planned)."""
+    return json.loads(store.meta_path.read_text()).get("perturbation")

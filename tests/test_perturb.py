@@ -1,0 +1,82 @@
+"""policies/perturb.py and `hgen dataset perturb`: a collected close_drawer episode re-recorded in the gym env under
+a drifting arm offset, labelled with the plan's own targets (DART). Without an offset it passes and its labels are
+the recorded actions; with an offset far beyond the grip's tolerance every draw fails and the episode is left out,
+each failed draw an index line with the task's words; the offsets drift with the stated spread and correlation."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+from humanoidgen.cli.main import app
+from humanoidgen.episodes.collect import collect
+from humanoidgen.episodes.dataset import EpisodeStore
+from humanoidgen.episodes.recorder import RecorderConfig
+from humanoidgen.policies.perturb import Perturbation, perturb_store, read_perturbation
+
+
+@pytest.fixture(scope="module")
+def one_demo(tmp_path_factory):
+    out = tmp_path_factory.mktemp("perturb") / "close_drawer"
+    stats = collect("close_drawer", 1, out, recorder=RecorderConfig(cameras=(), point_cloud=False, every=5))
+    assert stats.kept == 1
+    return out
+
+
+def test_unperturbed_replay_keeps_the_plans_actions_and_observes_the_env(one_demo, tmp_path):
+    src = EpisodeStore(one_demo)
+    stats = perturb_store(one_demo, tmp_path / "zero", Perturbation(sigma=0.0, tries=1))
+    assert (stats.kept, stats.left_out, stats.tries) == (1, 0, 1)
+    dst = EpisodeStore(tmp_path / "zero")
+    [rec] = dst.kept()
+    assert rec["seed"] == src.kept()[0]["seed"] and rec["source_episode"] == 0 and rec["success"]
+    got, was = dst.load(rec["episode"]), src.load(0)
+    np.testing.assert_array_equal(got["action"], was["action"])  # the labels are the plan's targets
+    assert got["joint_pos"].shape == was["joint_pos"].shape and got["qpos"].shape == was["qpos"].shape
+    assert "point_cloud" not in got  # the source recorded none, so neither does the env
+    # the first frame is the scene as built: the robot at its start posture, as recorded
+    np.testing.assert_allclose(got["joint_pos"][0], was["joint_pos"][0], atol=0.05)
+    meta = dst.meta()
+    assert read_perturbation(dst)["sigma"] == 0.0 and meta["task"] == "close_drawer"
+    assert meta["perturbation"]["source"].endswith("close_drawer") and meta["recorder"]["cameras"] == []
+
+
+def test_an_offset_beyond_the_grip_leaves_the_episode_out_saying_why(one_demo, tmp_path):
+    stats = perturb_store(one_demo, tmp_path / "far", Perturbation(sigma=0.4, tries=2, tau_s=5.0))
+    assert (stats.kept, stats.left_out, stats.tries) == (0, 1, 2)
+    attempts = EpisodeStore(tmp_path / "far").attempts()
+    assert [a["try"] for a in attempts] == [0, 1] and not any(a["success"] for a in attempts)
+    assert all("drawer 0" in a["error"] for a in attempts)
+    assert EpisodeStore(tmp_path / "far").kept() == []
+
+
+def test_the_offsets_drift_with_the_stated_spread_and_correlation():
+    how = Perturbation(sigma=0.03, tau_s=1.0, side="both")
+    assert len(how.joints()) == 14 and len(Perturbation(sigma=0.0).joints()) == 7
+    x = how.offsets(20000, 10.0, np.random.default_rng(0))
+    assert x.shape == (20000, 14)
+    assert abs(x.std() - 0.03) < 0.003
+    lag1 = np.mean([np.corrcoef(x[:-1, j], x[1:, j])[0, 1] for j in range(14)])
+    assert abs(lag1 - math.exp(-0.1)) < 0.02  # one step at 10 Hz of a 1 s correlation time
+    np.testing.assert_array_equal(how.offsets(50, 10.0, np.random.default_rng(3)),
+                                  how.offsets(50, 10.0, np.random.default_rng(3)))
+    for bad in (dict(sigma=-0.1), dict(sigma=float("nan")), dict(sigma=0.1, tau_s=0), dict(sigma=0.1, side="up"),
+                dict(sigma=0.1, draws=0)):
+        with pytest.raises(ValueError):
+            Perturbation(**bad)
+
+
+def test_the_command_writes_a_store_and_refuses_bad_settings_in_one_line(one_demo, tmp_path):
+    runner = CliRunner()
+    res = runner.invoke(app, ["dataset", "perturb", str(one_demo), "--out", str(tmp_path / "d"), "--sigma", "0"])
+    assert res.exit_code == 0, res.output
+    assert "1 perturbed episodes kept of 1 wanted" in res.output
+    assert json.loads((tmp_path / "d" / "meta.json").read_text())["perturbation"]["side"] == "left"
+    res = runner.invoke(app, ["dataset", "perturb", str(one_demo), "--out", str(tmp_path / "e"), "--side", "up"])
+    assert res.exit_code == 1 and "side must be left, right or both" in res.output
+    res = runner.invoke(app, ["dataset", "perturb", str(one_demo), "--out", str(tmp_path / "d")])
+    assert res.exit_code == 1 and "already holds a dataset" in res.output
