@@ -178,6 +178,9 @@ def from_eval(args) -> int:
             state = ck.read(Path(row["checkpoint"]))
             row["epochs"] = int(state.get("epoch", state.get("meta", {}).get("epoch", row["epochs"])))
             row["action_frame"] = state.get("config", {}).get("action_frame", "absolute")
+            perturbation = training_perturbation(state.get("meta", {}))
+            if perturbation:
+                row["perturbation"] = perturbation
     out = ROOT / "results" / f"policies_{args.name}.json"
     out.write_text(json.dumps({"settings": {"from_eval": [str(r) for r in reports], "recipe": args.recipe,
                                             "epochs": args.epochs, "train_scenes": args.train_scenes,
@@ -188,6 +191,22 @@ def from_eval(args) -> int:
                     f"{100 * r['success_mean']:.1f}% +- {100 * r['success_std']:.1f}" for r in rows))
     print(f"wrote {out} and {out.with_suffix('.png')}")
     return 0
+
+
+def training_perturbation(meta: dict) -> dict | None:
+    """How the training data was perturbed (`hgen dataset perturb`), from the checkpoint's meta or, for a run
+    trained before the export carried it, from its zarr's attributes; None for data recorded as planned."""
+    if meta.get("perturbation"):
+        return dict(meta["perturbation"])
+    if not meta.get("data") or not Path(meta["data"]).is_dir():
+        return None
+    import zarr
+
+    try:
+        found = zarr.open_group(str(meta["data"]), mode="r").attrs.get("perturbation")
+    except (OSError, ValueError, zarr.errors.BaseZarrError):  # not a zarr (any more): nothing to say
+        return None
+    return dict(found) if found else None
 
 
 def _names(text: str) -> tuple[str, ...]:

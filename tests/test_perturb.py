@@ -80,3 +80,25 @@ def test_the_command_writes_a_store_and_refuses_bad_settings_in_one_line(one_dem
     assert res.exit_code == 1 and "side must be left, right or both" in res.output
     res = runner.invoke(app, ["dataset", "perturb", str(one_demo), "--out", str(tmp_path / "d")])
     assert res.exit_code == 1 and "already holds a dataset" in res.output
+
+
+def test_the_perturbation_is_said_by_the_export_the_checkpoint_and_the_study_rows(one_demo, tmp_path):
+    """Where the data came from travels with it: the store's meta.json, the zarr's attributes, the training run's
+    meta (what a checkpoint keeps) and the study's rows (bench/policies.py --from-eval)."""
+    from bench_scripts import load_bench
+
+    from humanoidgen.episodes.dataset import export_zarr
+    from humanoidgen.policies.data import read_demos
+    from humanoidgen.policies.train import run_meta
+
+    perturb_store(one_demo, tmp_path / "p", Perturbation(sigma=0.0, tries=1, seed=7))
+    export_zarr(EpisodeStore(tmp_path / "p"), tmp_path / "p.zarr")
+    export_zarr(EpisodeStore(one_demo), tmp_path / "plain.zarr")
+    meta = run_meta(read_demos(tmp_path / "p.zarr", ("state", "action")), None)
+    assert meta["perturbation"]["seed"] == 7 and meta["perturbation"]["sigma"] == 0.0
+    assert "perturbation" not in run_meta(read_demos(tmp_path / "plain.zarr", ("state", "action")), None)
+    bench = load_bench("policies")
+    assert bench.training_perturbation(meta)["seed"] == 7
+    assert bench.training_perturbation({"data": str(tmp_path / "p.zarr")})["side"] == "left"  # a run from before
+    assert bench.training_perturbation({"data": str(tmp_path / "plain.zarr")}) is None
+    assert bench.training_perturbation({}) is None

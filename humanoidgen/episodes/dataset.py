@@ -298,6 +298,8 @@ def export_zarr(store: EpisodeStore, out: Path, image_camera: str = "head") -> d
     info = store.meta()
     root.attrs.update({"task": info["task"], "control_hz": float(info.get("control_hz", 50.0)),
                        "camera": image_camera, "recorder": info.get("recorder", {})})
+    if info.get("perturbation"):  # a re-recording under an arm offset (`hgen dataset perturb`): said downstream
+        root.attrs["perturbation"] = info["perturbation"]
     data = root.create_group("data")
     shapes = {}
     for name, key in columns.items():

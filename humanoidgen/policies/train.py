@@ -80,9 +80,12 @@ def run_meta(demos: Demos, task: str | None) -> dict:
                         "to it); give --task or export it again")
     if data_task is not None and task is not None and data_task != task:
         raise DataError(f"{demos.path} holds task {data_task!r}, not {task!r}")
-    return {"task": data_task or task, "control_hz": float(attrs.get("control_hz", 50.0)),
+    meta = {"task": data_task or task, "control_hz": float(attrs.get("control_hz", 50.0)),
             "recorder": dict(attrs.get("recorder") or {"every": 5}), "camera": attrs.get("camera", "head"),
             "data": str(Path(demos.path).resolve()), "episodes": demos.n_episodes, "frames": demos.n_frames}
+    if attrs.get("perturbation"):  # trained on demonstrations re-recorded under an arm offset (DART)
+        meta["perturbation"] = dict(attrs["perturbation"])
+    return meta
 
 
 def train(policy: str, data: Path, out: Path, overrides: dict | None = None, device: str = "auto",
