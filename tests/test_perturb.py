@@ -102,3 +102,30 @@ def test_the_perturbation_is_said_by_the_export_the_checkpoint_and_the_study_row
     assert bench.training_perturbation({"data": str(tmp_path / "p.zarr")})["side"] == "left"  # a run from before
     assert bench.training_perturbation({"data": str(tmp_path / "plain.zarr")}) is None
     assert bench.training_perturbation({}) is None
+
+
+def test_trainings_side_by_side_are_drawn_from_their_result_files(tmp_path, monkeypatch):
+    """bench/compare_rows.py: one bar per result file with its interval and baselines, labelled; a label missing
+    or a result file missing is one line and a non-zero exit."""
+    import sys
+
+    from bench_scripts import load_bench
+
+    bench = load_bench("compare_rows")
+    monkeypatch.setattr(bench, "ROOT", tmp_path)
+    (tmp_path / "results").mkdir()
+    for name, mean in (("a", 0.25), ("b", 0.4)):
+        row = {"task": "close_drawer", "policy": "dp3", "demos": 50, "epochs": 40, "success_mean": mean,
+               "success_std": 0.1, "success_ci95": [mean - 0.1, mean + 0.1], "rates": [mean] * 3,
+               "baseline_random": 0.02, "baseline_noop": 0.0, "perturbation": {"sigma": 0.03} if name == "b" else None}
+        (tmp_path / "results" / f"policies_{name}.json").write_text(json.dumps({"rows": [row]}))
+    monkeypatch.setattr(sys, "argv", ["compare_rows.py", "--rows", "a,b", "--labels", "recorded,DART", "--name", "c"])
+    assert bench.main() == 0
+    written = json.loads((tmp_path / "results" / "c.json").read_text())["rows"]
+    assert [(r["label"], r["success_mean"]) for r in written] == [("recorded", 0.25), ("DART", 0.4)]
+    assert written[1]["perturbation"] == {"sigma": 0.03} and (tmp_path / "results" / "c.png").stat().st_size > 0
+    monkeypatch.setattr(sys, "argv", ["compare_rows.py", "--rows", "a,b", "--labels", "one", "--name", "d"])
+    assert bench.main() == 2
+    monkeypatch.setattr(sys, "argv", ["compare_rows.py", "--rows", "a,zzz", "--labels", "x,y", "--name", "d"])
+    with pytest.raises(SystemExit, match="no results"):
+        bench.main()
