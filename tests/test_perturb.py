@@ -129,3 +129,30 @@ def test_trainings_side_by_side_are_drawn_from_their_result_files(tmp_path, monk
     monkeypatch.setattr(sys, "argv", ["compare_rows.py", "--rows", "a,zzz", "--labels", "x,y", "--name", "d"])
     with pytest.raises(SystemExit, match="no results"):
         bench.main()
+
+
+def test_an_interrupted_run_resumes_without_replaying_what_it_has(one_demo, tmp_path, monkeypatch):
+    from humanoidgen.policies import perturb
+
+    how = Perturbation(sigma=0.0, tries=1, draws=2)
+    calls = []
+    real = perturb.perturbed_replay
+
+    def counted(*args, **kwargs):
+        calls.append(1)
+        if len(calls) == 2:
+            raise KeyboardInterrupt  # interrupted during the second draw
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(perturb, "perturbed_replay", counted)
+    with pytest.raises(KeyboardInterrupt):
+        perturb_store(one_demo, tmp_path / "r", how)
+    assert len(EpisodeStore(tmp_path / "r").kept()) == 1  # the first draw is kept
+    monkeypatch.setattr(perturb, "perturbed_replay", real)
+    stats = perturb_store(one_demo, tmp_path / "r", how, resume=True)
+    assert (stats.kept, stats.left_out, stats.tries) == (2, 0, 1)  # only the second draw replayed
+    assert sorted(a["draw"] for a in EpisodeStore(tmp_path / "r").kept()) == [0, 1]
+    with pytest.raises(perturb.DatasetError, match="perturbed otherwise"):
+        perturb_store(one_demo, tmp_path / "r", Perturbation(sigma=0.01, tries=1, draws=2), resume=True)
+    with pytest.raises(perturb.DatasetError, match="already holds a dataset"):
+        perturb_store(one_demo, tmp_path / "r", how)

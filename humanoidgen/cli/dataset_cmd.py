@@ -170,6 +170,7 @@ def perturb(
     tries: int = typer.Option(3, help="Draws tried per replay before the episode is left out."),
     episodes: int | None = typer.Option(None, help="Perturb only the first N kept episodes."),
     seed: int = typer.Option(0, help="Seed of the offsets."),
+    resume: bool = typer.Option(False, help="Go on with an interrupted run into the same --out (same settings)."),
 ) -> None:
     """Re-record demonstrations under a drifting arm error, labelled with the plan's targets (DART).
 
@@ -196,7 +197,7 @@ def perturb(
     total = min(len(store.kept()), episodes or len(store.kept())) * how.draws
     bar = tqdm(total=total, unit="episode", desc=f"perturb {store.meta()['task']}")
     try:
-        stats = perturb_store(path, out, how, episodes=episodes, progress=lambda _: bar.update(1))
+        stats = perturb_store(path, out, how, episodes=episodes, progress=lambda _: bar.update(1), resume=resume)
     except DatasetError as exc:
         _fail(f"error: {exc}")
     finally:

@@ -115,9 +115,11 @@ def perturbed_replay(env, actions: np.ndarray, seed: int, offsets: np.ndarray, j
 
 
 def perturb_store(source: Path, out: Path, how: Perturbation, episodes: int | None = None,
-                  progress: Callable[[str], None] | None = None) -> PerturbStats:
+                  progress: Callable[[str], None] | None = None, resume: bool = False) -> PerturbStats:
     """Write to `out` a store of `how.draws` perturbed replays of each of the first `episodes` (all: None) kept
-    episodes of the store at `source`. Each attempt is an index line (a left-out draw too, with the task's words)."""
+    episodes of the store at `source`. Each attempt is an index line (a left-out draw too, with the task's words).
+    With `resume`, an interrupted run goes on: draws already kept or given up are not replayed again (the same
+    source and perturbation are required)."""
     from humanoidgen.envs.config import TaskEnvConfig
     from humanoidgen.envs.task_env import HumanoidTaskEnv
 
@@ -136,14 +138,26 @@ def perturb_store(source: Path, out: Path, how: Perturbation, episodes: int | No
     new_meta["cameras"] = []
     new_meta["perturbation"] = {**asdict(how), "source": str(Path(source).resolve()), "method": "DART: "
                                 "observations from the perturbed replay, actions as the plan gave them"}
-    dst.create(new_meta)
+    dst.create(new_meta, resume=resume)
+    if resume:
+        before = dst.meta().get("perturbation") or {}
+        if {k: before.get(k) for k in new_meta["perturbation"]} != new_meta["perturbation"]:
+            raise DatasetError(f"{out} was perturbed otherwise ({before}); resume it with the same settings or "
+                               "choose another --out")
+    finished = {(a.get("source_episode"), a.get("draw")) for a in dst.attempts()
+                if a.get("success") or a.get("try") == how.tries - 1}
     env = HumanoidTaskEnv(meta["task"], config=cfg)
-    stats = PerturbStats(source_episodes=len(kept))
+    stats = PerturbStats(source_episodes=len(kept), kept=len(dst.kept()))  # a resumed run counts what it has
+    stats.left_out = len(finished) - len({(a.get("source_episode"), a.get("draw")) for a in dst.kept()})
     joints = how.joints()
     try:
         for k, rec in enumerate(kept):
             actions = np.asarray(src.load(rec["episode"], ("action",))["action"], dtype=np.float64)
             for d in range(how.draws):
+                if (int(rec["episode"]), d) in finished:
+                    if progress is not None:
+                        progress(f"episode {k + 1}/{len(kept)} draw {d + 1}: done before")
+                    continue
                 words = ""
                 for attempt in range(how.tries):
                     rng = np.random.default_rng([how.seed, int(rec["seed"]), d, attempt])
