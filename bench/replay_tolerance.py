@@ -29,8 +29,9 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from provenance import commit, machine  # noqa: E402
 
+from humanoidgen.policies.perturb import SETTLE_ACTIONS  # noqa: E402  (the last action held this long more)
+
 ROOT = Path(__file__).resolve().parent
-SETTLE_ACTIONS = 20  # the last action held this long more: a drawer still sliding shut may yet pass
 
 
 def touching(env, side: str) -> set[tuple[str, str]]:

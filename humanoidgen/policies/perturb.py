@@ -14,12 +14,10 @@ The offset per joint is an Ornstein-Uhlenbeck walk at the data's action rate: st
 `sigma` (rad), correlation time `tau_s`, started from its stationary law (a policy's error is of this kind, a few
 hundredths of a radian, steady over a move: bench/replay_tolerance.py). The new store records what the env
 observes (joint_pos, ee_pose, point_cloud, and qpos for `hgen dataset replay`; no images: the cameras' pictures
-are not re-rendered) and says in its
-meta.json where it came from and how it was perturbed."""
+are not re-rendered) and says in its meta.json where it came from and how it was perturbed."""
 
 from __future__ import annotations
 
-import json
 import math
 from collections.abc import Callable
 from dataclasses import asdict, dataclass
@@ -31,7 +29,9 @@ import numpy as np
 from humanoidgen.episodes.dataset import DatasetError, EpisodeStore
 from humanoidgen.sim.action import ARM_SLICE
 
-SETTLE_ACTIONS = 20  # the last target held this long more (unrecorded): a drawer still sliding shut may yet pass
+# The last target held this long more (unrecorded): a drawer still sliding shut may yet pass. bench/replay_tolerance.py
+# settles its replays by the same count.
+SETTLE_ACTIONS = 20
 RECORDED = ("joint_pos", "ee_pose", "point_cloud")
 
 
@@ -188,4 +188,4 @@ def describe(stats: PerturbStats, how: Perturbation) -> str:
 
 def read_perturbation(store: EpisodeStore) -> dict | None:
     """The perturbation a store was made with (None: recorded as planned)."""
-    return json.loads(store.meta_path.read_text()).get("perturbation")
+    return store.meta().get("perturbation")
