@@ -156,3 +156,21 @@ def test_an_interrupted_run_resumes_without_replaying_what_it_has(one_demo, tmp_
         perturb_store(one_demo, tmp_path / "r", Perturbation(sigma=0.01, tries=1, draws=2), resume=True)
     with pytest.raises(perturb.DatasetError, match="already holds a dataset"):
         perturb_store(one_demo, tmp_path / "r", how)
+
+
+def test_two_worker_processes_write_the_store_one_process_writes(one_demo, tmp_path):
+    how = Perturbation(sigma=0.02, tries=2, draws=3, seed=4)
+    one = perturb_store(one_demo, tmp_path / "one", how)
+    two = perturb_store(one_demo, tmp_path / "two", how, workers=2)
+    assert (one.kept, one.left_out, one.tries) == (two.kept, two.left_out, two.tries)
+    a, b = EpisodeStore(tmp_path / "one"), EpisodeStore(tmp_path / "two")
+    drop = ("time", "duration", "wall", "timings")  # per-line clocks, if the store writes any
+    strip = [[{k: v for k, v in r.items() if not any(d in k for d in drop)} for r in s.attempts()] for s in (a, b)]
+    assert strip[0] == strip[1] and len(strip[0]) >= 3  # the same lines in the same order
+    for ra, rb in zip(a.kept(), b.kept()):
+        ea, eb = a.load(ra["episode"]), b.load(rb["episode"])
+        assert ea.keys() == eb.keys()
+        for k in ea:
+            np.testing.assert_array_equal(ea[k], eb[k])  # spawned workers simulate the same bytes
+    with pytest.raises(ValueError, match="workers"):
+        perturb_store(one_demo, tmp_path / "none", how, workers=0)

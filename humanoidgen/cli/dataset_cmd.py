@@ -171,6 +171,7 @@ def perturb(
     episodes: int | None = typer.Option(None, help="Perturb only the first N kept episodes."),
     seed: int = typer.Option(0, help="Seed of the offsets."),
     resume: bool = typer.Option(False, help="Go on with an interrupted run into the same --out (same settings)."),
+    workers: int = typer.Option(1, help="Replay in this many processes (the store is the same as with one)."),
 ) -> None:
     """Re-record demonstrations under a drifting arm error, labelled with the plan's targets (DART).
 
@@ -194,10 +195,13 @@ def perturb(
         _fail(f"error: {exc}")
     if episodes is not None and episodes < 1:
         _fail("error: --episodes must be at least 1")
+    if workers < 1:
+        _fail("error: --workers must be at least 1")
     total = min(len(store.kept()), episodes or len(store.kept())) * how.draws
     bar = tqdm(total=total, unit="episode", desc=f"perturb {store.meta()['task']}")
     try:
-        stats = perturb_store(path, out, how, episodes=episodes, progress=lambda _: bar.update(1), resume=resume)
+        stats = perturb_store(path, out, how, episodes=episodes, progress=lambda _: bar.update(1), resume=resume,
+                              workers=workers)
     except DatasetError as exc:
         _fail(f"error: {exc}")
     finally:

@@ -114,15 +114,64 @@ def perturbed_replay(env, actions: np.ndarray, seed: int, offsets: np.ndarray, j
     return ok, arrays, final_detail(info)
 
 
+@dataclass(frozen=True)
+class _Job:
+    """One perturbed replay to draw: everything a worker process needs, nothing it shares."""
+
+    actions: np.ndarray
+    seed: int
+    source_episode: int
+    draw: int
+    how: Perturbation
+    rate_hz: float
+
+
+def _draw(job: _Job, env) -> list[tuple[dict, dict[str, np.ndarray] | None, str]]:
+    """Up to `how.tries` replays of one (episode, draw): the index records and arrays to write, in order."""
+    how = job.how
+    out = []
+    for attempt in range(how.tries):
+        rng = np.random.default_rng([how.seed, job.seed, job.draw, attempt])
+        ok, arrays, words = perturbed_replay(env, job.actions, job.seed,
+                                             how.offsets(len(job.actions), job.rate_hz, rng), how.joints())
+        record = {"seed": job.seed, "success": ok, "source_episode": job.source_episode, "draw": job.draw,
+                  "try": attempt, "error": "" if ok else words}
+        out.append((record, arrays if ok else None, words))
+        if ok:
+            break
+    return out
+
+
+_WORKER_ENV = None  # one env per worker process, made by _init_worker
+
+
+def _init_worker(task: str, config) -> None:
+    global _WORKER_ENV
+    _WORKER_ENV = _make_env(task, config)
+
+
+def _draw_in_worker(job: _Job):
+    return _draw(job, _WORKER_ENV)
+
+
+def _make_env(task: str, config):
+    from humanoidgen.envs.task_env import HumanoidTaskEnv
+
+    return HumanoidTaskEnv(task, config=config)
+
+
 def perturb_store(source: Path, out: Path, how: Perturbation, episodes: int | None = None,
-                  progress: Callable[[str], None] | None = None, resume: bool = False) -> PerturbStats:
+                  progress: Callable[[str], None] | None = None, resume: bool = False,
+                  workers: int = 1) -> PerturbStats:
     """Write to `out` a store of `how.draws` perturbed replays of each of the first `episodes` (all: None) kept
     episodes of the store at `source`. Each attempt is an index line (a left-out draw too, with the task's words).
     With `resume`, an interrupted run goes on: draws already kept or given up are not replayed again (the same
-    source and perturbation are required)."""
+    source and perturbation are required). `workers` > 1 replays in that many processes (each with its own env);
+    the store is written here, in the order a single process would write it, so the result does not depend on it."""
     from humanoidgen.envs.config import TaskEnvConfig
-    from humanoidgen.envs.task_env import HumanoidTaskEnv
 
+    if workers < 1:
+        raise ValueError("workers must be at least 1")
     src = EpisodeStore(Path(source))
     meta = src.meta()
     kept = src.kept()[:episodes] if episodes else src.kept()
@@ -146,37 +195,49 @@ def perturb_store(source: Path, out: Path, how: Perturbation, episodes: int | No
                                "choose another --out")
     finished = {(a.get("source_episode"), a.get("draw")) for a in dst.attempts()
                 if a.get("success") or a.get("try") == how.tries - 1}
-    env = HumanoidTaskEnv(meta["task"], config=cfg)
     stats = PerturbStats(source_episodes=len(kept), kept=len(dst.kept()))  # a resumed run counts what it has
     stats.left_out = len(finished) - len({(a.get("source_episode"), a.get("draw")) for a in dst.kept()})
-    joints = how.joints()
-    try:
-        for k, rec in enumerate(kept):
+    position = {int(rec["episode"]): k for k, rec in enumerate(kept)}
+
+    def jobs():
+        for rec in kept:
             actions = np.asarray(src.load(rec["episode"], ("action",))["action"], dtype=np.float64)
             for d in range(how.draws):
                 if (int(rec["episode"]), d) in finished:
                     if progress is not None:
-                        progress(f"episode {k + 1}/{len(kept)} draw {d + 1}: done before")
+                        progress(f"episode {position[int(rec['episode'])] + 1}/{len(kept)} draw {d + 1}: "
+                                 "done before")
                     continue
-                words = ""
-                for attempt in range(how.tries):
-                    rng = np.random.default_rng([how.seed, int(rec["seed"]), d, attempt])
-                    ok, arrays, words = perturbed_replay(env, actions, int(rec["seed"]),
-                                                         how.offsets(len(actions), rate_hz, rng), joints)
-                    stats.tries += 1
-                    record = {"seed": int(rec["seed"]), "success": ok, "source_episode": int(rec["episode"]),
-                              "draw": d, "try": attempt, "error": "" if ok else words}
-                    dst.add(record, arrays if ok else None)
-                    if ok:
-                        stats.kept += 1
-                        break
-                else:
-                    stats.left_out += 1
-                if progress is not None:
-                    progress(f"episode {k + 1}/{len(kept)} draw {d + 1}: "
-                             + ("kept" if ok else f"left out after {how.tries} tries ({words})"))
-    finally:
-        env.close()
+                yield _Job(actions, int(rec["seed"]), int(rec["episode"]), d, how, rate_hz)
+
+    def write(results) -> None:
+        for attempts in results:
+            for record, arrays, _ in attempts:
+                dst.add(record, arrays)
+                stats.tries += 1
+            record, _, words = attempts[-1]
+            if record["success"]:
+                stats.kept += 1
+            else:
+                stats.left_out += 1
+            if progress is not None:
+                progress(f"episode {position[record['source_episode']] + 1}/{len(kept)} draw {record['draw'] + 1}: "
+                         + ("kept" if record["success"] else f"left out after {how.tries} tries ({words})"))
+
+    if workers == 1:
+        env = _make_env(meta["task"], cfg)
+        try:
+            write(_draw(job, env) for job in jobs())
+        finally:
+            env.close()
+        return stats
+    import multiprocessing as mp
+    from concurrent.futures import ProcessPoolExecutor
+
+    # spawn: a fresh interpreter per worker (no forked MuJoCo or torch state); map keeps the jobs' order
+    with ProcessPoolExecutor(workers, mp_context=mp.get_context("spawn"), initializer=_init_worker,
+                             initargs=(meta["task"], cfg)) as pool:
+        write(pool.map(_draw_in_worker, jobs(), chunksize=1))
     return stats
 
 
