@@ -154,6 +154,13 @@ def test_an_interrupted_run_resumes_without_replaying_what_it_has(one_demo, tmp_
     assert sorted(a["draw"] for a in EpisodeStore(tmp_path / "r").kept()) == [0, 1]
     with pytest.raises(perturb.DatasetError, match="perturbed otherwise"):
         perturb_store(one_demo, tmp_path / "r", Perturbation(sigma=0.01, tries=1, draws=2), resume=True)
+    with pytest.raises(perturb.DatasetError, match="perturbed otherwise"):  # fewer draws than it holds
+        perturb_store(one_demo, tmp_path / "r", Perturbation(sigma=0.0, tries=1, draws=1), resume=True)
+    # more draws extend the finished store: only the new draw is replayed, and its meta says three
+    stats = perturb_store(one_demo, tmp_path / "r", Perturbation(sigma=0.0, tries=1, draws=3), resume=True)
+    assert (stats.kept, stats.tries) == (3, 1)
+    assert sorted(a["draw"] for a in EpisodeStore(tmp_path / "r").kept()) == [0, 1, 2]
+    assert read_perturbation(EpisodeStore(tmp_path / "r"))["draws"] == 3
     with pytest.raises(perturb.DatasetError, match="already holds a dataset"):
         perturb_store(one_demo, tmp_path / "r", how)
 

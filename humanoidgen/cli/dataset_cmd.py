@@ -170,7 +170,8 @@ def perturb(
     tries: int = typer.Option(3, help="Draws tried per replay before the episode is left out."),
     episodes: int | None = typer.Option(None, help="Perturb only the first N kept episodes."),
     seed: int = typer.Option(0, help="Seed of the offsets."),
-    resume: bool = typer.Option(False, help="Go on with an interrupted run into the same --out (same settings)."),
+    resume: bool = typer.Option(False, help="Go on with an interrupted run into the same --out (same settings), "
+                                "or add draws to it (more --draws)."),
     workers: int = typer.Option(1, help="Replay in this many processes (the store is the same as with one)."),
 ) -> None:
     """Re-record demonstrations under a drifting arm error, labelled with the plan's targets (DART).

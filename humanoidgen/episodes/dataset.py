@@ -104,6 +104,11 @@ class EpisodeStore:
         (self.root / "episodes").mkdir(parents=True, exist_ok=True)
         _atomic_write(self.meta_path, json.dumps({"format_version": FORMAT_VERSION, **meta}, indent=2).encode())
 
+    def update_meta(self, **fields) -> None:
+        """Replace top-level fields of meta.json (atomically: a cut-short write leaves the old file)."""
+        meta = self.meta()
+        _atomic_write(self.meta_path, json.dumps({**meta, **fields}, indent=2).encode())
+
     def add(self, record: dict, arrays: dict[str, np.ndarray] | None) -> dict:
         """Append an attempt; with `arrays` (a kept episode) its file is written first."""
         record = dict(record)

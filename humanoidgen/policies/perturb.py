@@ -166,8 +166,9 @@ def perturb_store(source: Path, out: Path, how: Perturbation, episodes: int | No
     """Write to `out` a store of `how.draws` perturbed replays of each of the first `episodes` (all: None) kept
     episodes of the store at `source`. Each attempt is an index line (a left-out draw too, with the task's words).
     With `resume`, an interrupted run goes on: draws already kept or given up are not replayed again (the same
-    source and perturbation are required). `workers` > 1 replays in that many processes (each with its own env);
-    the store is written here, in the order a single process would write it, so the result does not depend on it."""
+    source and perturbation are required, except that `how.draws` may grow: a finished store gains draws).
+    `workers` > 1 replays in that many processes (each with its own env); the store is written here, in the order
+    a single process would write it, so the result does not depend on it."""
     from humanoidgen.envs.config import TaskEnvConfig
 
     if workers < 1:
@@ -189,10 +190,14 @@ def perturb_store(source: Path, out: Path, how: Perturbation, episodes: int | No
                                 "observations from the perturbed replay, actions as the plan gave them"}
     dst.create(new_meta, resume=resume)
     if resume:
+        # More draws extend a finished store (its draws are kept, the new ones appended); anything else must match.
         before = dst.meta().get("perturbation") or {}
-        if {k: before.get(k) for k in new_meta["perturbation"]} != new_meta["perturbation"]:
-            raise DatasetError(f"{out} was perturbed otherwise ({before}); resume it with the same settings or "
-                               "choose another --out")
+        same = {k: v for k, v in new_meta["perturbation"].items() if k != "draws"}
+        if {k: before.get(k) for k in same} != same or int(before.get("draws", 0)) > how.draws:
+            raise DatasetError(f"{out} was perturbed otherwise ({before}); resume it with the same settings (or "
+                               "more --draws) or choose another --out")
+        if int(before["draws"]) < how.draws:
+            dst.update_meta(perturbation=new_meta["perturbation"])
     finished = {(a.get("source_episode"), a.get("draw")) for a in dst.attempts()
                 if a.get("success") or a.get("try") == how.tries - 1}
     stats = PerturbStats(source_episodes=len(kept), kept=len(dst.kept()))  # a resumed run counts what it has
