@@ -1,0 +1,45 @@
+"""bench/cloud_coverage.py: points counted near a part by their distance to its geoms' boxes, in each geom's own
+frame; and on close_drawer's scene the count grows with the points read, the handle always among them."""
+
+from __future__ import annotations
+
+import json
+import math
+import sys
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+from bench_scripts import load_bench
+
+
+def test_the_distance_is_to_the_box_in_its_own_frame():
+    bench = load_bench("cloud_coverage")
+    c, s = math.cos(math.pi / 4), math.sin(math.pi / 4)
+    rot = np.array([[c, -s, 0], [s, c, 0], [0, 0, 1]])  # the box turned 45 degrees about z
+    model = SimpleNamespace(geom_aabb=np.array([[0, 0, 0, 0.05, 0.01, 0.01]]))
+    data = SimpleNamespace(geom_xpos=np.array([[1.0, 0, 0]]), geom_xmat=rot.reshape(1, 9))
+    long_axis = rot[:, 0]
+    points = np.array([[1.0, 0, 0],                            # the centre
+                       [1.0, 0, 0] + 0.05 * long_axis,          # the end of the long side: on the box
+                       [1.0, 0, 0] + 0.07 * long_axis,          # 2 cm past it
+                       [1.0, 0, 0.03]])                         # 2 cm above the top
+    np.testing.assert_allclose(bench.distance_to_geoms(points, data, model, [0]), [0, 0, 0.02, 0.02], atol=1e-9)
+    assert bench.distance_to_geoms(points, data, model, []).tolist() == [math.inf] * 4
+
+
+def test_close_drawers_handle_is_counted_more_often_in_more_points(tmp_path, monkeypatch):
+    bench = load_bench("cloud_coverage")
+    monkeypatch.setattr(bench, "ROOT", tmp_path)
+    (tmp_path / "results").mkdir()
+    monkeypatch.setattr(sys, "argv", ["cloud_coverage.py", "--task", "close_drawer", "--near", "handle",
+                                      "--points", "64,1024", "--scenes", "2", "--name", "t"])
+    assert bench.main() == 0
+    got = json.loads((tmp_path / "results" / "cloud_coverage_t.json").read_text())
+    assert [r["scene_seed"] for r in got["scenes"]] == [100000, 100001] and got["scenes"][0]["geoms"] == 3
+    for row in got["scenes"]:
+        assert 0 <= row["within"]["64"] <= row["within"]["1024"] and row["within"]["1024"] >= 5
+    monkeypatch.setattr(sys, "argv", ["cloud_coverage.py", "--task", "close_drawer", "--near", "no_such_part",
+                                      "--scenes", "1"])
+    with pytest.raises(SystemExit, match="no geom"):
+        bench.main()
