@@ -178,6 +178,8 @@ def from_eval(args) -> int:
             state = ck.read(Path(row["checkpoint"]))
             row["epochs"] = int(state.get("epoch", state.get("meta", {}).get("epoch", row["epochs"])))
             row["action_frame"] = state.get("config", {}).get("action_frame", "absolute")
+            if "num_points" in state.get("config", {}):  # DP3's points read: a recipe's setting a run may change
+                row["num_points"] = int(state["config"]["num_points"])
             perturbation = training_perturbation(state.get("meta", {}))
             if perturbation:
                 row["perturbation"] = perturbation
