@@ -181,3 +181,17 @@ def test_two_worker_processes_write_the_store_one_process_writes(one_demo, tmp_p
             np.testing.assert_array_equal(ea[k], eb[k])  # spawned workers simulate the same bytes
     with pytest.raises(ValueError, match="workers"):
         perturb_store(one_demo, tmp_path / "none", how, workers=0)
+
+
+def test_an_interrupted_run_with_workers_keeps_what_it_wrote_and_resumes(one_demo, tmp_path):
+    how = Perturbation(sigma=0.0, tries=1, draws=3)
+
+    def interrupt(_line):
+        raise KeyboardInterrupt  # Ctrl-C just after the first draw was written
+
+    with pytest.raises(KeyboardInterrupt):
+        perturb_store(one_demo, tmp_path / "w", how, progress=interrupt, workers=2)
+    assert [a["draw"] for a in EpisodeStore(tmp_path / "w").kept()] == [0]
+    stats = perturb_store(one_demo, tmp_path / "w", how, resume=True, workers=2)
+    assert (stats.kept, stats.tries) == (3, 2)  # the two draws not written are replayed, the first is not
+    assert sorted(a["draw"] for a in EpisodeStore(tmp_path / "w").kept()) == [0, 1, 2]

@@ -196,7 +196,7 @@ def perturb_store(source: Path, out: Path, how: Perturbation, episodes: int | No
         if {k: before.get(k) for k in same} != same or int(before.get("draws", 0)) > how.draws:
             raise DatasetError(f"{out} was perturbed otherwise ({before}); resume it with the same settings (or "
                                "more --draws) or choose another --out")
-        if int(before["draws"]) < how.draws:
+        if int(before.get("draws", 0)) < how.draws:
             dst.update_meta(perturbation=new_meta["perturbation"])
     finished = {(a.get("source_episode"), a.get("draw")) for a in dst.attempts()
                 if a.get("success") or a.get("try") == how.tries - 1}
@@ -240,9 +240,12 @@ def perturb_store(source: Path, out: Path, how: Perturbation, episodes: int | No
     from concurrent.futures import ProcessPoolExecutor
 
     # spawn: a fresh interpreter per worker (no forked MuJoCo or torch state); map keeps the jobs' order
-    with ProcessPoolExecutor(workers, mp_context=mp.get_context("spawn"), initializer=_init_worker,
-                             initargs=(meta["task"], cfg)) as pool:
+    pool = ProcessPoolExecutor(workers, mp_context=mp.get_context("spawn"), initializer=_init_worker,
+                               initargs=(meta["task"], cfg))
+    try:
         write(pool.map(_draw_in_worker, jobs(), chunksize=1))
+    finally:  # interrupted: the draws not begun are dropped (--resume replays them), not run to the end first
+        pool.shutdown(wait=True, cancel_futures=True)
     return stats
 
 
