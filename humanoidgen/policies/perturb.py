@@ -202,16 +202,15 @@ def perturb_store(source: Path, out: Path, how: Perturbation, episodes: int | No
                 if a.get("success") or a.get("try") == how.tries - 1}
     stats = PerturbStats(source_episodes=len(kept), kept=len(dst.kept()))  # a resumed run counts what it has
     stats.left_out = len(finished) - len({(a.get("source_episode"), a.get("draw")) for a in dst.kept()})
-    position = {int(rec["episode"]): k for k, rec in enumerate(kept)}
+    position = {int(rec["episode"]): k for k, rec in enumerate(kept)}  # for the results, which come by record
 
     def jobs():
-        for rec in kept:
+        for k, rec in enumerate(kept):
             actions = np.asarray(src.load(rec["episode"], ("action",))["action"], dtype=np.float64)
             for d in range(how.draws):
                 if (int(rec["episode"]), d) in finished:
                     if progress is not None:
-                        progress(f"episode {position[int(rec['episode'])] + 1}/{len(kept)} draw {d + 1}: "
-                                 "done before")
+                        progress(f"episode {k + 1}/{len(kept)} draw {d + 1}: done before")
                     continue
                 yield _Job(actions, int(rec["seed"]), int(rec["episode"]), d, how, rate_hz)
 
