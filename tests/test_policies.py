@@ -134,6 +134,66 @@ def test_relative_actions_are_denoised_about_the_state_and_executed_as_joint_tar
         policy_type("dp3").config({"action_frame": "relative", "state_dim": 20})
 
 
+def test_hand_features_are_position_and_two_rotation_columns_whatever_the_quaternion_sign():
+    from humanoidgen.policies.hands import hand_features
+    from humanoidgen.sim.geometry import quat_to_mat
+
+    rng = np.random.default_rng(0)
+    q = rng.normal(size=(6, 2, 4))
+    q /= np.linalg.norm(q, axis=-1, keepdims=True)
+    p = rng.normal(size=(6, 2, 3))
+    ee = np.concatenate([p[:, 0], q[:, 0], p[:, 1], q[:, 1]], axis=-1)
+    f = hand_features(ee)
+    assert f.shape == (6, 18) and f.dtype == np.float32
+    for i in range(6):
+        for h in range(2):
+            R = quat_to_mat(q[i, h])
+            np.testing.assert_allclose(f[i, 9 * h: 9 * h + 3], p[i, h], atol=1e-6)
+            np.testing.assert_allclose(f[i, 9 * h + 3: 9 * h + 9], np.r_[R[:, 0], R[:, 1]], atol=1e-6)
+    flipped = ee.copy()
+    flipped[:, 3:7] *= -1  # the same orientation
+    np.testing.assert_allclose(hand_features(flipped), f, atol=1e-6)
+    with pytest.raises(ValueError, match="not 14"):
+        hand_features(ee[:, :7])
+    with pytest.raises(ValueError, match="zero or not finite"):
+        hand_features(np.where(np.arange(14) >= 3, 0.0, 1.0)[None])
+
+
+def test_a_policy_observing_the_hands_reads_their_poses_in_training_and_in_the_env(demos_zarr, tmp_path):
+    run = tmp_path / "dp3_hands"
+    over = {**_with(TINY_DP3, epochs=3), "action_frame": "relative", "observe_hands": True}
+    result = train("dp3", demos_zarr, run, over, device="cpu", progress=False)
+    assert np.isfinite(result.losses).all()
+    model, _ = ck.load_policy(ck.run_checkpoints(run)[-1])
+    assert model.obs_keys == ("state", "point_cloud", "hands") and model.cfg.observe_hands
+    assert model.state[0].in_features == 26 + 18  # the state MLP reads the joints and the hands
+    demos = read_demos(demos_zarr, ("state", "point_cloud", "hands"))
+    n = model.cfg.n_obs_steps
+    obs = {"state": torch.as_tensor(demos.arrays["state"][None, 10:10 + n]),
+           "point_cloud": torch.as_tensor(demos.arrays["point_cloud"][None, 10:10 + n]),
+           "hands": torch.as_tensor(hand_features_of(demos.arrays["hands"][10:10 + n])[None])}
+    a = model.predict_action(obs, generator=torch.Generator().manual_seed(3))["action"]
+    moved = {**obs, "hands": obs["hands"] + 0.05}  # the hands elsewhere, nothing else changed
+    b = model.predict_action(moved, generator=torch.Generator().manual_seed(3))["action"]
+    assert not torch.allclose(a, b)
+    # In the env: the rollout hands the policy the env's ee_pose as the same features (a closed-loop episode).
+    report = evaluate(run, "close_drawer", episodes=1, seeds=(0,), device="cpu", progress=False, max_steps=2,
+                      baselines=False)
+    assert report.outcomes and all(o.steps == 2 for o in report.outcomes)  # one a kept checkpoint
+    # An export without the hands' poses: one line that says how to get them.
+    bare = tmp_path / "bare.zarr"
+    shutil.copytree(demos_zarr, bare)
+    shutil.rmtree(bare / "data" / "ee_pose")
+    with pytest.raises(DataError, match="no data/ee_pose.*export the dataset again"):
+        train("dp3", bare, tmp_path / "bare_run", over, device="cpu", progress=False)
+
+
+def hand_features_of(ee_pose):
+    from humanoidgen.policies.hands import hand_features
+
+    return hand_features(ee_pose)
+
+
 def test_interrupted_training_resumes_where_it_stopped(demos_zarr, tmp_path):
     whole = train("dp3", demos_zarr, tmp_path / "whole", _with(TINY_DP3, epochs=3), device="cpu", progress=False)
     first = train("dp3", demos_zarr, tmp_path / "parts", _with(TINY_DP3, epochs=2), device="cpu", progress=False)

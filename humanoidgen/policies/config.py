@@ -84,6 +84,11 @@ class PolicyConfig(_Strict):
     # scored 100% with either (docs/results/policies.md); the recipes keep the absolute frame until the whole
     # study is measured with it.
     action_frame: Literal["absolute", "relative"] = "absolute"
+    # The hands' poses (`policies.hands`: each hand's position and orientation, in the world frame the point
+    # cloud is in) fed beside the joint state. The joint state tells where a hand is only through the arm's
+    # kinematics, which a network has to learn from the data; close_drawer's grips are made in postures up to
+    # 5.6 rad apart on a joint (bench/demo_postures.py), where 50 demonstrations leave that map thinly sampled.
+    observe_hands: bool = False
 
     @model_validator(mode="after")
     def _actions_fit(self) -> PolicyConfig:

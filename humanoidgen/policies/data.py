@@ -6,6 +6,7 @@ Keys read (the export's documented layout):
     data/action        (T, 26) float32  joint targets                  -> every policy
     data/img           (T, H, W, 3) uint8  the export's --camera        -> DP
     data/point_cloud   (T, N, 3) float32  fused, cropped, FPS-sampled   -> DP3 (the first num_points: FPS order)
+    data/ee_pose       (T, 14) float32  the hands' poses               -> a policy with observe_hands ("hands")
     meta/episode_ends  (E,) int64       cumulative frame counts
     attributes task, control_hz, camera, recorder (written by the export; older exports lack them: then the
     task and rate come from the caller)
@@ -22,10 +23,12 @@ from pathlib import Path
 import numpy as np
 
 # What each policy input is called in the zarr and in the environment's observations.
-ZARR_KEYS = {"state": "data/state", "action": "data/action", "img": "data/img", "point_cloud": "data/point_cloud"}
+ZARR_KEYS = {"state": "data/state", "action": "data/action", "img": "data/img", "point_cloud": "data/point_cloud",
+             "hands": "data/ee_pose"}
 HOW_TO_GET = {
     "point_cloud": "collect with --point-cloud (the default) and export again",
     "img": "collect with the camera in --cameras and export with --camera",
+    "hands": "export the dataset again (hgen dataset export), which writes the hands' poses",
 }
 
 

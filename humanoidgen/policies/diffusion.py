@@ -13,6 +13,7 @@ from diffusers import DDIMScheduler, DDPMScheduler
 from torch import nn
 
 from humanoidgen.policies.config import PolicyConfig
+from humanoidgen.policies.hands import HAND_FEATURES
 from humanoidgen.policies.normalizer import MinMaxNormalizer
 from humanoidgen.policies.unet import ConditionalUnet1D
 
@@ -26,6 +27,9 @@ class DiffusionPolicy(nn.Module):
         self.cfg = cfg
         if cfg.action_frame == "relative":  # the recorded targets' range too: what the random baseline draws in
             norm_dims = {**norm_dims, "target": cfg.action_dim}
+        if cfg.observe_hands:
+            norm_dims = {**norm_dims, "hands": HAND_FEATURES}
+        self.obs_keys = self.inputs_for(cfg)
         self.normalizer = MinMaxNormalizer(norm_dims)
         self.unet = ConditionalUnet1D(cfg.action_dim, self.feature_dim() * cfg.n_obs_steps, cfg.unet)
         n = cfg.noise
@@ -33,6 +37,20 @@ class DiffusionPolicy(nn.Module):
                       beta_schedule=n.beta_schedule, clip_sample=n.clip_sample, prediction_type=n.prediction_type)
         self.train_scheduler = DDPMScheduler(variance_type="fixed_small", **common)
         self.sample_scheduler = DDIMScheduler(set_alpha_to_one=True, steps_offset=0, **common)
+
+    @classmethod
+    def inputs_for(cls, cfg: PolicyConfig) -> tuple[str, ...]:
+        """The observations (the zarr's names) a policy of this kind with `cfg` reads."""
+        return cls.obs_keys + (("hands",) if cfg.observe_hands else ())
+
+    @staticmethod
+    def proprio_dim(cfg: PolicyConfig) -> int:
+        """Numbers per observation step of `proprio`: the joint state, and the hands' poses where observed."""
+        return cfg.state_dim + (HAND_FEATURES if cfg.observe_hands else 0)
+
+    def proprio(self, obs: dict[str, torch.Tensor]) -> torch.Tensor:
+        """The normalized joint state, with the hands' poses after it where the policy observes them."""
+        return torch.cat([obs["state"], obs["hands"]], dim=-1) if self.cfg.observe_hands else obs["state"]
 
     # -- subclasses ----------------------------------------------------------------------------------------
     def feature_dim(self) -> int:
@@ -44,7 +62,10 @@ class DiffusionPolicy(nn.Module):
         raise NotImplementedError
 
     def normalize_obs(self, obs: dict[str, torch.Tensor]) -> dict[str, torch.Tensor]:
-        return {"state": self.normalizer.normalize("state", obs["state"].float())}
+        out = {"state": self.normalizer.normalize("state", obs["state"].float())}
+        if self.cfg.observe_hands:
+            out["hands"] = self.normalizer.normalize("hands", obs["hands"].float())
+        return out
 
     # -- shared --------------------------------------------------------------------------------------------
     def global_cond(self, obs: dict[str, torch.Tensor]) -> torch.Tensor:

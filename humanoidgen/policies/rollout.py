@@ -13,6 +13,7 @@ import numpy as np
 import torch
 
 from humanoidgen.envs.config import EVAL_SEED_BASE, TaskEnvConfig
+from humanoidgen.policies.hands import hand_features
 
 MAX_EPISODES_PER_SEED = 1000
 
@@ -76,6 +77,8 @@ def policy_obs(model, history: deque, device: str) -> dict[str, torch.Tensor]:
     out = {"state": torch.as_tensor(np.stack([h["joint_pos"] for h in history]))[None]}
     if "point_cloud" in model.obs_keys:
         out["point_cloud"] = torch.as_tensor(np.stack([h["point_cloud"][: cfg.num_points] for h in history]))[None]
+    if "hands" in model.obs_keys:
+        out["hands"] = torch.as_tensor(hand_features(np.stack([h["ee_pose"] for h in history])))[None]
     if "img" in model.obs_keys:
         from humanoidgen.policies.dp.model import resize_images
 

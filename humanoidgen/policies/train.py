@@ -19,6 +19,7 @@ import torch
 from humanoidgen.policies import checkpoint as ck
 from humanoidgen.policies.config import PolicyConfig
 from humanoidgen.policies.data import DataError, Demos, read_demos, sequence_index
+from humanoidgen.policies.hands import hand_features
 from humanoidgen.policies.registry import policy_type
 
 
@@ -61,6 +62,11 @@ def policy_inputs(model, demos: Demos) -> dict[str, torch.Tensor]:
             raise DataError(f"{demos.path}: its clouds have {pc.shape[1]} points, fewer than num_points="
                             f"{cfg.num_points}")
         out["point_cloud"] = torch.as_tensor(np.ascontiguousarray(pc[:, : cfg.num_points, :3]), dtype=torch.float32)
+    if "hands" in model.obs_keys:
+        try:
+            out["hands"] = torch.as_tensor(hand_features(demos.arrays["hands"]))
+        except ValueError as e:
+            raise DataError(f"{demos.path}: data/ee_pose: {e}") from None
     if "img" in model.obs_keys:
         from humanoidgen.policies.dp.model import resize_images
 
@@ -199,7 +205,7 @@ def train(policy: str, data: Path, out: Path, overrides: dict | None = None, dev
 
 
 def _keys(ptype, cfg: PolicyConfig) -> tuple[str, ...]:
-    return ptype.model_cls().obs_keys
+    return ptype.model_cls().inputs_for(cfg)
 
 
 def _resumed_config(ptype, state: dict, overrides: dict | None, latest: Path) -> PolicyConfig:

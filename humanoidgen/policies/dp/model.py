@@ -30,7 +30,7 @@ class DPPolicy(DiffusionPolicy):
         self.encoder = resnet18_groupnorm(cfg.group_channels)
 
     def feature_dim(self) -> int:
-        return RESNET_FEATURES + self.cfg.state_dim
+        return RESNET_FEATURES + self.proprio_dim(self.cfg)
 
     def normalize_obs(self, obs: dict[str, torch.Tensor]) -> dict[str, torch.Tensor]:
         img = obs["img"]  # (..., H, W, 3) uint8, already at image_size
@@ -38,7 +38,7 @@ class DPPolicy(DiffusionPolicy):
         return {**super().normalize_obs(obs), "img": img}
 
     def encode_steps(self, obs: dict[str, torch.Tensor]) -> torch.Tensor:
-        return torch.cat([self.encoder(self._crop(obs["img"])), obs["state"]], dim=-1)
+        return torch.cat([self.encoder(self._crop(obs["img"])), self.proprio(obs)], dim=-1)
 
     def _crop(self, img: torch.Tensor) -> torch.Tensor:
         ch, cw = self.cfg.crop_size

@@ -1,5 +1,5 @@
 """DP3's encoder: a per-point MLP (Linear-LayerNorm-ReLU) max-pooled over the cloud and projected to a small
-feature (LayerNorm), concatenated with an MLP of the joint state."""
+feature (LayerNorm), concatenated with an MLP of the joint state (and the hands' poses, `observe_hands`)."""
 
 from __future__ import annotations
 
@@ -44,7 +44,7 @@ class DP3Policy(DiffusionPolicy):
         self._feat = cfg.encoder_output_dim + cfg.state_mlp[-1]
         super().__init__(cfg, {"state": cfg.state_dim, "action": cfg.action_dim, "point_cloud": 3})
         self.points = PointEncoder(cfg)
-        self.state = state_mlp(cfg.state_dim, cfg.state_mlp)
+        self.state = state_mlp(self.proprio_dim(cfg), cfg.state_mlp)
 
     def feature_dim(self) -> int:
         return self._feat
@@ -54,4 +54,4 @@ class DP3Policy(DiffusionPolicy):
         return {**super().normalize_obs(obs), "point_cloud": self.normalizer.normalize("point_cloud", pc)}
 
     def encode_steps(self, obs: dict[str, torch.Tensor]) -> torch.Tensor:
-        return torch.cat([self.points(obs["point_cloud"]), self.state(obs["state"])], dim=-1)
+        return torch.cat([self.points(obs["point_cloud"]), self.state(self.proprio(obs))], dim=-1)
