@@ -180,6 +180,7 @@ def from_eval(args) -> int:
             row["action_frame"] = state.get("config", {}).get("action_frame", "absolute")
             if "num_points" in state.get("config", {}):  # DP3's points read: a recipe's setting a run may change
                 row["num_points"] = int(state["config"]["num_points"])
+            row["observe_hands"] = bool(state.get("config", {}).get("observe_hands", False))
             perturbation = training_perturbation(state.get("meta", {}))
             if perturbation:
                 row["perturbation"] = perturbation
