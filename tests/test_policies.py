@@ -155,8 +155,10 @@ def test_hand_features_are_position_and_two_rotation_columns_whatever_the_quater
     np.testing.assert_allclose(hand_features(flipped), f, atol=1e-6)
     with pytest.raises(ValueError, match="not 14"):
         hand_features(ee[:, :7])
-    with pytest.raises(ValueError, match="zero or not finite"):
+    with pytest.raises(ValueError, match="quaternion that is zero"):
         hand_features(np.where(np.arange(14) >= 3, 0.0, 1.0)[None])
+    with pytest.raises(ValueError, match="not finite"):
+        hand_features(np.where(np.arange(14) == 0, np.nan, ee[0]))
 
 
 def test_a_policy_observing_the_hands_reads_their_poses_in_training_and_in_the_env(demos_zarr, tmp_path):

@@ -88,6 +88,8 @@ class PolicyConfig(_Strict):
     # cloud is in) fed beside the joint state. The joint state tells where a hand is only through the arm's
     # kinematics, which a network has to learn from the data; close_drawer's grips are made in postures up to
     # 5.6 rad apart on a joint (bench/demo_postures.py), where 50 demonstrations leave that map thinly sampled.
+    # Measured there: no gain (DP3 fast on two DART draws, 33.3% against 35.0%, the same teacher-forced miss;
+    # docs/results/policies.md), so it is off by default.
     observe_hands: bool = False
 
     @model_validator(mode="after")

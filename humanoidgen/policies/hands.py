@@ -19,12 +19,14 @@ def hand_features(ee_pose: np.ndarray) -> np.ndarray:
     if x.shape[-1] != EE_POSE_DIM:
         raise ValueError(f"ee_pose has {x.shape[-1]} numbers per frame, not {EE_POSE_DIM} (two hands' position "
                          "and quaternion)")
+    if not np.all(np.isfinite(x)):
+        raise ValueError("ee_pose holds numbers that are not finite")
     parts = []
     for first in (0, 7):
         q = x[..., first + 3: first + 7]
         norm = np.linalg.norm(q, axis=-1, keepdims=True)
-        if not np.all(np.isfinite(norm)) or np.any(norm < 1e-9):
-            raise ValueError("ee_pose holds a quaternion that is zero or not finite")
+        if np.any(norm < 1e-9):
+            raise ValueError("ee_pose holds a quaternion that is zero")
         w, qx, qy, qz = np.moveaxis(q / norm, -1, 0)
         parts += [x[..., first: first + 3],
                   np.stack([1 - 2 * (qy * qy + qz * qz), 2 * (qx * qy + w * qz), 2 * (qx * qz - w * qy),
