@@ -9,6 +9,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from humanoidgen.sim.geometry import quat_to_mat
+
 EE_POSE_DIM = 14  # per hand: x, y, z, qw, qx, qy, qz
 HAND_FEATURES = 18  # per hand: x, y, z and two rotation columns
 
@@ -21,14 +23,12 @@ def hand_features(ee_pose: np.ndarray) -> np.ndarray:
                          "and quaternion)")
     if not np.all(np.isfinite(x)):
         raise ValueError("ee_pose holds numbers that are not finite")
+    frames = x.reshape(-1, EE_POSE_DIM)
     parts = []
     for first in (0, 7):
-        q = x[..., first + 3: first + 7]
-        norm = np.linalg.norm(q, axis=-1, keepdims=True)
-        if np.any(norm < 1e-9):
+        quats = frames[:, first + 3: first + 7]
+        if np.any(np.linalg.norm(quats, axis=-1) < 1e-9):
             raise ValueError("ee_pose holds a quaternion that is zero")
-        w, qx, qy, qz = np.moveaxis(q / norm, -1, 0)
-        parts += [x[..., first: first + 3],
-                  np.stack([1 - 2 * (qy * qy + qz * qz), 2 * (qx * qy + w * qz), 2 * (qx * qz - w * qy),
-                            2 * (qx * qy - w * qz), 1 - 2 * (qx * qx + qz * qz), 2 * (qy * qz + w * qx)], axis=-1)]
-    return np.concatenate(parts, axis=-1).astype(np.float32)
+        R = np.stack([quat_to_mat(q) for q in quats]).reshape(-1, 3, 3)
+        parts += [frames[:, first: first + 3], R[:, :, 0], R[:, :, 1]]
+    return np.concatenate(parts, axis=-1).reshape(*x.shape[:-1], HAND_FEATURES).astype(np.float32)
