@@ -177,10 +177,11 @@ def from_eval(args) -> int:
         if Path(row["checkpoint"]).is_file():
             state = ck.read(Path(row["checkpoint"]))
             row["epochs"] = int(state.get("epoch", state.get("meta", {}).get("epoch", row["epochs"])))
-            row["action_frame"] = state.get("config", {}).get("action_frame", "absolute")
-            if "num_points" in state.get("config", {}):  # DP3's points read: a recipe's setting a run may change
-                row["num_points"] = int(state["config"]["num_points"])
-            row["observe_hands"] = bool(state.get("config", {}).get("observe_hands", False))
+            config = state.get("config", {})
+            row["action_frame"] = config.get("action_frame", "absolute")
+            if "num_points" in config:  # DP3's points read: a recipe's setting a run may change
+                row["num_points"] = int(config["num_points"])
+            row["observe_hands"] = bool(config.get("observe_hands", False))
             perturbation = training_perturbation(state.get("meta", {}))
             if perturbation:
                 row["perturbation"] = perturbation
