@@ -1,6 +1,6 @@
 """How closely a trained policy reproduces its own demonstrations' actions, in radians: teacher-forced (each sampled
 frame's recorded observations in, the predicted actions to execute against the recorded ones), per joint, beside
-the range each joint's recorded targets span; and, with --closed-loop N, the policy run in the first N scenes it
+the range each joint's recorded targets span, and in metres where the hands land (`hand_misses`); and, with --closed-loop N, the policy run in the first N scenes it
 was trained on (the collection's seeds 0..N-1), not the evaluation's unseen ones.
 
 A policy fits its data in [-1, 1]: the actions are normalized over their range, so the same fit misses by more
@@ -60,6 +60,42 @@ def teacher_forced(model, arrays: dict[str, np.ndarray], frames: list[int]) -> n
     return np.asarray(errors)
 
 
+def hand_misses(model, arrays: dict[str, np.ndarray], frames: list[int], follower) -> dict:
+    """How far (m) each moving hand lands from where the recorded targets put it (the largest miss over the
+    executed actions of each frame, median and 90th percentile over frames): at the predicted joint targets; and,
+    for a policy predicting hand targets (`hand_targets`), its predicted target and the joints followed onto it
+    (`HandFollower.follow`, as execution does). The same predictions as `teacher_forced` (the same noise)."""
+    import torch
+
+    cfg = model.cfg
+    keys = [k for k in model.obs_keys if k in arrays]
+    ways: dict[str, list[np.ndarray]] = {"joints": [], "hand_target": [], "followed": []}
+    for t in frames:
+        obs_idx = list(range(t - cfg.n_obs_steps + 1, t + 1))
+        obs = {k: torch.as_tensor(np.asarray(arrays[k][obs_idx])[None], dtype=torch.float32) for k in keys}
+        pred = model.predict_action(obs, generator=torch.Generator().manual_seed(t))
+        joints = pred["action"][0].numpy()
+        want = follower.targets(np.asarray(arrays["action"][t: t + len(joints)]))
+        landed = {"joints": follower.targets(joints)}
+        if "hand_target" in pred:
+            target = pred["hand_target"][0].numpy()
+            landed["hand_target"] = target
+            landed["followed"] = follower.targets(np.stack([follower.follow(a, h) for a, h in zip(joints, target)]))
+        for way, got in landed.items():
+            ways[way].append(np.stack([np.linalg.norm(got[:, k:k + 3] - want[:, k:k + 3], axis=1).max()
+                                       for k in (0, 9)]))
+    span = [np.ptp(follower.targets(np.asarray(arrays["action"]))[:, k:k + 3], axis=0).max() for k in (0, 9)]
+    moving = [h for h, s in zip(("left", "right"), span) if s > 1e-3]
+    out: dict = {"hands": moving}
+    for way, rows in ways.items():
+        if rows:
+            m = np.asarray(rows)
+            out[way] = {h: {"median_m": round(float(np.median(m[:, i])), 4),
+                            "p90_m": round(float(np.percentile(m[:, i], 90)), 4)}
+                        for i, h in enumerate(("left", "right")) if h in moving}
+    return out
+
+
 def summary(errors: np.ndarray, actions: np.ndarray) -> dict:
     """Per moving joint: its recorded span and the mean teacher-forced error; and their medians."""
     span = actions.max(axis=0) - actions.min(axis=0)
@@ -114,14 +150,20 @@ def main() -> None:
     result = {"checkpoint": str(args.checkpoint), "data": str(args.data), "task": meta.get("task"),
               "action_frame": getattr(cfg, "action_frame", "absolute"),
               "teacher_forced": summary(teacher_forced(model, arrays, frames), np.asarray(arrays["action"]))}
+    if meta.get("task"):  # where the hands land, on the task's model
+        from humanoidgen.policies.hand_targets import follower_for_task
+
+        result["teacher_forced"]["hand_miss"] = hand_misses(model, arrays, frames, follower_for_task(meta["task"]))
     if args.closed_loop:
         result["closed_loop"] = closed_loop(args.checkpoint, meta["task"], args.closed_loop)
     result["settings"] = {"commit": commit(), "machine": machine(), "seconds": round(time.perf_counter() - t0, 1)}
     out = ROOT / "results" / f"action_error_{args.name}.json"
     out.write_text(json.dumps(result, indent=1))
     tf = result["teacher_forced"]
+    hands = "".join(f"; {hand} hand {way} {v[hand]['median_m'] * 100:.2f} cm" for way, v in
+                    tf.get("hand_miss", {}).items() if way != "hands" for hand in v)
     print(f"{args.name}: median error {tf['median_error_rad']} rad over {len(tf['joints'])} moving joints "
-          f"(spans {tf['span_rad']})" + (f"; closed loop {result['closed_loop']['success']}/{args.closed_loop}"
+          f"(spans {tf['span_rad']}){hands}" + (f"; closed loop {result['closed_loop']['success']}/{args.closed_loop}"
                                          if args.closed_loop else "") + f" -> {out}")
 
 
