@@ -1,6 +1,6 @@
 """How closely a trained policy reproduces its own demonstrations' actions, in radians: teacher-forced (each sampled
 frame's recorded observations in, the predicted actions to execute against the recorded ones), per joint, beside
-the range each joint's recorded targets span, and in metres where the hands land (`hand_misses`); and, with --closed-loop N, the policy run in the first N scenes it
+the range each joint's recorded targets span, and in metres where the hands land at the predicted targets (`hand_misses`); and, with --closed-loop N, the policy run in the first N scenes it
 was trained on (the collection's seeds 0..N-1), not the evaluation's unseen ones.
 
 A policy fits its data in [-1, 1]: the actions are normalized over their range, so the same fit misses by more
@@ -60,40 +60,58 @@ def teacher_forced(model, arrays: dict[str, np.ndarray], frames: list[int]) -> n
     return np.asarray(errors)
 
 
-def hand_misses(model, arrays: dict[str, np.ndarray], frames: list[int], follower) -> dict:
-    """How far (m) each moving hand lands from where the recorded targets put it (the largest miss over the
-    executed actions of each frame, median and 90th percentile over frames): at the predicted joint targets; and,
-    for a policy predicting hand targets (`hand_targets`), its predicted target and the joints followed onto it
-    (`HandFollower.follow`, as execution does). The same predictions as `teacher_forced` (the same noise)."""
+class HandFrames:
+    """Where each hand's frame is at given arm joint targets: forward kinematics on a scratch copy of a task's
+    model (any of its scenes: the arms and their base are the same in every one)."""
+
+    def __init__(self, model) -> None:
+        import mujoco
+
+        from humanoidgen.sim.action import ARM_SLICE
+        from humanoidgen.sim.layout import ARM_JOINTS, HAND_BASE_FRAME
+
+        self.model, self.data, self._mujoco = model, mujoco.MjData(model), mujoco
+        self.arms = {side: (ARM_SLICE[side], np.array([model.jnt_qposadr[model.joint(n).id] for n in ARM_JOINTS[side]]),
+                            model.site(HAND_BASE_FRAME[side]).id) for side in ("left", "right")}
+
+    @classmethod
+    def for_task(cls, task: str) -> HandFrames:
+        from humanoidgen.tasks.registry import load_task
+        from humanoidgen.tasks.scene import build_scene
+
+        return cls(build_scene(load_task(task), None, settle_s=0.0)[1].model)
+
+    def positions(self, actions: np.ndarray) -> np.ndarray:
+        """(T, action_dim) joint targets -> (T, 2, 3): the left and right hands' positions at them."""
+        out = np.empty((len(actions), 2, 3))
+        for t, row in enumerate(np.asarray(actions, np.float64)):
+            for arm, qadr, _ in self.arms.values():
+                self.data.qpos[qadr] = row[arm]
+            self._mujoco.mj_kinematics(self.model, self.data)
+            for k, (_, _, site) in enumerate(self.arms.values()):
+                out[t, k] = self.data.site_xpos[site]
+        return out
+
+
+def hand_misses(model, arrays: dict[str, np.ndarray], frames: list[int], hands) -> dict:
+    """How far (m) each moving hand lands, at the predicted joint targets, from where the recorded targets put it:
+    the largest miss over the executed actions of each frame, median and 90th percentile over frames. The same
+    predictions as `teacher_forced` (the same noise). `hands.positions(actions) -> (T, 2, 3)` (`HandFrames`)."""
     import torch
 
     cfg = model.cfg
     keys = [k for k in model.obs_keys if k in arrays]
-    ways: dict[str, list[np.ndarray]] = {"joints": [], "hand_target": [], "followed": []}
+    misses = []
     for t in frames:
         obs_idx = list(range(t - cfg.n_obs_steps + 1, t + 1))
         obs = {k: torch.as_tensor(np.asarray(arrays[k][obs_idx])[None], dtype=torch.float32) for k in keys}
-        pred = model.predict_action(obs, generator=torch.Generator().manual_seed(t))
-        joints = pred["action"][0].numpy()
-        want = follower.targets(np.asarray(arrays["action"][t: t + len(joints)]))
-        landed = {"joints": follower.targets(joints)}
-        if "hand_target" in pred:
-            target = pred["hand_target"][0].numpy()
-            landed["hand_target"] = target
-            landed["followed"] = follower.targets(np.stack([follower.follow(a, h) for a, h in zip(joints, target)]))
-        for way, got in landed.items():
-            ways[way].append(np.stack([np.linalg.norm(got[:, k:k + 3] - want[:, k:k + 3], axis=1).max()
-                                       for k in (0, 9)]))
-    span = [np.ptp(follower.targets(np.asarray(arrays["action"]))[:, k:k + 3], axis=0).max() for k in (0, 9)]
-    moving = [h for h, s in zip(("left", "right"), span) if s > 1e-3]
-    out: dict = {"hands": moving}
-    for way, rows in ways.items():
-        if rows:
-            m = np.asarray(rows)
-            out[way] = {h: {"median_m": round(float(np.median(m[:, i])), 4),
-                            "p90_m": round(float(np.percentile(m[:, i], 90)), 4)}
-                        for i, h in enumerate(("left", "right")) if h in moving}
-    return out
+        joints = model.predict_action(obs, generator=torch.Generator().manual_seed(t))["action"][0].numpy()
+        want = hands.positions(np.asarray(arrays["action"][t: t + len(joints)]))
+        misses.append(np.linalg.norm(hands.positions(joints) - want, axis=-1).max(axis=0))
+    span = np.ptp(hands.positions(np.asarray(arrays["action"])), axis=0).max(axis=-1)
+    m = np.asarray(misses)
+    return {h: {"median_m": round(float(np.median(m[:, i])), 4), "p90_m": round(float(np.percentile(m[:, i], 90)), 4)}
+            for i, h in enumerate(("left", "right")) if span[i] > 1e-3}
 
 
 def summary(errors: np.ndarray, actions: np.ndarray) -> dict:
@@ -151,17 +169,15 @@ def main() -> None:
               "action_frame": getattr(cfg, "action_frame", "absolute"),
               "teacher_forced": summary(teacher_forced(model, arrays, frames), np.asarray(arrays["action"]))}
     if meta.get("task"):  # where the hands land, on the task's model
-        from humanoidgen.policies.hand_targets import follower_for_task
-
-        result["teacher_forced"]["hand_miss"] = hand_misses(model, arrays, frames, follower_for_task(meta["task"]))
+        result["teacher_forced"]["hand_miss"] = hand_misses(model, arrays, frames, HandFrames.for_task(meta["task"]))
     if args.closed_loop:
         result["closed_loop"] = closed_loop(args.checkpoint, meta["task"], args.closed_loop)
     result["settings"] = {"commit": commit(), "machine": machine(), "seconds": round(time.perf_counter() - t0, 1)}
     out = ROOT / "results" / f"action_error_{args.name}.json"
     out.write_text(json.dumps(result, indent=1))
     tf = result["teacher_forced"]
-    hands = "".join(f"; {hand} hand {way} {v[hand]['median_m'] * 100:.2f} cm" for way, v in
-                    tf.get("hand_miss", {}).items() if way != "hands" for hand in v)
+    hands = "".join(f"; the {hand} hand {v['median_m'] * 100:.2f} cm off (median)" for hand, v in
+                    tf.get("hand_miss", {}).items())
     print(f"{args.name}: median error {tf['median_error_rad']} rad over {len(tf['joints'])} moving joints "
           f"(spans {tf['span_rad']}){hands}" + (f"; closed loop {result['closed_loop']['success']}/{args.closed_loop}"
                                          if args.closed_loop else "") + f" -> {out}")

@@ -49,44 +49,40 @@ def test_the_error_is_the_largest_miss_per_joint_and_only_moving_joints_are_summ
     assert s["mean_error_rad"] == [0.03, 0.0] and s["error_per_span"] == [0.015, 0.0]
 
 
-class _Follower:
-    """A stand-in for HandFollower: the left hand sits at joints 0-2, the right hand never moves; following a
-    hand target puts joints 0-2 on it."""
 
-    def targets(self, actions):
-        out = np.zeros((len(actions), 18))
-        out[:, :3] = np.asarray(actions)[:, :3]
+class _Hands:
+    """A stand-in for HandFrames: the left hand sits at joints 0-2, the right hand never moves."""
+
+    def positions(self, actions):
+        out = np.zeros((len(actions), 2, 3))
+        out[:, 0] = np.asarray(actions)[:, :3]
         return out
 
-    def follow(self, action, target):
-        a = np.array(action, float)
-        a[:3] = target[:3]
-        return a
 
-
-class _WithTargets(_Off):
-    """_Off, also predicting the left hand's targets 2 mm off the recorded ones."""
-
-    def predict_action(self, obs, generator=None):
-        out = _Off.predict_action(self, obs, generator)
-        t = int(obs["state"][0, -1, 0])
-        target = _Follower().targets(self.actions[t: t + 3])
-        target[:, 0] += 0.002
-        return {**out, "hand_target": torch.as_tensor(target[None])}
-
-
-def test_the_hands_miss_is_measured_where_they_land_for_each_way_of_placing_them():
+def test_the_hands_miss_is_measured_where_they_land_at_the_predicted_targets():
     bench = load_bench("action_error")
-    ends = np.array([25])
     actions = np.zeros((25, 4))
     actions[:, 1] = np.linspace(0, 2.0, 25)
     state = np.arange(25, dtype=float)[:, None].repeat(4, axis=1)
-    frames = bench.sample_frames(ends, 2, 3, 20)
-    arrays = {"state": state, "action": actions}
-    joints_only = bench.hand_misses(_Off(actions, 0.01), arrays, frames, _Follower())
-    assert joints_only["hands"] == ["left"]  # the right hand never moves
-    assert joints_only["joints"]["left"]["median_m"] == pytest.approx(0.03)  # joint 1's miss, the largest of three
-    assert set(joints_only) == {"hands", "joints"}
-    both = bench.hand_misses(_WithTargets(actions, 0.01), arrays, frames, _Follower())
-    assert both["hand_target"]["left"]["median_m"] == pytest.approx(0.002)
-    assert both["followed"]["left"]["median_m"] == pytest.approx(0.002)  # the joints followed onto the target
+    frames = bench.sample_frames(np.array([25]), 2, 3, 20)
+    got = bench.hand_misses(_Off(actions, 0.01), {"state": state, "action": actions}, frames, _Hands())
+    assert set(got) == {"left"}  # the right hand never moves
+    assert got["left"]["median_m"] == pytest.approx(0.03)  # joint 1's miss, the largest of the three executed
+
+
+def test_hand_frames_are_the_simulations_own_at_those_joints():
+    import mujoco
+
+    from humanoidgen.tasks.registry import load_task
+    from humanoidgen.tasks.scene import build_scene
+
+    _, sim = build_scene(load_task("close_drawer"), 0, settle_s=0.0)
+    bench = load_bench("action_error")
+    rng = np.random.default_rng(0)
+    actions = sim.joint_positions()[None].repeat(4, axis=0)
+    actions[:, :14] += rng.uniform(-0.3, 0.3, (4, 14))
+    got = bench.HandFrames(sim.model).positions(actions)
+    for a, p in zip(actions, got):
+        sim.set_joint_positions(a)
+        mujoco.mj_kinematics(sim.model, sim.data)
+        np.testing.assert_allclose(p, [sim.hand_pose(s)[0] for s in ("left", "right")], atol=1e-9)

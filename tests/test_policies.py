@@ -190,43 +190,6 @@ def test_a_policy_observing_the_hands_reads_their_poses_in_training_and_in_the_e
         train("dp3", bare, tmp_path / "bare_run", over, device="cpu", progress=False)
 
 
-def test_a_policy_predicting_hand_targets_trains_on_their_kinematics_and_executes_through_them(
-        demos_zarr, tmp_path, monkeypatch):
-    from humanoidgen.policies import hand_targets
-
-    run = tmp_path / "dp3_hand_targets"
-    over = {**_with(TINY_DP3, epochs=2), "action_frame": "relative", "hand_targets": True}
-    result = train("dp3", demos_zarr, run, over, device="cpu", progress=False)
-    assert np.isfinite(result.losses).all()
-    model, _ = ck.load_policy(ck.run_checkpoints(run)[-1])
-    assert model.unet.final[-1].out_channels == 26 + 18  # the joint targets, then the hands' targets
-    # The hand targets' range was fitted on the recorded arm targets' kinematics (the left hand moves in
-    # close_drawer: its position spans centimetres).
-    demos = read_demos(demos_zarr, ("state", "point_cloud", "action"))
-    fk = hand_targets.follower_for_task("close_drawer").targets(demos.arrays["action"])
-    lo = model.normalizer.unnormalize("hand_target", -torch.ones(18)).numpy()
-    np.testing.assert_allclose(lo[:9], fk.min(axis=0)[:9], atol=1e-5)  # (the idle right hand's: constant)
-    n = model.cfg.n_obs_steps
-    obs = {"state": torch.as_tensor(demos.arrays["state"][None, 10:10 + n]),
-           "point_cloud": torch.as_tensor(demos.arrays["point_cloud"][None, 10:10 + n])}
-    pred = model.predict_action(obs, generator=torch.Generator().manual_seed(0))
-    assert pred["action"].shape == (1, model.cfg.n_action_steps, 26)
-    assert pred["hand_target"].shape == (1, model.cfg.n_action_steps, 18)
-    # In the env every executed action went through the follower, with the predicted hand target.
-    followed = []
-    real = hand_targets.HandFollower.follow
-
-    def spy(self, action, target):
-        followed.append(target.shape)
-        return real(self, action, target)
-
-    monkeypatch.setattr(hand_targets.HandFollower, "follow", spy)
-    report = evaluate(run, "close_drawer", episodes=1, seeds=(0,), device="cpu", progress=False, max_steps=3,
-                      baselines=False)
-    steps = sum(o.steps for o in report.outcomes)
-    assert steps > 0 and len(followed) >= steps and set(followed) == {(18,)}
-
-
 def hand_features_of(ee_pose):
     from humanoidgen.policies.hands import hand_features
 

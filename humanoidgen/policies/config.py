@@ -91,12 +91,6 @@ class PolicyConfig(_Strict):
     # Measured there: no gain (DP3 fast on two DART draws, 33.3% against 35.0%, the same teacher-forced miss;
     # docs/results/policies.md), so it is off by default.
     observe_hands: bool = False
-    # The hands' targets predicted beside the joint targets (`policies.hand_targets`): per hand, where its frame
-    # is at the recorded arm targets (18 numbers, the world frame the cloud is in); executed, each arm's predicted
-    # joint targets are pulled so that its hand lands on its predicted target. A joint target's error moves the
-    # hand by the arm's length times it (0.04 rad a joint on the left arm: 2.7 cm median on close_drawer's
-    # demonstrations), where the hand's own target is predicted beside the handle the cloud shows.
-    hand_targets: bool = False
 
     @model_validator(mode="after")
     def _actions_fit(self) -> PolicyConfig:

@@ -29,11 +29,9 @@ class DiffusionPolicy(nn.Module):
             norm_dims = {**norm_dims, "target": cfg.action_dim}
         if cfg.observe_hands:
             norm_dims = {**norm_dims, "hands": HAND_FEATURES}
-        if cfg.hand_targets:
-            norm_dims = {**norm_dims, "hand_target": HAND_FEATURES}
         self.obs_keys = self.inputs_for(cfg)
         self.normalizer = MinMaxNormalizer(norm_dims)
-        self.unet = ConditionalUnet1D(self.denoised_dim(cfg), self.feature_dim() * cfg.n_obs_steps, cfg.unet)
+        self.unet = ConditionalUnet1D(cfg.action_dim, self.feature_dim() * cfg.n_obs_steps, cfg.unet)
         n = cfg.noise
         common = dict(num_train_timesteps=n.num_train_timesteps, beta_start=1e-4, beta_end=0.02,
                       beta_schedule=n.beta_schedule, clip_sample=n.clip_sample, prediction_type=n.prediction_type)
@@ -44,16 +42,6 @@ class DiffusionPolicy(nn.Module):
     def inputs_for(cls, cfg: PolicyConfig) -> tuple[str, ...]:
         """The observations (the zarr's names) a policy of this kind with `cfg` reads."""
         return cls.obs_keys + (("hands",) if cfg.observe_hands else ())
-
-    @staticmethod
-    def action_keys(cfg: PolicyConfig) -> tuple[str, ...]:
-        """The data a training sample takes over its whole horizon (the rest: over its observation steps)."""
-        return ("action", "hand_target") if cfg.hand_targets else ("action",)
-
-    @staticmethod
-    def denoised_dim(cfg: PolicyConfig) -> int:
-        """Numbers per step of what the U-Net denoises: the joint targets, then the hands' targets if predicted."""
-        return cfg.action_dim + (HAND_FEATURES if cfg.hand_targets else 0)
 
     @staticmethod
     def proprio_dim(cfg: PolicyConfig) -> int:
@@ -106,8 +94,6 @@ class DiffusionPolicy(nn.Module):
 
     def compute_loss(self, batch: dict[str, torch.Tensor]) -> torch.Tensor:
         action = self.normalizer.normalize("action", self.framed(batch["action"].float(), batch["state"]))
-        if self.cfg.hand_targets:
-            action = torch.cat([action, self.normalizer.normalize("hand_target", batch["hand_target"].float())], -1)
         cond = self.global_cond(batch)
         noise = torch.randn_like(action)
         t = torch.randint(0, self.train_scheduler.config.num_train_timesteps, (action.shape[0],),
@@ -122,17 +108,13 @@ class DiffusionPolicy(nn.Module):
                        ) -> dict[str, torch.Tensor]:
         cond = self.global_cond(obs)
         cfg = self.cfg
-        x = torch.randn((cond.shape[0], cfg.horizon, self.denoised_dim(cfg)), generator=generator,
+        x = torch.randn((cond.shape[0], cfg.horizon, cfg.action_dim), generator=generator,
                         device=cond.device if generator is None else generator.device).to(cond.device)
         sched = self.sample_scheduler
         sched.set_timesteps(cfg.noise.num_inference_steps)
         for t in sched.timesteps:
             out = self.unet(x, t.to(cond.device), cond)
             x = sched.step(out, t, x, generator=generator).prev_sample
-        seq = self.unframed(self.normalizer.unnormalize("action", x[..., : cfg.action_dim]), obs["state"])
+        seq = self.unframed(self.normalizer.unnormalize("action", x), obs["state"])
         start = cfg.n_obs_steps - 1
-        out = {"action_pred": seq, "action": seq[:, start: start + cfg.n_action_steps]}
-        if cfg.hand_targets:  # executed through policies.hand_targets.HandFollower (rollout)
-            hands = self.normalizer.unnormalize("hand_target", x[..., cfg.action_dim:])
-            out["hand_target"] = hands[:, start: start + cfg.n_action_steps]
-        return out
+        return {"action_pred": seq, "action": seq[:, start: start + cfg.n_action_steps]}

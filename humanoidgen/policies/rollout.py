@@ -94,20 +94,12 @@ def rollout(model, env, scene_seed: int, generator: torch.Generator, device: str
     if hasattr(model, "start_episode"):  # a baseline that remembers the episode's start (`baselines.noop_policy`)
         model.start_episode(obs)
     history = deque([obs] * model.cfg.n_obs_steps, maxlen=model.cfg.n_obs_steps)
-    follower = None
-    if getattr(model.cfg, "hand_targets", False):  # the arms' targets pulled onto the predicted hand targets
-        from humanoidgen.policies.hand_targets import HandFollower
-
-        follower = HandFollower(env.sim.model)
     steps, done = 0, False
     if video is not None:
         video.frame(env.render())
     while not done:
-        pred = model.predict_action(policy_obs(model, history, device), generator=generator)
-        actions = pred["action"][0].cpu().numpy()
-        if follower is not None:
-            actions = [follower.follow(a, t) for a, t in zip(actions, pred["hand_target"][0].cpu().numpy())]
-        for a in actions:
+        actions = model.predict_action(policy_obs(model, history, device), generator=generator)["action"][0]
+        for a in actions.cpu().numpy():
             obs, _, terminated, truncated, info = env.step(a)
             history.append(obs)
             steps += 1

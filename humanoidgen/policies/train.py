@@ -127,10 +127,6 @@ def train(policy: str, data: Path, out: Path, overrides: dict | None = None, dev
     torch.manual_seed(cfg.train.seed)
     model = ptype.model_cls()(cfg)
     inputs = policy_inputs(model, demos)
-    if cfg.hand_targets:  # the hands' frames at the recorded arm targets, on the task's model
-        from humanoidgen.policies.hand_targets import follower_for_task
-
-        inputs["hand_target"] = torch.as_tensor(follower_for_task(meta["task"]).targets(demos.arrays["action"]))
     index = torch.as_tensor(sequence_index(demos.episode_ends, cfg.horizon, cfg.n_obs_steps, cfg.n_action_steps))
     fit = {k: v.numpy() for k, v in inputs.items() if k in model.normalizer.keys}
     if cfg.action_frame == "relative":  # the range of what the U-Net denoises: every sample's actions, framed
@@ -139,7 +135,6 @@ def train(policy: str, data: Path, out: Path, overrides: dict | None = None, dev
     model.normalizer.fit(fit)
     model.to(device)
     ema = EmaWeights(model, cfg.train)
-    whole = model.action_keys(cfg)
     tc = cfg.train
     steps_per_epoch = max(1, math.ceil(len(index) / tc.batch_size))
     opt = torch.optim.AdamW(model.parameters(), lr=tc.lr, betas=tc.betas, weight_decay=tc.weight_decay)
@@ -179,7 +174,7 @@ def train(policy: str, data: Path, out: Path, overrides: dict | None = None, dev
             total = 0.0
             for b in range(steps_per_epoch):
                 rows = order[b * tc.batch_size: (b + 1) * tc.batch_size]
-                batch = {k: v[rows if k in whole else rows[:, : cfg.n_obs_steps]].to(device)
+                batch = {k: v[rows[:, : cfg.n_obs_steps] if k != "action" else rows].to(device)
                          for k, v in inputs.items()}
                 loss = model.compute_loss(batch)
                 opt.zero_grad(set_to_none=True)
