@@ -190,6 +190,33 @@ def test_a_policy_observing_the_hands_reads_their_poses_in_training_and_in_the_e
         train("dp3", bare, tmp_path / "bare_run", over, device="cpu", progress=False)
 
 
+def test_a_temporally_ensembled_evaluation_predicts_at_every_action_and_says_so(demos_zarr, tmp_path, monkeypatch):
+    from humanoidgen.policies.diffusion import DiffusionPolicy
+    from humanoidgen.policies.study_rows import rows_from_eval
+
+    run = tmp_path / "dp3_ens"
+    train("dp3", demos_zarr, run, _with(TINY_DP3, epochs=2), device="cpu", progress=False)
+    calls = []
+    real = DiffusionPolicy.predict_action
+
+    def counted(self, obs, generator=None):
+        calls.append(1)
+        return real(self, obs, generator=generator)
+
+    monkeypatch.setattr(DiffusionPolicy, "predict_action", counted)
+    report = evaluate(run, "close_drawer", episodes=1, seeds=(0,), device="cpu", progress=False, max_steps=5,
+                      baselines=False, temporal_ensemble=0.1)
+    steps = sum(o.steps for o in report.outcomes)
+    assert len(report.checkpoints) == 1 and steps == 5 and len(calls) == steps  # one prediction an action
+    assert report.info == {"temporal_ensemble": 0.1}
+    rows = rows_from_eval(report.to_dict(), 2, "fast", 2)  # a study row says how it was executed
+    assert rows[0]["temporal_ensemble"] == 0.1
+    calls.clear()
+    chunked = evaluate(run, "close_drawer", episodes=1, seeds=(0,), device="cpu", progress=False, max_steps=5,
+                       baselines=False)
+    assert len(calls) < sum(o.steps for o in chunked.outcomes) and chunked.info == {}
+
+
 def hand_features_of(ee_pose):
     from humanoidgen.policies.hands import hand_features
 
@@ -261,6 +288,9 @@ def test_bad_input_is_one_line_and_exit_1(demos_zarr, tmp_path):
     r = runner.invoke(app, ["policy", "eval", str(run), "--task", "open_box_easy", "--episodes", "1"])
     assert r.exit_code == 1 and "trained on task 'close_drawer', not 'open_box_easy'" in r.output
     assert len(r.output.strip().splitlines()) == 1
+    r = runner.invoke(app, ["policy", "eval", str(run), "--episodes", "1", "--temporal-ensemble", "0.1",
+                            "--action-steps", "2"])
+    assert r.exit_code == 1 and "not with --action-steps" in r.output and len(r.output.strip().splitlines()) == 1
     r = runner.invoke(app, ["policy", "train", "--policy", "dp3", "--data", str(tmp_path / "missing.zarr"),
                             "--out", str(tmp_path / "y")])
     assert r.exit_code == 1 and "no training data" in r.output

@@ -158,6 +158,10 @@ def eval(  # noqa: A001 - the command is called eval
     ray_gpus: float = typer.Option(0.0, min=0.0, help="With --ray, GPUs per episode."),
     action_steps: int | None = typer.Option(None, "--action-steps", help="Actions executed per prediction "
                                                                           "(default: the run's n_action_steps)."),
+    temporal_ensemble: float | None = typer.Option(None, "--temporal-ensemble", min=0.0, help="Predict at every "
+                                                   "action and execute the weighted mean of the overlapping "
+                                                   "predictions (ACT's temporal ensembling; weights exp(-M i), "
+                                                   "oldest first: 0.1 is nearly a plain mean)."),
     baselines: bool = typer.Option(True, "--baselines/--no-baselines", help="Also run the random and noop "
                                                                             "baselines on the same scenes."),
     data: Path | None = typer.Option(None, "--data", help="With --policy random: draw targets within this zarr's "
@@ -205,7 +209,7 @@ def eval(  # noqa: A001 - the command is called eval
                 report = evaluate(run, task, episodes, seed_list, checkpoints=checkpoint or None, device=device,
                                   video_dir=video, max_steps=max_steps, ray_address=ray_address, ray_gpus=ray_gpus,
                                   action_steps=action_steps, baselines=baselines, randomize=randomized,
-                                  dataset=data)
+                                  dataset=data, temporal_ensemble=temporal_ensemble)
             reports.append(report)
             for (ckpt, seed), rate in report.rates().items():
                 typer.echo(f"{Path(ckpt).name} seed {seed} ({report.scenes}): {100 * rate:.0f}% of {episodes}")

@@ -34,13 +34,16 @@ def evaluate(run: Path, task: str | None = None, episodes: int = 20, seeds: tupl
              checkpoints: list[Path] | None = None, device: str = "auto", video_dir: Path | None = None,
              progress: bool = True, max_steps: int | None = None, ray_address: str | None = None,
              ray_gpus: float = 0.0, action_steps: int | None = None, baselines: bool = True,
-             randomize: bool = False, dataset: Path | None = None) -> EvalReport:
+             randomize: bool = False, dataset: Path | None = None,
+             temporal_ensemble: float | None = None) -> EvalReport:
     """Evaluate a run's checkpoints (all kept ones, or `checkpoints`) on its task; `max_steps` shortens
     episodes below the task's time limit (for quick checks); `action_steps`: actions executed per prediction
     (default: each checkpoint's n_action_steps); `ray_address`: each episode a Ray task (`ray_eval`), with the
     same outcomes; `baselines`: the random and no-op baselines on the same scenes too (`report.baselines`;
     random targets within the demonstrations' action range, as the first checkpoint's normalizer has it);
-    `randomize`: the same scene seeds dressed from their seeds (`TaskEnvConfig.randomize`), baselines too.
+    `randomize`: the same scene seeds dressed from their seeds (`TaskEnvConfig.randomize`), baselines too;
+    `temporal_ensemble`: a prediction every action, the overlapping ones averaged (`ensemble.TemporalEnsemble`,
+    its weight decay; the report's `info` says it).
     A LeRobot checkpoint (`run` a `pretrained_model` folder, `lerobot_eval`) is evaluated on the task of the
     export it was trained on (`dataset`, default: the one its train_config.json names)."""
     from tqdm import tqdm
@@ -48,18 +51,29 @@ def evaluate(run: Path, task: str | None = None, episodes: int = 20, seeds: tupl
     from humanoidgen.policies.lerobot_policy import is_lerobot_checkpoint
 
     if is_lerobot_checkpoint(run):
-        if ray_address is not None or action_steps is not None:
-            raise EvalError("--ray and --action-steps are for this project's own policies, not LeRobot checkpoints")
+        if ray_address is not None or action_steps is not None or temporal_ensemble is not None:
+            raise EvalError("--ray, --action-steps and --temporal-ensemble are for this project's own policies, not "
+                            "LeRobot checkpoints")
         from humanoidgen.policies.lerobot_eval import evaluate_lerobot
 
         return evaluate_lerobot(run, task, episodes, seeds, resolve_device(device), dataset, video_dir, progress,
                                 max_steps, baselines, randomize)
 
     check_scenes(episodes, seeds)
+    if temporal_ensemble is not None and (action_steps is not None or ray_address is not None):
+        raise EvalError("--temporal-ensemble executes one action a prediction, locally: not with --action-steps "
+                        "or --ray")
     device = resolve_device(device)
     paths = [Path(p) for p in checkpoints] if checkpoints else ck.run_checkpoints(run)
     loaded = [(p, *ck.load_policy(p, device)) for p in paths]
     loaded = [(p, with_action_steps(model, action_steps), meta) for p, model, meta in loaded]
+    if temporal_ensemble is not None:
+        from humanoidgen.policies.ensemble import TemporalEnsemble
+
+        try:
+            loaded = [(p, TemporalEnsemble(model, temporal_ensemble), meta) for p, model, meta in loaded]
+        except ValueError as exc:
+            raise EvalError(str(exc)) from None
     tasks = {meta["task"] for _, _, meta in loaded}
     if len(tasks) > 1:
         raise EvalError(f"the checkpoints were trained on different tasks ({', '.join(sorted(tasks))})")
@@ -69,7 +83,8 @@ def evaluate(run: Path, task: str | None = None, episodes: int = 20, seeds: tupl
     policy = loaded[0][1].name
     env_config = env_config_for(policy, loaded[0][1].cfg, loaded[0][2], max_steps, randomize)
     report = EvalReport(trained, policy, [str(p) for p in paths], list(seeds), episodes,
-                        scenes="randomized" if randomize else "clean")
+                        scenes="randomized" if randomize else "clean",
+                        info={} if temporal_ensemble is None else {"temporal_ensemble": float(temporal_ensemble)})
     if ray_address is not None:
         from humanoidgen.policies.ray_eval import ray_outcomes
 

@@ -43,6 +43,8 @@ def rows_from_eval(report: dict, demos: int, recipe: str | None, epochs: int | N
                "episodes": [{k: o[k] for k in ("seed", "scene_seed", "success", "steps", "final")}
                             for o in part["outcomes"]],
                **_baseline_columns(part.get("baselines") or {})}
+        if (part.get("info") or {}).get("temporal_ensemble") is not None:  # executed through ensemble.py
+            row["temporal_ensemble"] = part["info"]["temporal_ensemble"]
         rows.append(with_intervals(row))
     return rows
 
