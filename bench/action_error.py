@@ -1,7 +1,8 @@
 """How closely a trained policy reproduces its own demonstrations' actions, in radians: teacher-forced (each sampled
 frame's recorded observations in, the predicted actions to execute against the recorded ones), per joint, beside
-the range each joint's recorded targets span, and in metres where the hands land at the predicted targets (`hand_misses`); and, with --closed-loop N, the policy run in the first N scenes it
-was trained on (the collection's seeds 0..N-1), not the evaluation's unseen ones.
+the range each joint's recorded targets span, and in metres where the moving hands land at the predicted targets
+(`hand_misses`); and, with --closed-loop N, the policy run in the first N scenes it was trained on (the
+collection's seeds 0..N-1), not the evaluation's unseen ones.
 
 A policy fits its data in [-1, 1]: the actions are normalized over their range, so the same fit misses by more
 radians where the targets span more. A grip tolerates a few hundredths of a radian (bench/replay_tolerance.py).
@@ -178,9 +179,9 @@ def main() -> None:
     tf = result["teacher_forced"]
     hands = "".join(f"; the {hand} hand {v['median_m'] * 100:.2f} cm off (median)" for hand, v in
                     tf.get("hand_miss", {}).items())
+    loop = f"; closed loop {result['closed_loop']['success']}/{args.closed_loop}" if args.closed_loop else ""
     print(f"{args.name}: median error {tf['median_error_rad']} rad over {len(tf['joints'])} moving joints "
-          f"(spans {tf['span_rad']}){hands}" + (f"; closed loop {result['closed_loop']['success']}/{args.closed_loop}"
-                                         if args.closed_loop else "") + f" -> {out}")
+          f"(spans {tf['span_rad']}){hands}{loop} -> {out}")
 
 
 if __name__ == "__main__":

@@ -291,6 +291,8 @@ def test_bad_input_is_one_line_and_exit_1(demos_zarr, tmp_path):
     r = runner.invoke(app, ["policy", "eval", str(run), "--episodes", "1", "--temporal-ensemble", "0.1",
                             "--action-steps", "2"])
     assert r.exit_code == 1 and "not with --action-steps" in r.output and len(r.output.strip().splitlines()) == 1
+    r = runner.invoke(app, ["policy", "eval", "--policy", "random", "close_drawer", "--temporal-ensemble", "0.1"])
+    assert r.exit_code == 1 and "baselines (--policy) have none" in r.output
     r = runner.invoke(app, ["policy", "train", "--policy", "dp3", "--data", str(tmp_path / "missing.zarr"),
                             "--out", str(tmp_path / "y")])
     assert r.exit_code == 1 and "no training data" in r.output

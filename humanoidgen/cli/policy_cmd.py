@@ -197,6 +197,8 @@ def eval(  # noqa: A001 - the command is called eval
     except ValueError:
         _fail(f"--seeds must be comma-separated integers, got {seeds!r}")
         return
+    if policy is not None and temporal_ensemble is not None:
+        _fail("--temporal-ensemble runs a trained policy's predictions; the baselines (--policy) have none to average")
     if policy is not None and policy not in BASELINE_NAMES:
         _fail(f"--policy is for the baselines ({', '.join(BASELINE_NAMES)}); a trained {policy} is evaluated from "
               f"its run folder: hgen policy eval RUN")
