@@ -45,19 +45,24 @@ def sample_frames(episode_ends: np.ndarray, n_obs: int, n_act: int, frames: int,
     return out
 
 
-def teacher_forced(model, arrays: dict[str, np.ndarray], frames: list[int]) -> np.ndarray:
-    """(frames, action_dim) the largest |predicted - recorded| over the executed actions of each frame (rad)."""
+def predicted(model, arrays: dict[str, np.ndarray], t: int) -> np.ndarray:
+    """The actions the policy would execute at frame t, from the recorded observations up to it (noise seeded by t:
+    every measure below sees the same predictions)."""
     import torch
 
     cfg = model.cfg
-    keys = [k for k in model.obs_keys if k in arrays]
+    obs_idx = list(range(t - cfg.n_obs_steps + 1, t + 1))
+    obs = {k: torch.as_tensor(np.asarray(arrays[k][obs_idx])[None], dtype=torch.float32)
+           for k in model.obs_keys if k in arrays}
+    return model.predict_action(obs, generator=torch.Generator().manual_seed(t))["action"][0].numpy()
+
+
+def teacher_forced(model, arrays: dict[str, np.ndarray], frames: list[int]) -> np.ndarray:
+    """(frames, action_dim) the largest |predicted - recorded| over the executed actions of each frame (rad)."""
     errors = []
     for t in frames:
-        obs_idx = list(range(t - cfg.n_obs_steps + 1, t + 1))
-        obs = {k: torch.as_tensor(np.asarray(arrays[k][obs_idx])[None], dtype=torch.float32) for k in keys}
-        pred = model.predict_action(obs, generator=torch.Generator().manual_seed(t))["action"][0].numpy()
-        recorded = np.asarray(arrays["action"][t: t + len(pred)])
-        errors.append(np.abs(pred - recorded).max(axis=0))
+        pred = predicted(model, arrays, t)
+        errors.append(np.abs(pred - np.asarray(arrays["action"][t: t + len(pred)])).max(axis=0))
     return np.asarray(errors)
 
 
@@ -98,15 +103,9 @@ def hand_misses(model, arrays: dict[str, np.ndarray], frames: list[int], hands) 
     """How far (m) each moving hand lands, at the predicted joint targets, from where the recorded targets put it:
     the largest miss over the executed actions of each frame, median and 90th percentile over frames. The same
     predictions as `teacher_forced` (the same noise). `hands.positions(actions) -> (T, 2, 3)` (`HandFrames`)."""
-    import torch
-
-    cfg = model.cfg
-    keys = [k for k in model.obs_keys if k in arrays]
     misses = []
     for t in frames:
-        obs_idx = list(range(t - cfg.n_obs_steps + 1, t + 1))
-        obs = {k: torch.as_tensor(np.asarray(arrays[k][obs_idx])[None], dtype=torch.float32) for k in keys}
-        joints = model.predict_action(obs, generator=torch.Generator().manual_seed(t))["action"][0].numpy()
+        joints = predicted(model, arrays, t)
         want = hands.positions(np.asarray(arrays["action"][t: t + len(joints)]))
         misses.append(np.linalg.norm(hands.positions(joints) - want, axis=-1).max(axis=0))
     span = np.ptp(hands.positions(np.asarray(arrays["action"])), axis=0).max(axis=-1)
