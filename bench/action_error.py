@@ -67,18 +67,15 @@ def teacher_forced(model, arrays: dict[str, np.ndarray], frames: list[int]) -> n
 
 
 class HandFrames:
-    """Where each hand's frame is at given arm joint targets: forward kinematics on a scratch copy of a task's
-    model (any of its scenes: the arms and their base are the same in every one)."""
+    """Where each hand's frame is at given arm joint targets: the planner's forward kinematics
+    (`planning.kinematics.Kinematics`, a scratch copy of a task's model: any of its scenes, the arms and their base
+    are the same in every one)."""
 
     def __init__(self, model) -> None:
-        import mujoco
-
+        from humanoidgen.planning.kinematics import Kinematics
         from humanoidgen.sim.action import ARM_SLICE
-        from humanoidgen.sim.layout import ARM_JOINTS, HAND_BASE_FRAME
 
-        self.model, self.data, self._mujoco = model, mujoco.MjData(model), mujoco
-        self.arms = {side: (ARM_SLICE[side], np.array([model.jnt_qposadr[model.joint(n).id] for n in ARM_JOINTS[side]]),
-                            model.site(HAND_BASE_FRAME[side]).id) for side in ("left", "right")}
+        self.kin, self.arm_slice = Kinematics(model), ARM_SLICE
 
     @classmethod
     def for_task(cls, task: str) -> HandFrames:
@@ -89,13 +86,13 @@ class HandFrames:
 
     def positions(self, actions: np.ndarray) -> np.ndarray:
         """(T, action_dim) joint targets -> (T, 2, 3): the left and right hands' positions at them."""
+        sides = ("left", "right")
         out = np.empty((len(actions), 2, 3))
         for t, row in enumerate(np.asarray(actions, np.float64)):
-            for arm, qadr, _ in self.arms.values():
-                self.data.qpos[qadr] = row[arm]
-            self._mujoco.mj_kinematics(self.model, self.data)
-            for k, (_, _, site) in enumerate(self.arms.values()):
-                out[t, k] = self.data.site_xpos[site]
+            for side in sides:
+                self.kin.set_arm(side, row[self.arm_slice[side]])
+            self.kin.forward()
+            out[t] = [self.kin.ee_pose(side)[0] for side in sides]
         return out
 
 

@@ -49,7 +49,6 @@ def test_the_error_is_the_largest_miss_per_joint_and_only_moving_joints_are_summ
     assert s["mean_error_rad"] == [0.03, 0.0] and s["error_per_span"] == [0.015, 0.0]
 
 
-
 class _Hands:
     """A stand-in for HandFrames: the left hand sits at joints 0-2, the right hand never moves."""
 
