@@ -165,6 +165,24 @@ def test_an_interrupted_run_resumes_without_replaying_what_it_has(one_demo, tmp_
         perturb_store(one_demo, tmp_path / "r", how)
 
 
+def test_a_cloud_focused_on_the_hands_is_recorded_kept_on_resume_and_refused_when_bad(one_demo, tmp_path):
+    from humanoidgen.policies import perturb
+
+    how = Perturbation(sigma=0.0, tries=1)
+    perturb_store(one_demo, tmp_path / "f", how, cloud_near_hands=0.5)
+    assert EpisodeStore(tmp_path / "f").meta()["recorder"]["point_cloud_near_hands"] == 0.5
+    assert EpisodeStore(one_demo).meta()["recorder"].get("point_cloud_near_hands", 0.0) == 0.0  # the source's
+    # resumed without the option, the store goes on as it was begun; with another share it is refused
+    perturb_store(one_demo, tmp_path / "f", how, resume=True)
+    assert EpisodeStore(tmp_path / "f").meta()["recorder"]["point_cloud_near_hands"] == 0.5
+    with pytest.raises(perturb.DatasetError, match="point_cloud_near_hands 0.5"):
+        perturb_store(one_demo, tmp_path / "f", how, resume=True, cloud_near_hands=0.0)
+    res = CliRunner().invoke(app, ["dataset", "perturb", str(one_demo), "--out", str(tmp_path / "g"),
+                                   "--cloud-near-hands", "1.5"])
+    assert res.exit_code == 1 and "point_cloud_near_hands must be in [0, 1)" in res.output
+    assert len(res.output.strip().splitlines()) == 1
+
+
 def test_two_worker_processes_write_the_store_one_process_writes(one_demo, tmp_path):
     how = Perturbation(sigma=0.02, tries=2, draws=3, seed=4)
     one = perturb_store(one_demo, tmp_path / "one", how)

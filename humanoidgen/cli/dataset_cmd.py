@@ -173,6 +173,8 @@ def perturb(
     resume: bool = typer.Option(False, help="Go on with an interrupted run into the same --out (same settings), "
                                 "or add draws to it (more --draws)."),
     workers: int = typer.Option(1, help="Replay in this many processes (the store is the same as with one)."),
+    cloud_near_hands: float | None = typer.Option(None, help="Share of each cloud's points drawn near the hands, "
+                                                  "in [0, 1) (default: the source's; docs: guides/policies.md)."),
 ) -> None:
     """Re-record demonstrations under a drifting arm error, labelled with the plan's targets (DART).
 
@@ -198,11 +200,18 @@ def perturb(
         _fail("error: --episodes must be at least 1")
     if workers < 1:
         _fail("error: --workers must be at least 1")
+    if cloud_near_hands is not None:
+        from humanoidgen.sim.cloud_floor import check_near_hands
+
+        try:
+            check_near_hands(cloud_near_hands)
+        except ValueError as exc:
+            _fail(f"error: --cloud-near-hands: {exc}")
     total = min(len(store.kept()), episodes or len(store.kept())) * how.draws
     bar = tqdm(total=total, unit="episode", desc=f"perturb {store.meta()['task']}")
     try:
         stats = perturb_store(path, out, how, episodes=episodes, progress=lambda _: bar.update(1), resume=resume,
-                              workers=workers)
+                              workers=workers, cloud_near_hands=cloud_near_hands)
     except DatasetError as exc:
         _fail(f"error: {exc}")
     finally:

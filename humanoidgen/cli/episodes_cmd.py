@@ -185,6 +185,8 @@ def collect(
     height: int = typer.Option(240, help="Image height."),
     every: int = typer.Option(5, min=1, help="Record every n-th control step (50 Hz control; 5 -> 10 Hz)."),
     point_cloud: bool = typer.Option(True, help="Record the fused 1024-point cloud."),
+    cloud_near_hands: float = typer.Option(0.0, help="Share of the cloud's points drawn near the hands, in [0, 1) "
+                                                     "(0: the workspace sampled evenly; docs: guides/policies.md)."),
     visual_faces: int = typer.Option(None, help="Faces per robot visual mesh in the images (default: chosen for "
                                                 "the resolution, 375 at 320x240; 1500: the full detail of "
                                                 "`hgen render`)."),
@@ -223,7 +225,7 @@ def collect(
     cams = CAMERA_NAMES if cameras == "all" else () if cameras == "none" else tuple(c.strip() for c in cameras.split(","))
     try:
         rec = RecorderConfig(every=every, cameras=cams, width=width, height=height, point_cloud=point_cloud,
-                             visual_faces=visual_faces)
+                             visual_faces=visual_faces, point_cloud_near_hands=cloud_near_hands)
     except ValueError as exc:
         _fail(str(exc))
         return

@@ -11,7 +11,7 @@ from typing import Any
 
 from humanoidgen.sim.cameras import CAMERA_NAMES
 from humanoidgen.sim.env import DEFAULT_CONTROL_HZ, MAX_CONTROL_HZ
-from humanoidgen.sim.cloud_floor import CLOUD_FLOOR, TABLE_CLOUD_FLOOR
+from humanoidgen.sim.cloud_floor import CLOUD_FLOOR, TABLE_CLOUD_FLOOR, check_near_hands
 
 # Seeds at or above this are never used by collection's defaults (seeds 0, 1, 2, ... count up from --seed 0),
 # so an evaluation never meets a scene a policy was trained on unless asked to.
@@ -30,6 +30,7 @@ class TaskEnvConfig:
     point_cloud_cameras: tuple[str, ...] = ("head", "front", "left", "right")
     num_points: int = 1024
     point_cloud_floor: float = CLOUD_FLOOR  # m above the table top; the recorder's (`RecorderConfig`)
+    point_cloud_near_hands: float = 0.0  # share of the points drawn near the hands (`sim.cloud_focus`)
     visual_faces: int | None = None  # robot visual mesh detail in pictures; None: the recording's for the size
     max_steps: int | None = None  # actions per episode; None: the task's time limit at this rate
     render_camera: str = "front"
@@ -54,6 +55,7 @@ class TaskEnvConfig:
             raise ValueError("image sizes must be at least 16 pixels")
         if self.num_points < 1:
             raise ValueError(f"num_points must be >= 1, got {self.num_points}")
+        check_near_hands(self.point_cloud_near_hands)
         if self.max_steps is not None and self.max_steps < 1:
             raise ValueError(f"max_steps must be >= 1, got {self.max_steps}")
 

@@ -47,7 +47,7 @@ class Observer:
         self._model = render_model if render_model is not None else sim.model
         self._data = mujoco.MjData(self._model) if cams else None
         self._rig = CameraRig(self._model, cfg.width, cfg.height) if cams else None
-        self._pc = workspace_cloud(cfg.num_points, cfg.point_cloud_floor)
+        self._pc = workspace_cloud(cfg.num_points, cfg.point_cloud_floor, cfg.point_cloud_near_hands)
 
     def close(self) -> None:
         if self._rig is not None:

@@ -80,13 +80,15 @@ class ImageJob:
         """(t, arrays of frame t) in time order (`render_replay.iter_frames`)."""
         from humanoidgen.episodes.render_replay import iter_frames
 
-        return iter_frames(*self._render_args(), threads=threads, cloud_floor=self.recorder.point_cloud_floor)
+        return iter_frames(*self._render_args(), threads=threads, cloud_floor=self.recorder.point_cloud_floor,
+                           near_hands=self.recorder.point_cloud_near_hands)
 
     def render_arrays(self, threads: int | None = None) -> dict[str, np.ndarray]:
         """All images at once, in memory (for callers that want the arrays, not a file)."""
         from humanoidgen.episodes.render_replay import render_recording
 
-        return render_recording(*self._render_args(), threads=threads, cloud_floor=self.recorder.point_cloud_floor)
+        return render_recording(*self._render_args(), threads=threads, cloud_floor=self.recorder.point_cloud_floor,
+                                near_hands=self.recorder.point_cloud_near_hands)
 
     def _render_args(self) -> tuple:
         r = self.recorder

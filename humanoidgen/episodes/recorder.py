@@ -20,7 +20,7 @@ import numpy as np
 from humanoidgen.sim.cameras import CAMERA_NAMES
 from humanoidgen.sim.env import HumanoidEnv
 from humanoidgen.sim.meshes import DEFAULT_MAX_FACES, recording_faces
-from humanoidgen.sim.cloud_floor import CLOUD_FLOOR
+from humanoidgen.sim.cloud_floor import CLOUD_FLOOR, check_near_hands
 
 
 @dataclass
@@ -36,6 +36,8 @@ class RecorderConfig:
     # Height (m above the table top) below which cloud points are dropped: the table's surface is left out
     # (sim.pointcloud.CLOUD_FLOOR says why); meta.json records it, and datasets without it kept the table.
     point_cloud_floor: float = CLOUD_FLOOR
+    # Share of the cloud's points drawn near the hands (`sim.cloud_focus`); 0: the workspace sampled evenly.
+    point_cloud_near_hands: float = 0.0
     # Faces per robot visual mesh in the images; None: chosen for the resolution (sim.meshes.recording_faces).
     visual_faces: int | None = None
 
@@ -48,6 +50,7 @@ class RecorderConfig:
         if not -0.05 <= self.point_cloud_floor <= 0.3:
             raise ValueError(f"point_cloud_floor must be in [-0.05, 0.3] m above the table top, got "
                              f"{self.point_cloud_floor}")
+        check_near_hands(self.point_cloud_near_hands)
         if self.visual_faces is not None and not 4 <= self.visual_faces <= DEFAULT_MAX_FACES:
             raise ValueError(f"visual_faces must be in [4, {DEFAULT_MAX_FACES}], got {self.visual_faces}")
 
@@ -104,7 +107,8 @@ class EpisodeRecorder:
             out.update(render_recording(model if model is not None else self.env.model, self.configurations,
                                         cfg.cameras, cfg.width, cfg.height, cfg.depth,
                                         cfg.point_cloud_cameras if cfg.point_cloud else (), cfg.num_points,
-                                        cloud_floor=cfg.point_cloud_floor))
+                                        cloud_floor=cfg.point_cloud_floor,
+                                        near_hands=cfg.point_cloud_near_hands))
         return out
 
 

@@ -21,6 +21,7 @@ import numpy as np
 
 from humanoidgen.episodes.depth_units import encode_depth
 from humanoidgen.sim.cameras import CameraRig, pose_data
+from humanoidgen.sim.layout import ROBOT, SIDES, WRIST_BODY
 from humanoidgen.sim.pointcloud import CLOUD_FLOOR, PointCloudConfig, fuse_point_cloud, workspace_cloud
 from humanoidgen.sim.still_layer import STILL_GROUP, StillLayer, StillParts, layered_model, moving_groups, still_parts
 
@@ -33,16 +34,17 @@ _CONTEXT_LOCK = threading.Lock()
 def render_recording(model: mujoco.MjModel, configurations: Sequence[np.ndarray], cameras: tuple[str, ...],
                      width: int, height: int, depth: bool = True, point_cloud_cameras: tuple[str, ...] = (),
                      num_points: int = 1024, threads: int | None = None, still_layers: bool = True,
-                     cloud_floor: float = CLOUD_FLOOR) -> dict[str, np.ndarray]:
+                     cloud_floor: float = CLOUD_FLOOR, near_hands: float = 0.0) -> dict[str, np.ndarray]:
     """rgb/<camera> (T, H, W, 3) uint8 and depth/<camera> (T, H, W) uint16 mm for `cameras`, and, when
     `point_cloud_cameras` are given, point_cloud (T, num_points, 3) float32 fused from their depth; all in
     memory (`iter_frames` hands them over frame by frame); the cloud's points above `cloud_floor` (m over the
-    table top: `sim.pointcloud.workspace_cloud`)."""
+    table top: `sim.pointcloud.workspace_cloud`), the share `near_hands` of them drawn near the hands."""
     n = len(configurations)
     out = {key: np.empty((n, *shape), dtype) for key, (shape, dtype) in
            frame_layout(cameras, width, height, depth, bool(point_cloud_cameras), num_points).items()}
     for t, frame in iter_frames(model, configurations, cameras, width, height, depth, point_cloud_cameras,
-                                num_points, threads, still_layers=still_layers, cloud_floor=cloud_floor):
+                                num_points, threads, still_layers=still_layers, cloud_floor=cloud_floor,
+                                near_hands=near_hands):
         for key, value in frame.items():
             out[key][t] = value
     return out
@@ -64,7 +66,7 @@ def frame_layout(cameras: tuple[str, ...], width: int, height: int, depth: bool,
 def iter_frames(model: mujoco.MjModel, configurations: Sequence[np.ndarray], cameras: tuple[str, ...],
                 width: int, height: int, depth: bool = True, point_cloud_cameras: tuple[str, ...] = (),
                 num_points: int = 1024, threads: int | None = None, chunk: int = CHUNK_FRAMES,
-                still_layers: bool = True, cloud_floor: float = CLOUD_FLOOR
+                still_layers: bool = True, cloud_floor: float = CLOUD_FLOOR, near_hands: float = 0.0
                 ) -> Iterator[tuple[int, dict[str, np.ndarray]]]:
     """(t, arrays of frame t) in time order, rendered `chunk` frames per renderer at a time: the caller
     (compressing, writing) works on one chunk while the renderers draw the next, and only two chunks are
@@ -84,7 +86,7 @@ def iter_frames(model: mujoco.MjModel, configurations: Sequence[np.ndarray], cam
     else:
         still = None
     renderers = [_Renderer(model, width, height, still) for _ in range(threads)]
-    job = (configurations, cameras, depth, point_cloud_cameras, workspace_cloud(num_points, cloud_floor))
+    job = (configurations, cameras, depth, point_cloud_cameras, workspace_cloud(num_points, cloud_floor, near_hands))
     try:
         pending = _submit(renderers, job, 0, min(n, chunk * threads))
         done = 0
@@ -171,7 +173,8 @@ def render_configuration(rig: CameraRig, model: mujoco.MjModel, data: mujoco.MjD
                          pc: PointCloudConfig, layers: StillLayers | None = None) -> tuple[dict, np.ndarray | None]:
     """One recorded frame drawn from configuration `qpos`: the cameras' frames (RGB for `cameras`, depth where
     asked or needed for the cloud) and the point cloud fused from the float depth as rendered (not the stored
-    millimetres), None without point-cloud cameras. With `layers`, still cameras draw over their still layer."""
+    millimetres), None without point-cloud cameras. With `layers`, still cameras draw over their still layer.
+    A cloud focused on the hands (`pc.near_hands`) centres on their grasp points (`focus_points`)."""
     pose_data(model, data, qpos)
     frames = {}
     for c in dict.fromkeys(cameras + point_cloud_cameras):
@@ -182,5 +185,18 @@ def render_configuration(rig: CameraRig, model: mujoco.MjModel, data: mujoco.MjD
             frames[c] = rig.render(data, c, rgb=c in cameras, depth=want_depth, segmentation=False)
     if not point_cloud_cameras:
         return frames, None
+    focus = focus_points(model, data) if pc.near_hands else None
     return frames, fuse_point_cloud([(frames[c].depth, frames[c].fovy, frames[c].cam_pos, frames[c].cam_mat, None)
-                                     for c in point_cloud_cameras], pc)
+                                     for c in point_cloud_cameras], pc, focus)
+
+
+def focus_points(model: mujoco.MjModel, data: mujoco.MjData) -> np.ndarray:
+    """(2, 3) where each hand's whole-hand grasp is centred (its hand file's `grasp_point_base_<side>_hand`, a
+    point every hand file names for the planner API), in the world at `data`'s pose: what a focused cloud
+    (`sim.cloud_focus`) samples around."""
+    out = []
+    for side in SIDES:
+        body = model.body(WRIST_BODY[side]).id
+        local = ROBOT.hand.points(side)[f"grasp_point_base_{side}_hand"]
+        out.append(data.xpos[body] + data.xmat[body].reshape(3, 3) @ local)
+    return np.array(out)

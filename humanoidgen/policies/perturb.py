@@ -162,13 +162,14 @@ def _make_env(task: str, config):
 
 def perturb_store(source: Path, out: Path, how: Perturbation, episodes: int | None = None,
                   progress: Callable[[str], None] | None = None, resume: bool = False,
-                  workers: int = 1) -> PerturbStats:
+                  workers: int = 1, cloud_near_hands: float | None = None) -> PerturbStats:
     """Write to `out` a store of `how.draws` perturbed replays of each of the first `episodes` (all: None) kept
     episodes of the store at `source`. Each attempt is an index line (a left-out draw too, with the task's words).
     With `resume`, an interrupted run goes on: draws already kept or given up are not replayed again (the same
     source and perturbation are required, except that `how.draws` may grow: a finished store gains draws).
     `workers` > 1 replays in that many processes (each with its own env); the store is written here, in the order
-    a single process would write it, so the result does not depend on it."""
+    a single process would write it, so the result does not depend on it. `cloud_near_hands`: the share of each
+    recorded cloud's points drawn near the hands (`sim.cloud_focus`; None: the source's setting)."""
     from humanoidgen.envs.config import TaskEnvConfig
 
     if workers < 1:
@@ -179,10 +180,14 @@ def perturb_store(source: Path, out: Path, how: Perturbation, episodes: int | No
     if not kept:
         raise DatasetError(f"{source} has no kept episodes to perturb")
     recorder = dict(meta.get("recorder") or {})
+    dst = EpisodeStore(Path(out))
+    if cloud_near_hands is None and resume and (Path(out) / "meta.json").exists():  # as the store was begun
+        cloud_near_hands = (dst.meta().get("recorder") or {}).get("point_cloud_near_hands")
+    if cloud_near_hands is not None:
+        recorder["point_cloud_near_hands"] = float(cloud_near_hands)
     rate_hz = float(meta.get("control_hz", 50.0)) / int(recorder.get("every", 1))
     cfg = TaskEnvConfig.from_recorder(recorder, meta.get("control_hz", 50.0), cameras=(), depth=False,
                                       point_cloud=bool(recorder.get("point_cloud", True)))
-    dst = EpisodeStore(Path(out))
     new_meta = {k: v for k, v in meta.items() if k != "format_version"}
     new_meta["recorder"] = {**recorder, "cameras": [], "depth": False}
     new_meta["cameras"] = []
@@ -193,6 +198,10 @@ def perturb_store(source: Path, out: Path, how: Perturbation, episodes: int | No
         # More draws extend a finished store (its draws are kept, the new ones appended); anything else must match.
         before = dst.meta().get("perturbation") or {}
         same = {k: v for k, v in new_meta["perturbation"].items() if k != "draws"}
+        near = (dst.meta().get("recorder") or {}).get("point_cloud_near_hands", 0.0)
+        if near != recorder.get("point_cloud_near_hands", 0.0):
+            raise DatasetError(f"{out} was recorded with point_cloud_near_hands {near}; resume it with the same "
+                               "--cloud-near-hands or choose another --out")
         if {k: before.get(k) for k in same} != same or int(before.get("draws", 0)) > how.draws:
             raise DatasetError(f"{out} was perturbed otherwise ({before}); resume it with the same settings (or "
                                "more --draws) or choose another --out")

@@ -22,7 +22,8 @@ from typing import NamedTuple, Sequence
 import numpy as np
 from numba import njit
 
-from humanoidgen.sim.cloud_floor import CLOUD_FLOOR, TABLE_CLOUD_FLOOR
+from humanoidgen.sim.cloud_floor import CLOUD_FLOOR, NEAR_HANDS_RADIUS, TABLE_CLOUD_FLOOR, check_near_hands
+from humanoidgen.sim.cloud_focus import focused_sample
 from humanoidgen.sim.fps import farthest_point_sampling
 
 __all__ = [
@@ -56,10 +57,11 @@ def intrinsics(width: int, height: int, fovy_deg: float) -> np.ndarray:
     )
 
 
-def workspace_cloud(num_points: int, floor: float = CLOUD_FLOOR) -> "PointCloudConfig":
-    """The recording's cloud settings: the workspace box over the table with its bottom at `floor` (m)."""
+def workspace_cloud(num_points: int, floor: float = CLOUD_FLOOR, near_hands: float = 0.0) -> "PointCloudConfig":
+    """The recording's cloud settings: the workspace box over the table with its bottom at `floor` (m), and
+    the share `near_hands` of the points drawn near the hands (`sim.cloud_focus`)."""
     lo = PointCloudConfig.crop_lo
-    return PointCloudConfig(num_points=num_points, crop_lo=(lo[0], lo[1], floor))
+    return PointCloudConfig(num_points=num_points, crop_lo=(lo[0], lo[1], floor), near_hands=near_hands)
 
 
 def depth_to_points(
@@ -145,6 +147,15 @@ class PointCloudConfig:
     use_rgb: bool = False
     far: float = np.inf  # depths >= far are treated as background
     seed: int = 0  # FPS seed, for reproducible datasets
+    # Share of the points drawn from within `near_radius` of the focus points `fuse_point_cloud` is given (the
+    # hands: `sim.cloud_focus`); 0: the whole crop sampled evenly.
+    near_hands: float = 0.0
+    near_radius: float = NEAR_HANDS_RADIUS
+
+    def __post_init__(self) -> None:
+        check_near_hands(self.near_hands)
+        if not self.near_radius > 0:
+            raise ValueError(f"near_radius must be positive, got {self.near_radius}")
 
 
 class DepthView(NamedTuple):
@@ -224,10 +235,12 @@ def _rgb_to_unit(rgb: np.ndarray, shape: tuple[int, int]) -> np.ndarray:
 def fuse_point_cloud(
     views: Sequence[DepthView | tuple],
     config: PointCloudConfig | None = None,
+    focus: np.ndarray | None = None,
 ) -> np.ndarray:
     """Fuse several depth views into one cropped, FPS-downsampled cloud.
 
-    Each view is ``(depth, fovy_deg, cam_pos, cam_mat, rgb_or_None)``.
+    Each view is ``(depth, fovy_deg, cam_pos, cam_mat, rgb_or_None)``. With ``config.near_hands`` > 0 and
+    ``focus`` (K, 3) world points (the hands), that share of the points is drawn near them (`sim.cloud_focus`).
     Returns float32 ``(num_points, 3)``, or ``(num_points, 6)`` with RGB in
     [0, 1] appended when ``config.use_rgb`` (every view then needs rgb).
     Raises ValueError if no point survives the crop.
@@ -255,5 +268,8 @@ def fuse_point_cloud(
             f"lo={cfg.crop_lo}, hi={cfg.crop_hi} (check camera poses / crop box)"
         )
     # FPS on xyz only: colour should not influence spatial coverage.
-    idx = farthest_point_sampling(cloud[:, :3], cfg.num_points, seed=cfg.seed)
+    if cfg.near_hands > 0 and focus is not None:
+        idx = focused_sample(cloud[:, :3], cfg.num_points, cfg.near_hands, focus, cfg.near_radius, seed=cfg.seed)
+    else:
+        idx = farthest_point_sampling(cloud[:, :3], cfg.num_points, seed=cfg.seed)
     return cloud[idx].astype(np.float32)
