@@ -182,6 +182,8 @@ def from_eval(args) -> int:
             if "num_points" in config:  # DP3's points read: a recipe's setting a run may change
                 row["num_points"] = int(config["num_points"])
             row["observe_hands"] = bool(config.get("observe_hands", False))
+            recorder = state.get("meta", {}).get("recorder") or {}  # what the policy's cloud was drawn like
+            row["point_cloud_near_hands"] = float(recorder.get("point_cloud_near_hands", 0.0))
             perturbation = training_perturbation(state.get("meta", {}))
             if perturbation:
                 row["perturbation"] = perturbation

@@ -433,6 +433,7 @@ def test_a_saved_evaluation_becomes_study_rows_for_a_table_and_plot(demos_zarr, 
     assert {r["action_frame"] for r in written["rows"]} == {"absolute"}  # as the checkpoint was trained
     assert {r["num_points"] for r in written["rows"]} == {TINY_DP3["num_points"]}
     assert {r["observe_hands"] for r in written["rows"]} == {False}
+    assert {r["point_cloud_near_hands"] for r in written["rows"]} == {0.0}
     assert written["settings"]["commit"] and written["settings"]["machine"]
     assert (tmp_path / "results" / "policies_hand.png").stat().st_size > 0
     monkeypatch.setattr(sys, "argv", argv[:-4] + ["--train-scenes", "clean,randomized", "--name", "bad"])
