@@ -43,3 +43,26 @@ def test_close_drawers_handle_is_counted_more_often_in_more_points(tmp_path, mon
                                       "--scenes", "1"])
     with pytest.raises(SystemExit, match="no geom"):
         bench.main()
+
+
+def test_at_the_grip_a_cloud_focused_on_the_hands_puts_more_points_on_the_handle(tmp_path, monkeypatch):
+    """--dataset counts at the recorded frames where a hand closes on the part; --near-hands draws half the cloud
+    near the hands, and the handle gets more of it than from the even sample of the same frames."""
+    from humanoidgen.episodes.collect import collect
+    from humanoidgen.episodes.recorder import RecorderConfig
+
+    data = tmp_path / "cd"
+    assert collect("close_drawer", 1, data, recorder=RecorderConfig(cameras=(), point_cloud=False, every=10)).kept == 1
+    bench = load_bench("cloud_coverage")
+    monkeypatch.setattr(bench, "ROOT", tmp_path)
+    (tmp_path / "results").mkdir()
+    got = {}
+    for share in ("0", "0.5"):
+        monkeypatch.setattr(sys, "argv", ["cloud_coverage.py", "--near", "handle", "--points", "256", "--dataset",
+                                          str(data), "--near-hands", share, "--name", share])
+        assert bench.main() == 0
+        got[share] = json.loads((tmp_path / "results" / f"cloud_coverage_{share}.json").read_text())
+    assert got["0"]["task"] == "close_drawer" and got["0.5"]["near_hands"] == 0.5
+    [even], [focused] = got["0"]["scenes"], got["0.5"]["scenes"]
+    assert even["frames"] == focused["frames"] >= 3
+    assert focused["within"]["256"] > 1.5 * even["within"]["256"], (even, focused)
