@@ -16,7 +16,7 @@ from humanoidgen.cli.main import app
 from humanoidgen.episodes.collect import collect
 from humanoidgen.episodes.dataset import EpisodeStore
 from humanoidgen.episodes.recorder import RecorderConfig
-from humanoidgen.policies.perturb import Perturbation, perturb_store, read_perturbation
+from humanoidgen.policies.perturb import Perturbation, PerturbStats, describe, perturb_store, read_perturbation
 
 
 @pytest.fixture(scope="module")
@@ -213,3 +213,10 @@ def test_an_interrupted_run_with_workers_keeps_what_it_wrote_and_resumes(one_dem
     stats = perturb_store(one_demo, tmp_path / "w", how, resume=True, workers=2)
     assert (stats.kept, stats.tries) == (3, 2)  # the two draws not written are replayed, the first is not
     assert sorted(a["draw"] for a in EpisodeStore(tmp_path / "w").kept()) == [0, 1, 2]
+
+
+def test_the_summary_names_the_arms_perturbed():
+    stats = PerturbStats(source_episodes=50, kept=99, left_out=1, tries=146)
+    both = describe(stats, Perturbation(sigma=0.03, side="both", draws=2))
+    assert "99 perturbed episodes kept of 100 wanted" in both and "on both arms" in both
+    assert "on the left arm" in describe(stats, Perturbation(sigma=0.03, side="left", draws=2))

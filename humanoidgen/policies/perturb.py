@@ -258,9 +258,10 @@ def perturb_store(source: Path, out: Path, how: Perturbation, episodes: int | No
 
 
 def describe(stats: PerturbStats, how: Perturbation) -> str:
+    arms = "both arms" if how.side == "both" else f"the {how.side} arm"
     return (f"{stats.kept} perturbed episodes kept of {stats.source_episodes * how.draws} wanted "
             f"({stats.left_out} left out after {how.tries} tries each; {stats.tries} replays; sigma {how.sigma:g} rad "
-            f"on the {how.side} arm, tau {how.tau_s:g} s)")
+            f"on {arms}, tau {how.tau_s:g} s)")
 
 
 def read_perturbation(store: EpisodeStore) -> dict | None:
