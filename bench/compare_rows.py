@@ -42,7 +42,8 @@ def plot(rows: list[dict], labels: list[str], path: Path) -> None:
         mean = 100 * row["success_mean"]
         lo, hi = (100 * v for v in row.get("success_ci95", (row["success_mean"],) * 2))
         ax.barh(y, mean, color="tab:blue", alpha=0.75)
-        ax.errorbar(mean, y, xerr=[[mean - lo], [hi - mean]], color="black", capsize=3)
+        # max(0, ...): a Wilson bound at 60 of 60 comes out a rounding error under the mean (0.9999999999999999)
+        ax.errorbar(mean, y, xerr=[[max(0.0, mean - lo)], [max(0.0, hi - mean)]], color="black", capsize=3)
         ax.text(hi + 1, y, f"{mean:.1f}%", va="center", fontsize=8)
     ax.scatter([100 * r.get("baseline_random", 0.0) for r in rows], ys, marker="x", color="tab:red", label="random")
     ax.scatter([100 * r.get("baseline_noop", 0.0) for r in rows], ys, marker="|", s=120, color="tab:gray", label="no-op")
