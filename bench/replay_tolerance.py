@@ -52,14 +52,16 @@ def touching(env, side: str) -> set[tuple[str, str]]:
     return out
 
 
-def replay(env, actions: np.ndarray, seed: int, side: str = "left") -> tuple[bool, str, dict]:
+def replay(env, actions: np.ndarray, seed: int, side: str = "left", dressing: dict | None = None
+           ) -> tuple[bool, str, dict]:
     """One episode's actions, then the last held SETTLE_ACTIONS more: whether the task's predicates passed, what
     they said at the end (how a failed replay failed: for close_drawer, how far the drawer got and how far one hold
-    of the handle moved it), and what the `side` hand rested on ({"thumb": {geom: actions}, "fingers": ...})."""
+    of the handle moved it), and what the `side` hand rested on ({"thumb": {geom: actions}, "fingers": ...}).
+    `dressing`: the room and look the episode was collected in (its record's; None: the clean tabletop)."""
     from humanoidgen.policies.rollout import final_detail
 
     grip: dict[str, Counter] = {"thumb": Counter(), "fingers": Counter()}
-    _, info = env.reset(seed=seed)
+    _, info = env.reset(seed=seed, options=None if dressing is None else {"dressing": dressing})
     ok = bool(info.get("success"))
     for a in [] if ok else [*actions, *[actions[-1]] * SETTLE_ACTIONS]:
         _, _, terminated, _, info = env.step(a)
@@ -108,7 +110,7 @@ def tolerance(folder: Path, side: str, sigmas: list[float], episodes: int, draw_
             for k, (rec, action) in enumerate(zip(kept, recorded)):
                 actions = action.copy()
                 actions[:, arm] += np.random.default_rng(draw_seed + k).normal(0.0, sigma, arm.stop - arm.start)
-                ok, detail, grip = replay(env, actions, int(rec["seed"]), side)
+                ok, detail, grip = replay(env, actions, int(rec["seed"]), side, rec.get("dressing"))
                 n += ok
                 grips[sigma].append({"seed": int(rec["seed"]), "passed": ok, **grip})
                 if not ok:

@@ -66,3 +66,25 @@ def test_at_the_grip_a_cloud_focused_on_the_hands_puts_more_points_on_the_handle
     [even], [focused] = got["0"]["scenes"], got["0.5"]["scenes"]
     assert even["frames"] == focused["frames"] >= 3
     assert focused["within"]["256"] > 1.5 * even["within"]["256"], (even, focused)
+
+
+def test_a_randomized_dataset_is_counted_in_the_rooms_it_was_recorded_in(tmp_path, monkeypatch):
+    """--dataset on a store collected in randomized rooms draws each episode's clouds in its recorded room."""
+    from humanoidgen.envs.task_env import HumanoidTaskEnv
+    from humanoidgen.episodes.collect import collect
+    from humanoidgen.episodes.dataset import EpisodeStore
+    from humanoidgen.episodes.recorder import RecorderConfig
+
+    data = tmp_path / "cd"
+    assert collect("close_drawer", 1, data, recorder=RecorderConfig(cameras=(), point_cloud=False, every=10),
+                   room="random", randomize_visuals=True).kept == 1
+    real, built = HumanoidTaskEnv.reset, []
+
+    def reset(self, **kwargs):
+        obs, info = real(self, **kwargs)
+        built.append(json.loads(json.dumps(info.get("dressing"))))
+        return obs, info
+
+    monkeypatch.setattr(HumanoidTaskEnv, "reset", reset)
+    rows = load_bench("cloud_coverage").coverage_at_grip(data, "handle", 0.01, [256], 1, 0.0, 0.05)
+    assert len(rows) == 1 and built == [EpisodeStore(data).kept()[0]["dressing"]]

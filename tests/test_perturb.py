@@ -221,3 +221,40 @@ def test_the_summary_names_the_arms_perturbed():
     both = describe(stats, Perturbation(sigma=0.03, side="both", draws=2))
     assert "99 perturbed episodes kept of 100 wanted" in both and "on both arms" in both
     assert "on the left arm" in describe(stats, Perturbation(sigma=0.03, side="left", draws=2))
+
+
+def test_a_randomized_demonstration_is_replayed_in_its_own_room(tmp_path, monkeypatch):
+    """A store collected in randomized rooms (`hgen collect --room random --randomize-visuals`) is re-recorded in
+    each episode's own room and look, and the new records say which: a policy trained on it sees the room the
+    episode was recorded in, not the clean tabletop, and `hgen dataset replay` draws that room again."""
+    from humanoidgen.policies import perturb
+
+    src_dir = tmp_path / "randomized"
+    stats = collect("close_drawer", 1, src_dir, recorder=RecorderConfig(cameras=(), point_cloud=False, every=5),
+                    room="random", randomize_visuals=True)
+    assert stats.kept == 1
+    [was_rec] = EpisodeStore(src_dir).kept()
+    assert was_rec.get("dressing")
+    built = []  # the dressing of every scene the replays were run in, as the real env reports it
+    make_env = perturb._make_env
+
+    def watched_env(task, config):
+        env = make_env(task, config)
+        reset = env.reset
+
+        def watched_reset(**kwargs):
+            obs, info = reset(**kwargs)
+            built.append(json.loads(json.dumps(info.get("dressing"))))
+            return obs, info
+
+        env.reset = watched_reset
+        return env
+
+    monkeypatch.setattr(perturb, "_make_env", watched_env)
+    stats = perturb_store(src_dir, tmp_path / "zero", Perturbation(sigma=0.0, tries=1))
+    assert (stats.kept, stats.left_out) == (1, 0)
+    assert built == [was_rec["dressing"]]
+    [rec] = EpisodeStore(tmp_path / "zero").kept()
+    assert rec["dressing"] == was_rec["dressing"]
+    got, was = EpisodeStore(tmp_path / "zero").load(rec["episode"]), EpisodeStore(src_dir).load(0)
+    np.testing.assert_allclose(got["joint_pos"][0], was["joint_pos"][0], atol=0.05)

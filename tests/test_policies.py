@@ -474,6 +474,29 @@ def test_randomized_training_data_is_drawn_as_randomized_evaluation_draws_its_sc
     assert episode_dressing(**collect_dressing("clean"), seed=3) is None
 
 
+def test_a_reset_can_replay_a_recorded_room_and_look():
+    """`reset(seed=s, options={"dressing": record["dressing"]})` builds the room and look an episode was collected
+    in, whatever the env's own config says (`hgen dataset perturb` re-records randomized demonstrations so)."""
+    import json
+
+    from humanoidgen.envs.config import TaskEnvConfig
+    from humanoidgen.envs.task_env import HumanoidTaskEnv
+    from humanoidgen.policies.bench import collect_dressing
+    from humanoidgen.scenes.dressing import episode_dressing
+
+    recorded = json.loads(json.dumps(episode_dressing(**collect_dressing("randomized"), seed=5)))  # as an index stores it
+    clean = HumanoidTaskEnv("close_drawer", config=TaskEnvConfig(cameras=(), point_cloud=False))
+    dressed = HumanoidTaskEnv("close_drawer", config=TaskEnvConfig(randomize=True, cameras=(), point_cloud=False))
+    _, info = clean.reset(seed=5, options={"dressing": recorded})
+    _, drawn = dressed.reset(seed=5)
+    assert json.loads(json.dumps(info["dressing"])) == recorded == json.loads(json.dumps(drawn["dressing"]))
+    assert clean.sim.model.ngeom == dressed.sim.model.ngeom  # the room's walls, furniture and clutter are built
+    _, plain = clean.reset(seed=5)
+    assert "dressing" not in plain and clean.sim.model.ngeom < dressed.sim.model.ngeom
+    for env in (clean, dressed):
+        env.close()
+
+
 def test_the_study_trains_on_clean_and_randomized_data_and_rows_say_which(demos_zarr, tmp_path):
     """`train_scenes` x `scenes`: each training (DATA/<task>.zarr, DATA/<task>_randomized.zarr) evaluated on
     each kind of scene, a row each with the fields the committed study carries."""

@@ -56,3 +56,29 @@ def test_the_script_writes_its_results_with_their_provenance(one_demo, monkeypat
     assert report["rows"][0]["passed"] == {"0.0": 1} and report["commit"] and "CPUs" in report["machine"]
     monkeypatch.setattr("sys.argv", ["replay_tolerance.py", str(one_demo), "--side", "up"])
     assert bench.main() == 2
+
+
+def test_a_randomized_demonstration_is_replayed_in_the_room_it_was_recorded_in(tmp_path, monkeypatch):
+    bench = _bench()
+    out = tmp_path / "randomized"
+    collect("close_drawer", 1, out, recorder=RecorderConfig(cameras=(), point_cloud=False), room="random",
+            randomize_visuals=True)
+    real, rooms = bench.replay, []
+
+    def replay(env, actions, seed, side="left", dressing=None):
+        result = real(env, actions, seed, side, dressing)
+        rooms.append((dressing, env.sim.model.ngeom))
+        return result
+
+    monkeypatch.setattr(bench, "replay", replay)
+    row = bench.tolerance(out, "left", [0.0], episodes=1)
+    [(dressing, ngeom)] = rooms
+    assert dressing and dressing["room"] and row["passed"] == {0.0: 1}
+    monkeypatch.setattr(bench, "replay", real)
+    from humanoidgen.envs.config import TaskEnvConfig
+    from humanoidgen.envs.task_env import HumanoidTaskEnv
+
+    clean = HumanoidTaskEnv("close_drawer", config=TaskEnvConfig(cameras=(), point_cloud=False))
+    clean.reset(seed=0)
+    assert ngeom > clean.sim.model.ngeom  # the replay's scene had the room's walls, furniture and clutter
+    clean.close()

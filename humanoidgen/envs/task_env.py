@@ -82,7 +82,7 @@ class HumanoidTaskEnv(gym.Env):
 
         # No seed: a scene drawn from the evaluation range, never one collection uses by default.
         scene_seed = int(seed) if seed is not None else EVAL_SEED_BASE + int(self.np_random.integers(1 << 30))
-        dressing = self._dressing(scene_seed)
+        dressing = self._dressing(scene_seed, (options or {}).get("dressing"))
         _, sim = self._build_scene(self.spec_task, scene_seed, dressing=dressing)
         if self.config.control_hz != sim.control_hz:  # as the episode worker does for another control rate
             sim = HumanoidEnv(sim.scene, control_hz=self.config.control_hz)
@@ -131,11 +131,16 @@ class HumanoidTaskEnv(gym.Env):
         self.sim = None
 
     # -- helpers -------------------------------------------------------------------------------------------
-    def _dressing(self, scene_seed: int):
-        """The randomized look and room of this scene (None: the clean tabletop), drawn from its seed."""
+    def _dressing(self, scene_seed: int, recorded: dict | None = None):
+        """The randomized look and room of this scene (None: the clean tabletop), drawn from its seed; `recorded`
+        (reset's `options={"dressing": ...}`, an episode record's `dressing`) replays an episode in the room and look
+        it was collected in, whatever the config says."""
+        from humanoidgen.scenes.dressing import RANDOMIZED, SceneDressing, episode_dressing
+
+        if recorded is not None:
+            return SceneDressing.from_dict(recorded)
         if not self.config.randomize:
             return None
-        from humanoidgen.scenes.dressing import RANDOMIZED, SceneDressing, episode_dressing
 
         return SceneDressing.from_dict(episode_dressing(**RANDOMIZED, seed=scene_seed))
 

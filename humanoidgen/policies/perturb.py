@@ -83,15 +83,16 @@ class PerturbStats:
     tries: int = 0
 
 
-def perturbed_replay(env, actions: np.ndarray, seed: int, offsets: np.ndarray, joints: list[int]
-                     ) -> tuple[bool, dict[str, np.ndarray], str]:
-    """Replay `actions` in `env` (a HumanoidTaskEnv) for scene `seed`, executing each with `offsets` added on
-    `joints`; the frames it observed labelled with the actions as given. Returns (passed, arrays, the task's last
-    words). The whole sequence is run (a success midway is kept: the predicates remember it), then the last
-    target held SETTLE_ACTIONS more, unrecorded."""
+def perturbed_replay(env, actions: np.ndarray, seed: int, offsets: np.ndarray, joints: list[int],
+                     dressing: dict | None = None) -> tuple[bool, dict[str, np.ndarray], str]:
+    """Replay `actions` in `env` (a HumanoidTaskEnv) for scene `seed` (in the room and look `dressing`, as the
+    source episode's record gives it; None: the env's own), executing each with `offsets` added on `joints`; the
+    frames it observed labelled with the actions as given. Returns (passed, arrays, the task's last words). The
+    whole sequence is run (a success midway is kept: the predicates remember it), then the last target held
+    SETTLE_ACTIONS more, unrecorded."""
     from humanoidgen.policies.rollout import final_detail
 
-    obs, info = env.reset(seed=seed)
+    obs, info = env.reset(seed=seed, options=None if dressing is None else {"dressing": dressing})
     ok = bool(info.get("success"))
     frames: dict[str, list[np.ndarray]] = {k: [] for k in RECORDED if k in obs}
     executed = actions.copy()
@@ -124,6 +125,7 @@ class _Job:
     draw: int
     how: Perturbation
     rate_hz: float
+    dressing: dict | None = None  # the source episode's room and look (a randomized collection's record)
 
 
 def _draw(job: _Job, env) -> list[tuple[dict, dict[str, np.ndarray] | None, str]]:
@@ -133,9 +135,12 @@ def _draw(job: _Job, env) -> list[tuple[dict, dict[str, np.ndarray] | None, str]
     for attempt in range(how.tries):
         rng = np.random.default_rng([how.seed, job.seed, job.draw, attempt])
         ok, arrays, words = perturbed_replay(env, job.actions, job.seed,
-                                             how.offsets(len(job.actions), job.rate_hz, rng), how.joints())
+                                             how.offsets(len(job.actions), job.rate_hz, rng), how.joints(),
+                                             job.dressing)
         record = {"seed": job.seed, "success": ok, "source_episode": job.source_episode, "draw": job.draw,
                   "try": attempt, "error": "" if ok else words}
+        if job.dressing is not None:
+            record["dressing"] = job.dressing  # as collection records it: `hgen dataset replay` draws this room
         out.append((record, arrays if ok else None, words))
         if ok:
             break
@@ -221,7 +226,7 @@ def perturb_store(source: Path, out: Path, how: Perturbation, episodes: int | No
                     if progress is not None:
                         progress(f"episode {k + 1}/{len(kept)} draw {d + 1}: done before")
                     continue
-                yield _Job(actions, int(rec["seed"]), int(rec["episode"]), d, how, rate_hz)
+                yield _Job(actions, int(rec["seed"]), int(rec["episode"]), d, how, rate_hz, rec.get("dressing"))
 
     def write(results) -> None:
         for attempts in results:
