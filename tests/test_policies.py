@@ -363,6 +363,10 @@ def test_a_cpu_gets_the_cpu_sized_recipe_unless_paper_is_asked_for(demos_zarr, t
     lines = [line for line in r.output.splitlines() if "recipe" in line]
     assert len(lines) == 1 and "no CUDA device: the CPU-sized 'fast' recipe" in lines[0]
     assert "--recipe paper" in lines[0] and "M parameters" in lines[0]
+    # and, before the first step, what the run will take here, from one step timed on its own data
+    [estimate] = [line for line in r.output.splitlines() if "optimizer steps at about" in line]
+    steps = int(estimate.split()[0])
+    assert r.output.index("recipe") < r.output.index(estimate) and steps >= 1 and estimate.endswith(("min", "h", "days"))
     cfg = json.loads((run / "config.json").read_text())
     assert cfg["train"]["batch_size"] == 64 and cfg["unet"]["down_dims"] == [64, 128, 256]
     assert cfg["n_action_steps"] == 4 and cfg["num_points"] == 64 and cfg["train"]["epochs"] == 1  # options win
@@ -472,6 +476,27 @@ def test_randomized_training_data_is_drawn_as_randomized_evaluation_draws_its_sc
         heights.add(round(drawn.surface_height, 4))
     assert len(heights) > 1  # the table's height is drawn too
     assert episode_dressing(**collect_dressing("clean"), seed=3) is None
+
+
+def test_a_run_says_what_it_will_take_and_timing_it_changes_nothing(demos_zarr, tmp_path):
+    """The step timed before training (for the start line's estimate) leaves the run as it was: the same losses
+    and weights as a run that timed nothing; the line scales the estimate to minutes, hours or days."""
+    from humanoidgen.cli.policy_cmd import _start_line
+
+    said = []
+    timed = train("dp3", demos_zarr, tmp_path / "timed", _with(TINY_DP3, epochs=1), device="cpu", progress=False,
+                  on_start=lambda steps, per_step: said.append((steps, per_step)))
+    plain = train("dp3", demos_zarr, tmp_path / "plain", _with(TINY_DP3, epochs=1), device="cpu", progress=False)
+    assert timed.losses == plain.losses
+    [(steps, per_step)] = said
+    assert steps == timed.steps_per_epoch and per_step > 0
+    a = torch.load(tmp_path / "timed" / "checkpoints" / "epoch_0001.pt", weights_only=False)["weights"]
+    b = torch.load(tmp_path / "plain" / "checkpoints" / "epoch_0001.pt", weights_only=False)["weights"]
+    assert all(torch.equal(a[k], b[k]) for k in a)
+    assert _start_line("", 2040, 0.4).endswith("about 14 min")
+    assert _start_line("fast", 67_000, 28.0).splitlines() == ["fast", "67000 optimizer steps at about 28.00 s a step "
+                                                                      "here: about 21.7 days"]
+    assert _start_line("", 9000, 2.0).endswith("about 5.0 h")
 
 
 def test_a_reset_can_replay_a_recorded_room_and_look():

@@ -100,7 +100,7 @@ def train(
     try:
         over, line = _with_recipe(policy, recipe, over, device, resume)
         result = run_train(policy, data, out, over, device=device, resume=resume, task=task,
-                           on_start=(lambda: typer.echo(line)) if line else None)
+                           on_start=lambda steps, per_step: typer.echo(_start_line(line, steps, per_step)))
     except _errors() as exc:
         _fail(_one_line(exc))
         return
@@ -110,6 +110,16 @@ def train(
                f"{result.seconds / 60:.1f} min ({result.seconds_per_epoch:.2f} s/epoch, {result.steps_per_epoch} "
                f"steps each); loss {result.losses[0]:.4f} -> {result.losses[-1]:.4f}; checkpoints in "
                f"{out / 'checkpoints'}")
+
+
+def _start_line(recipe_line: str, steps: int, seconds_per_step: float) -> str:
+    """What a run says before its first step: the recipe the device chose (when it chose one) and an estimate of
+    its time from one step timed here (the first steps of a run are a little slower: warm-up)."""
+    total = steps * seconds_per_step
+    took = (f"{total / 86400:.1f} days" if total >= 2 * 86400 else f"{total / 3600:.1f} h" if total >= 2 * 3600
+            else f"{max(1, round(total / 60))} min")
+    estimate = f"{steps} optimizer steps at about {seconds_per_step:.2f} s a step here: about {took}"
+    return f"{recipe_line}\n{estimate}" if recipe_line else estimate
 
 
 def _with_recipe(policy: str, recipe: str | None, over: dict, device: str, resume: bool) -> tuple[dict, str]:
