@@ -497,6 +497,7 @@ def test_a_run_says_what_it_will_take_and_timing_it_changes_nothing(demos_zarr, 
     assert _start_line("fast", 67_000, 28.0).splitlines() == ["fast", "67000 optimizer steps at about 28.00 s a step "
                                                                       "here: about 21.7 days"]
     assert _start_line("", 9000, 2.0).endswith("about 5.0 h")
+    assert _start_line("", 0, 2.0) == "0 optimizer steps at about 2.00 s a step here: about 0 min"
 
 
 def test_a_reset_can_replay_a_recorded_room_and_look():

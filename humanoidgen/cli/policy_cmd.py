@@ -117,7 +117,7 @@ def _start_line(recipe_line: str, steps: int, seconds_per_step: float) -> str:
     its time from one step timed here (the first steps of a run are a little slower: warm-up)."""
     total = steps * seconds_per_step
     took = (f"{total / 86400:.1f} days" if total >= 2 * 86400 else f"{total / 3600:.1f} h" if total >= 2 * 3600
-            else f"{max(1, round(total / 60))} min")
+            else f"{max(1 if steps else 0, round(total / 60))} min")  # a finished run resumed: nothing to do
     estimate = f"{steps} optimizer steps at about {seconds_per_step:.2f} s a step here: about {took}"
     return f"{recipe_line}\n{estimate}" if recipe_line else estimate
 
