@@ -93,8 +93,8 @@ def coverage_at_grip(dataset: Path, near: str, radius: float, points: list[int],
     rows = []
     try:
         for kept in store.kept()[:episodes]:
-            dressing = kept.get("dressing")  # a randomized collection's room and look, as it was recorded in
-            env.reset(seed=int(kept["seed"]), options=None if dressing is None else {"dressing": dressing})
+            # a randomized collection's room and look, as it was recorded in (None: the clean tabletop)
+            env.reset(seed=int(kept["seed"]), options={"dressing": kept.get("dressing")})
             model = env.sim.model
             data = mujoco.MjData(model)
             geoms = _geoms(model, task, near)

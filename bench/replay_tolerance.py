@@ -61,7 +61,7 @@ def replay(env, actions: np.ndarray, seed: int, side: str = "left", dressing: di
     from humanoidgen.policies.rollout import final_detail
 
     grip: dict[str, Counter] = {"thumb": Counter(), "fingers": Counter()}
-    _, info = env.reset(seed=seed, options=None if dressing is None else {"dressing": dressing})
+    _, info = env.reset(seed=seed, options={"dressing": dressing})
     ok = bool(info.get("success"))
     for a in [] if ok else [*actions, *[actions[-1]] * SETTLE_ACTIONS]:
         _, _, terminated, _, info = env.step(a)

@@ -134,7 +134,8 @@ class HumanoidTaskEnv(gym.Env):
     def _dressing(self, scene_seed: int, recorded: dict | None = None):
         """The randomized look and room of this scene (None: the clean tabletop), drawn from its seed; `recorded`
         (reset's `options={"dressing": ...}`, an episode record's `dressing`) replays an episode in the room and look
-        it was collected in, whatever the config says."""
+        it was collected in, whatever the config says; None (a clean collection's record has none) leaves the
+        config to say."""
         from humanoidgen.scenes.dressing import RANDOMIZED, SceneDressing, episode_dressing
 
         if recorded is not None:

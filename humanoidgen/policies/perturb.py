@@ -92,7 +92,7 @@ def perturbed_replay(env, actions: np.ndarray, seed: int, offsets: np.ndarray, j
     SETTLE_ACTIONS more, unrecorded."""
     from humanoidgen.policies.rollout import final_detail
 
-    obs, info = env.reset(seed=seed, options=None if dressing is None else {"dressing": dressing})
+    obs, info = env.reset(seed=seed, options={"dressing": dressing})
     ok = bool(info.get("success"))
     frames: dict[str, list[np.ndarray]] = {k: [] for k in RECORDED if k in obs}
     executed = actions.copy()

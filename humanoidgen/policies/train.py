@@ -94,12 +94,17 @@ def run_meta(demos: Demos, task: str | None) -> dict:
     return meta
 
 
+def _batch(inputs: dict, rows: torch.Tensor, cfg, device: str) -> dict:
+    """The training batch of sequences `rows` (each a horizon of frame indices): the observations of their first
+    n_obs_steps frames, the actions of all."""
+    return {k: v[rows[:, : cfg.n_obs_steps] if k != "action" else rows].to(device) for k, v in inputs.items()}
+
+
 def _seconds_per_step(model, inputs: dict, index: torch.Tensor, cfg, device: str) -> float:
     """One training step's forward and backward pass timed on a batch of this run (no optimizer step; the random
     state and gradients put back), so that a run says before its first step what it will take here: the paper's
     recipe on a 2-core CPU measured about 7 s a step at batch 64, which a user should hear before days of it."""
-    rows = index[: cfg.train.batch_size]
-    batch = {k: v[rows[:, : cfg.n_obs_steps] if k != "action" else rows].to(device) for k, v in inputs.items()}
+    batch = _batch(inputs, index[: cfg.train.batch_size], cfg, device)
     rng = torch.get_rng_state()
     cuda_rng = torch.cuda.get_rng_state_all() if str(device).startswith("cuda") else None
     model.train()
@@ -195,8 +200,7 @@ def train(policy: str, data: Path, out: Path, overrides: dict | None = None, dev
             total = 0.0
             for b in range(steps_per_epoch):
                 rows = order[b * tc.batch_size: (b + 1) * tc.batch_size]
-                batch = {k: v[rows[:, : cfg.n_obs_steps] if k != "action" else rows].to(device)
-                         for k, v in inputs.items()}
+                batch = _batch(inputs, rows, cfg, device)
                 loss = model.compute_loss(batch)
                 opt.zero_grad(set_to_none=True)
                 loss.backward()
